@@ -1,0 +1,110 @@
+//! [`Aabb`]: a closed axis-aligned box in D dimensions.
+
+use super::Scalar;
+
+/// A closed axis-aligned box `[min, max]` in D dimensions.
+///
+/// ```
+/// use orthtree::Aabb;
+/// let b = Aabb::new([0.0, 0.0], [2.0, 1.0]).unwrap();
+/// assert!(b.contains(&[2.0, 1.0])); // closed: the boundary belongs to the box
+/// assert!(!b.contains(&[2.5, 0.5]));
+/// assert_eq!(b.extent(0), 2.0);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb<S, const D: usize> {
+    /// The lower corner.
+    pub min: [S; D],
+    /// The upper corner.
+    pub max: [S; D],
+}
+
+/// Why a box was refused by [`Aabb::new`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum AabbError {
+    /// A coordinate on this axis is NaN or infinite.
+    NonFinite {
+        /// The offending axis.
+        axis: usize,
+    },
+    /// `min > max` on this axis.
+    Inverted {
+        /// The offending axis.
+        axis: usize,
+    },
+}
+
+impl core::fmt::Display for AabbError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            AabbError::NonFinite { axis } => {
+                write!(f, "box coordinate on axis {axis} is not finite")
+            }
+            AabbError::Inverted { axis } => write!(f, "box has min > max on axis {axis}"),
+        }
+    }
+}
+
+impl std::error::Error for AabbError {}
+
+impl<S: Scalar, const D: usize> Aabb<S, D> {
+    /// A box from its corners; an error if a coordinate is not finite or `min > max` on an axis.
+    pub fn new(min: [S; D], max: [S; D]) -> Result<Self, AabbError> {
+        for axis in 0..D {
+            if !min[axis].is_finite_coordinate() || !max[axis].is_finite_coordinate() {
+                return Err(AabbError::NonFinite { axis });
+            }
+            if min[axis] > max[axis] {
+                return Err(AabbError::Inverted { axis });
+            }
+        }
+        Ok(Aabb { min, max })
+    }
+
+    /// `true` when `point` lies in the closed box.
+    #[inline]
+    pub fn contains(&self, point: &[S; D]) -> bool {
+        (0..D).all(|a| self.min[a] <= point[a] && point[a] <= self.max[a])
+    }
+
+    /// `true` when the closed boxes share at least one point.
+    #[inline]
+    pub fn intersects(&self, other: &Self) -> bool {
+        (0..D).all(|a| self.min[a] <= other.max[a] && other.min[a] <= self.max[a])
+    }
+
+    /// `max - min` along `axis`.
+    #[inline]
+    pub fn extent(&self, axis: usize) -> S {
+        self.max[axis] - self.min[axis]
+    }
+
+    /// The box converted to `f64` coordinates.
+    pub fn to_f64(&self) -> Aabb<f64, D> {
+        Aabb {
+            min: self.min.map(Scalar::to_f64),
+            max: self.max.map(Scalar::to_f64),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rejects_bad_boxes_naming_the_axis() {
+        assert_eq!(
+            Aabb::new([0.0, 1.0], [1.0, 0.0]),
+            Err(AabbError::Inverted { axis: 1 })
+        );
+        assert_eq!(
+            Aabb::new([f64::NAN, 0.0], [1.0, 1.0]),
+            Err(AabbError::NonFinite { axis: 0 })
+        );
+        let b = Aabb::new([0i32; 3], [4; 3]).unwrap();
+        assert!(b.intersects(&Aabb::new([4; 3], [5; 3]).unwrap()));
+        assert!(!b.intersects(&Aabb::new([5; 3], [6; 3]).unwrap()));
+        assert_eq!(b.to_f64().max, [4.0; 3]);
+    }
+}

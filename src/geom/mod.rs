@@ -1,0 +1,14 @@
+//! The vocabulary shared by every layer: [`Scalar`] coordinates, closed boxes ([`Aabb`]), exact
+//! dyadic cells ([`Cell`]) with Morton keys, and [`Direction`]s with their [`Connectivity`].
+
+mod aabb;
+mod cell;
+mod direction;
+pub mod morton;
+mod scalar;
+
+pub use aabb::{Aabb, AabbError};
+pub use cell::Cell;
+pub(crate) use cell::Dim;
+pub use direction::{Connectivity, Direction};
+pub use scalar::{validate_point, Scalar};

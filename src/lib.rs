@@ -1,0 +1,35 @@
+//! # orthtree
+//!
+//! 2^D-trees for any dimension D from 1 to 8: point quadtrees and octrees with the chapter's
+//! split convention, neighbour finding and 2:1 balance (de Berg, Cheong, van Kreveld and
+//! Overmars, *Computational Geometry*, chapter 14).
+//!
+//! Layers: [`geom`] (scalars, boxes, cells, Morton keys, directions) → [`tree`] (topology:
+//! arena, traversals, neighbours, balance) → [`points`] (the point tree) → [`io`] (SVG).
+//!
+//! ```
+//! use orthtree::{Connectivity, Quadtree};
+//! let pts = [([0.1, 0.1], "a"), ([0.12, 0.1], "b"), ([0.9, 0.8], "c")];
+//! let mut t = Quadtree::builder().bucket_size(1).build(&pts).unwrap();
+//! let before = t.node_count();
+//! t.balance(Connectivity::Face);
+//! assert!(t.node_count() >= before);
+//! assert_eq!(t.len(), 3);
+//! ```
+#![warn(missing_docs)]
+#![deny(rustdoc::broken_intra_doc_links)]
+#![forbid(unsafe_code)]
+
+mod error;
+pub mod geom;
+pub mod io;
+pub mod points;
+pub mod tree;
+
+pub use error::Error;
+pub use geom::{morton, validate_point, Aabb, AabbError, Cell, Connectivity, Direction, Scalar};
+pub use points::{
+    Leaf, Leaves, Octree, PointTree, PointTreeBuilder, Quadtree, RootGeometry, ValidationError,
+    DEFAULT_BUCKET_SIZE,
+};
+pub use tree::{BalanceOptions, NodeId, PreOrder, SplitError, Tree};

@@ -1,0 +1,171 @@
+//! [`RootGeometry`]: where the cells of a tree lie in space, and the exact quantisation of points
+//! to Morton keys that agrees with the chapter's split convention.
+//!
+//! The boundary between cells `j - 1` and `j` at level `l` on axis `a` is
+//! `b(t) = 2 * (lo_a / 2 + h * t)` with `t = j / 2^l` and `h` half the root cube's side, evaluated
+//! in `f64`. Halving keeps the arithmetic finite for any finite root box, and rounding is monotone,
+//! so `b` is non-decreasing in `t`: the boundaries of every level are a subset of those of the
+//! next, and a point lies in cell `j` (at the finest level) exactly when `b(j) < x <= b(j + 1)`.
+//! A coordinate on a split line (`x == b(t)`) therefore goes to the lower cell, as in the chapter,
+//! and a cell's points are exactly those whose key has the cell's key as prefix.
+
+use crate::geom::{Aabb, Cell};
+
+/// The root cube of a tree and the map between coordinates and cells.
+///
+/// ```
+/// use orthtree::{Cell, RootGeometry};
+/// let g = RootGeometry::<2>::new([0.0, 0.0], 16.0);
+/// let c = Cell::new(1, [1, 0]).unwrap(); // the chapter's SE quadrant
+/// assert_eq!(g.cell_box(&c).min, [8.0, 0.0]);
+/// // on the vertical split line: the lower (western) side
+/// assert_eq!(g.cell_of(&[8.0, 3.0], 1), Cell::new(1, [0, 0]).unwrap());
+/// assert_eq!(g.cell_of(&[8.5, 3.0], 1), c);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RootGeometry<const D: usize> {
+    half_lo: [f64; D],
+    half_side: f64,
+}
+
+impl<const D: usize> RootGeometry<D> {
+    const FINEST: u32 = Cell::<D>::MAX_LEVEL as u32;
+    const LAST: u64 = (1u64 << Self::FINEST) - 1;
+
+    /// The cube with lower corner `min` and side `side` (finite, non-negative).
+    pub fn new(min: [f64; D], side: f64) -> Self {
+        debug_assert!(side >= 0.0 && side.is_finite());
+        RootGeometry {
+            half_lo: min.map(|m| m * 0.5),
+            half_side: side * 0.5,
+        }
+    }
+
+    /// The smallest cube with lower corner at the per-axis minimum of `bounds` that contains
+    /// `bounds` (side 1 when `bounds` is a single point); for any finite `bounds`.
+    pub fn enclosing(bounds: &Aabb<f64, D>) -> Self {
+        let half_lo = bounds.min.map(|m| m * 0.5);
+        let mut half_side = (0..D)
+            .map(|a| bounds.max[a] * 0.5 - half_lo[a])
+            .fold(0.0, f64::max);
+        if half_side == 0.0 {
+            half_side = 0.5;
+        }
+        let mut g = RootGeometry { half_lo, half_side };
+        // Rounding can leave the upper side a hair short: grow one ulp at a time, then
+        // geometrically, so that this ends whatever the magnitudes.
+        let mut tries = 0u32;
+        while (0..D).any(|a| g.upper(a) < bounds.max[a]) {
+            g.half_side = if tries < 8 {
+                g.half_side.next_up()
+            } else {
+                g.half_side * (1.0 + f64::EPSILON * (1u64 << (tries - 8).min(52)) as f64)
+            };
+            tries += 1;
+        }
+        g
+    }
+
+    /// The boundary number `j` (of `2^level + 1`) along `axis` at `level`.
+    #[inline]
+    pub fn boundary(&self, axis: usize, j: u64, level: u8) -> f64 {
+        let t = j as f64 / (1u64 << level) as f64;
+        2.0 * (self.half_lo[axis] + self.half_side * t)
+    }
+
+    #[inline]
+    fn upper(&self, axis: usize) -> f64 {
+        2.0 * (self.half_lo[axis] + self.half_side)
+    }
+
+    /// The root cube.
+    pub fn root_box(&self) -> Aabb<f64, D> {
+        self.cell_box(&Cell::root())
+    }
+
+    /// The closed box of `cell`.
+    pub fn cell_box(&self, cell: &Cell<D>) -> Aabb<f64, D> {
+        let c = cell.coords();
+        Aabb {
+            min: core::array::from_fn(|a| self.boundary(a, c[a] as u64, cell.level())),
+            max: core::array::from_fn(|a| self.boundary(a, c[a] as u64 + 1, cell.level())),
+        }
+    }
+
+    /// The finest-level cell coordinate of `x` along `axis`: the `j` with `b(j) < x <= b(j + 1)`,
+    /// clamped to the root cube (the first cell includes its lower boundary).
+    #[inline]
+    pub fn coordinate(&self, axis: usize, x: f64) -> u32 {
+        let at = |j: u64| self.boundary(axis, j, Self::FINEST as u8);
+        let fits = |j: u64| (j == 0 || at(j) < x) && (j == Self::LAST || x <= at(j + 1));
+        let scaled = (x * 0.5 - self.half_lo[axis]) / self.half_side;
+        let guess = (scaled * (1u64 << Self::FINEST) as f64) as u64; // saturating; NaN -> 0
+        let guess = guess.min(Self::LAST);
+        for j in [guess, guess.saturating_sub(1), (guess + 1).min(Self::LAST)] {
+            if fits(j) {
+                return j as u32;
+            }
+        }
+        // The first j in 0..=LAST with x <= b(j + 1) (the boundaries are monotone).
+        let (mut lo, mut hi) = (0u64, Self::LAST);
+        while lo < hi {
+            let mid = lo + (hi - lo) / 2;
+            if x <= at(mid + 1) {
+                hi = mid;
+            } else {
+                lo = mid + 1;
+            }
+        }
+        lo as u32
+    }
+
+    /// The Morton key of `point` at the finest level ([`Cell::MAX_LEVEL`]).
+    #[inline]
+    pub fn key(&self, point: &[f64; D]) -> u64 {
+        let coords: [u32; D] = core::array::from_fn(|a| self.coordinate(a, point[a]));
+        crate::geom::morton::interleave(coords, Self::FINEST)
+    }
+
+    /// The cell at `level` that holds `point` under the split convention.
+    pub fn cell_of(&self, point: &[f64; D], level: u8) -> Cell<D> {
+        Cell::from_aligned_key(self.key(point), level)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn split_lines_go_to_the_lower_cell_at_every_level() {
+        let g = RootGeometry::<2>::new([-1.0, -1.0], 2.0);
+        assert_eq!(g.cell_of(&[0.0, 0.0], 1).coords(), [0, 0]);
+        assert_eq!(g.cell_of(&[0.5, -0.5], 2).coords(), [2, 0]);
+        assert_eq!(g.cell_of(&[0.5000001, -0.5], 2).coords(), [3, 0]);
+        assert_eq!(g.cell_of(&[-1.0, 1.0], 3).coords(), [0, 7]);
+    }
+
+    #[test]
+    fn extreme_boxes_stay_finite_and_monotone() {
+        let b = Aabb {
+            min: [-f64::MAX, -1.0],
+            max: [f64::MAX, 1.0],
+        };
+        let g = RootGeometry::enclosing(&b);
+        assert!(g.root_box().max[0] >= f64::MAX);
+        assert!(g.boundary(0, 1, 1).is_finite());
+        assert_eq!(g.cell_of(&[f64::MAX, 0.0], 1).coords()[0], 1);
+        assert_eq!(g.cell_of(&[0.0, 0.0], 1).coords()[0], 0);
+        let tiny = Aabb {
+            min: [0.0; 2],
+            max: [f64::MIN_POSITIVE / 4.0; 2],
+        };
+        let g = RootGeometry::enclosing(&tiny);
+        assert!(g.root_box().max[0] >= tiny.max[0]);
+        let same = Aabb {
+            min: [3.0; 2],
+            max: [3.0; 2],
+        };
+        assert_eq!(RootGeometry::enclosing(&same).root_box().max, [4.0, 4.0]);
+    }
+}

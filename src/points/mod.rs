@@ -1,0 +1,337 @@
+//! [`PointTree`]: the chapter's point quadtree (section 14.2) in D dimensions, with bucketed
+//! leaves, built by Morton sort ([`PointTreeBuilder`]); point location; balance that moves the
+//! points into the new leaves; and an invariant checker.
+//!
+//! Points are stored sorted by Morton key, so every node owns one contiguous run of them: a query
+//! streams through memory, and a node wholly inside a region yields its run untested.
+
+mod build;
+mod geometry;
+mod leaves;
+
+pub use build::{PointTreeBuilder, DEFAULT_BUCKET_SIZE};
+pub use geometry::RootGeometry;
+pub use leaves::{Leaf, Leaves};
+
+use crate::error::Error;
+use crate::geom::{Aabb, Cell, Dim, Scalar};
+use crate::tree::{BalanceOptions, NodeId, Tree};
+
+/// A point quadtree (D = 2), octree (D = 3) or 2^D-tree storing (point, item) pairs.
+///
+/// Split convention (the chapter's): a coordinate equal to a split value goes to the lower child.
+/// A leaf holds at most the bucket size of points unless it is at the maximum depth.
+///
+/// ```
+/// use orthtree::{Connectivity, Quadtree};
+/// let pts: Vec<([f64; 2], usize)> = (0..100).map(|i| ([i as f64, (i * i % 100) as f64], i)).collect();
+/// let mut t = Quadtree::new(&pts).unwrap();
+/// assert_eq!(t.len(), 100);
+/// let leaf = t.locate(&[42.0, 64.0]).unwrap();
+/// assert!(t.node_items(leaf).contains(&42));
+/// t.balance(Connectivity::Face);
+/// assert!(t.tree().is_balanced(Connectivity::Face));
+/// t.validate().unwrap();
+/// ```
+#[derive(Clone, Debug)]
+pub struct PointTree<S, T, const D: usize> {
+    tree: Tree<D>,
+    geometry: RootGeometry<D>,
+    domain: Aabb<f64, D>,
+    points: Vec<[S; D]>,
+    items: Vec<T>,
+    ranges: Vec<(u32, u32)>,
+    bucket_size: usize,
+    max_depth: u8,
+    balanced: Option<BalanceOptions>,
+}
+
+impl<S: Scalar, const D: usize> PointTree<S, (), D> {
+    /// A builder for other settings; the item type comes from what it builds.
+    pub fn builder() -> PointTreeBuilder<S, D> {
+        PointTreeBuilder::new()
+    }
+}
+
+/// A point quadtree over `f64` coordinates.
+pub type Quadtree<T> = PointTree<f64, T, 2>;
+/// A point octree over `f64` coordinates.
+pub type Octree<T> = PointTree<f64, T, 3>;
+
+impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
+    /// Builds with the default settings ([`PointTreeBuilder::new`]), cloning the items.
+    pub fn new(entries: &[([S; D], T)]) -> Result<Self, Error>
+    where
+        T: Clone,
+    {
+        PointTreeBuilder::new().build(entries)
+    }
+
+    /// The number of points.
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.points.len()
+    }
+
+    /// `true` when the tree stores no point.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.points.is_empty()
+    }
+
+    /// Every (point, item) in Morton order.
+    pub fn iter(&self) -> core::iter::Zip<core::slice::Iter<'_, [S; D]>, core::slice::Iter<'_, T>> {
+        self.points.iter().zip(self.items.iter())
+    }
+
+    /// The points in Morton order.
+    pub fn points(&self) -> &[[S; D]] {
+        &self.points
+    }
+
+    /// The items, in the order of [`PointTree::points`].
+    pub fn items(&self) -> &[T] {
+        &self.items
+    }
+
+    /// The topology.
+    pub fn tree(&self) -> &Tree<D> {
+        &self.tree
+    }
+
+    /// The depth of the tree (0 for a single leaf).
+    pub fn depth(&self) -> u8 {
+        self.tree.depth()
+    }
+
+    /// The number of nodes.
+    pub fn node_count(&self) -> usize {
+        self.tree.node_count()
+    }
+
+    /// The number of leaves.
+    pub fn leaf_count(&self) -> usize {
+        self.tree.leaf_count()
+    }
+
+    /// The bucket size it was built with.
+    pub fn bucket_size(&self) -> usize {
+        self.bucket_size
+    }
+
+    /// The maximum depth it was built with.
+    pub fn max_depth(&self) -> u8 {
+        self.max_depth
+    }
+
+    /// Where the cells lie in space.
+    pub fn geometry(&self) -> &RootGeometry<D> {
+        &self.geometry
+    }
+
+    /// The closed box every point lies in: the given root box, or the computed root cube.
+    pub fn domain(&self) -> &Aabb<f64, D> {
+        &self.domain
+    }
+
+    /// The closed box of a node's cell.
+    pub fn cell_box(&self, id: NodeId) -> Aabb<f64, D> {
+        self.geometry.cell_box(&self.tree.cell(id))
+    }
+
+    /// The points in the cell of node `id` (all of its subtree's), in Morton order.
+    pub fn node_points(&self, id: NodeId) -> &[[S; D]] {
+        let (s, e) = self.ranges[id.index()];
+        &self.points[s as usize..e as usize]
+    }
+
+    /// The items of [`PointTree::node_points`].
+    pub fn node_items(&self, id: NodeId) -> &[T] {
+        let (s, e) = self.ranges[id.index()];
+        &self.items[s as usize..e as usize]
+    }
+
+    /// Heap bytes used: points, items, node runs and topology.
+    pub fn heap_bytes(&self) -> usize {
+        self.points.capacity() * core::mem::size_of::<[S; D]>()
+            + self.items.capacity() * core::mem::size_of::<T>()
+            + self.ranges.capacity() * core::mem::size_of::<(u32, u32)>()
+            + self.tree.heap_bytes()
+    }
+
+    /// The leaf whose cell holds `point` under the split convention. O(depth).
+    ///
+    /// Errors: a coordinate that is NaN or infinite, or outside [`PointTree::domain`].
+    pub fn locate(&self, point: &[S; D]) -> Result<NodeId, Error> {
+        let p = point.map(Scalar::to_f64);
+        for (axis, &value) in p.iter().enumerate() {
+            if !value.is_finite() {
+                return Err(Error::QueryNotFinite { axis, value });
+            }
+            let interval = (self.domain.min[axis], self.domain.max[axis]);
+            if !(interval.0 <= value && value <= interval.1) {
+                return Err(Error::QueryOutsideRootBox {
+                    axis,
+                    value,
+                    interval,
+                });
+            }
+        }
+        let key = self.geometry.key(&p);
+        let mut v = NodeId::ROOT;
+        while let Some(first) = self.tree.child(v, 0) {
+            let c = digit::<D>(key, self.tree.level(v));
+            v = NodeId(first.0 + c as u32);
+        }
+        Ok(v)
+    }
+
+    /// Refines the tree to the coarsest balanced tree containing it ([`Tree::balance`]) and moves
+    /// the points of every split leaf into its new children. Returns the leaves split.
+    pub fn balance(&mut self, options: impl Into<BalanceOptions>) -> Vec<NodeId> {
+        let options = options.into();
+        let split = self.tree.balance(options);
+        let geometry = self.geometry;
+        let points = &self.points;
+        for &leaf in &split {
+            partition_children(&self.tree, &mut self.ranges, leaf, |i| {
+                geometry.key(&points[i].map(Scalar::to_f64))
+            });
+        }
+        self.balanced = Some(options);
+        split
+    }
+
+    /// Splits below `start` while a node holds more than the bucket size and is above the
+    /// maximum depth; `keys[i]` is the Morton key of point `i`.
+    fn subdivide(&mut self, start: NodeId, keys: &[u64]) {
+        let mut stack = vec![start];
+        while let Some(v) = stack.pop() {
+            let (s, e) = self.ranges[v.index()];
+            if (e - s) as usize <= self.bucket_size || self.tree.level(v) >= self.max_depth {
+                continue;
+            }
+            self.tree.split(v);
+            partition_children(&self.tree, &mut self.ranges, v, |i| keys[i]);
+            stack.extend(self.tree.children(v).rev());
+        }
+    }
+
+    /// Checks every invariant and names the first one broken: node runs nest and partition their
+    /// parent's; every point lies in its leaf's cell under the split convention and inside the
+    /// domain; the points are in Morton order; a leaf holds more than the bucket size only at the
+    /// maximum depth; an internal node holds more than the bucket size unless balance split it,
+    /// and then the tree is balanced.
+    pub fn validate(&self) -> Result<(), ValidationError> {
+        let fail = |msg: String| Err(ValidationError(msg));
+        if self.ranges.len() != self.tree.node_count() {
+            return fail(format!(
+                "{} runs for {} nodes",
+                self.ranges.len(),
+                self.tree.node_count()
+            ));
+        }
+        if self.ranges[0] != (0, self.len() as u32) || self.items.len() != self.len() {
+            return fail("the root does not own every point".into());
+        }
+        let mut previous_key = 0u64;
+        for (id, cell) in self.tree.pre_order() {
+            let (s, e) = self.ranges[id.index()];
+            let count = (e - s) as usize;
+            if self.tree.is_leaf(id) {
+                if count > self.bucket_size && cell.level() < self.max_depth {
+                    return fail(format!(
+                        "leaf {} holds {count} points above the maximum depth",
+                        id.0
+                    ));
+                }
+                for (i, p) in self.points[s as usize..e as usize].iter().enumerate() {
+                    let q = p.map(Scalar::to_f64);
+                    if !self.domain.contains(&q) {
+                        return fail(format!("point {} lies outside the domain", s as usize + i));
+                    }
+                    let key = self.geometry.key(&q);
+                    if key < previous_key || Cell::from_aligned_key(key, cell.level()) != cell {
+                        return fail(format!(
+                            "point {} is out of place in leaf {}",
+                            s as usize + i,
+                            id.0
+                        ));
+                    }
+                    previous_key = key;
+                }
+            } else {
+                let mut at = s;
+                for child in self.tree.children(id) {
+                    let (cs, ce) = self.ranges[child.index()];
+                    if cs != at || ce < cs {
+                        return fail(format!("node {}'s children do not partition its run", id.0));
+                    }
+                    at = ce;
+                }
+                if at != e {
+                    return fail(format!("node {}'s children do not cover its run", id.0));
+                }
+                if count <= self.bucket_size && self.balanced.is_none() {
+                    return fail(format!(
+                        "node {} was split holding only {count} points",
+                        id.0
+                    ));
+                }
+            }
+        }
+        if let Some(options) = self.balanced {
+            if !self.tree.is_balanced(options) {
+                return fail("the tree is not balanced after balance()".into());
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The child index of the cell at `level + 1` holding the point whose finest Morton key is `key`.
+#[inline]
+fn digit<const D: usize>(key: u64, level: u8) -> usize {
+    let shift = D as u32 * (Cell::<D>::MAX_LEVEL - level - 1) as u32;
+    ((key >> shift) as usize) & (Dim::<D>::CHILDREN - 1)
+}
+
+/// Gives each child of the just-split node `v` its part of `v`'s run, which is sorted by key.
+fn partition_children<const D: usize>(
+    tree: &Tree<D>,
+    ranges: &mut Vec<(u32, u32)>,
+    v: NodeId,
+    key: impl Fn(usize) -> u64,
+) {
+    let level = tree.level(v);
+    let (s, e) = ranges[v.index()];
+    let first = tree.child(v, 0).expect("v was just split");
+    ranges.resize(tree.node_count(), (0, 0));
+    let mut lo = s;
+    for c in 0..Dim::<D>::CHILDREN {
+        // First index in lo..e whose digit exceeds c.
+        let (mut a, mut b) = (lo, e);
+        while a < b {
+            let mid = a + (b - a) / 2;
+            if digit::<D>(key(mid as usize), level) <= c {
+                a = mid + 1;
+            } else {
+                b = mid;
+            }
+        }
+        ranges[first.index() + c] = (lo, a);
+        lo = a;
+    }
+}
+
+/// A broken invariant found by [`PointTree::validate`].
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ValidationError(pub String);
+
+impl core::fmt::Display for ValidationError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for ValidationError {}

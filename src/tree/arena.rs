@@ -1,0 +1,266 @@
+//! [`Tree`]: the topology of a 2^D-tree in an arena, with no payload.
+//!
+//! Nodes are `u32` indices. The root is node 0; every split appends one block of 2^D children
+//! stored side by side, so a node keeps only the index of its first child, and a block keeps its
+//! parent (4 bytes per node plus 4 per block, plus one byte of level). Node ids never move:
+//! a consumer can keep its payload in a `Vec` indexed by [`NodeId`] and extend it after a split.
+
+use crate::geom::{Cell, Dim};
+
+const NONE: u32 = u32::MAX;
+
+/// The index of a node in a [`Tree`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct NodeId(pub(crate) u32);
+
+impl NodeId {
+    /// The root of every tree.
+    pub const ROOT: NodeId = NodeId(0);
+
+    /// The id as an index, for payload vectors indexed by node.
+    #[inline]
+    pub const fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+/// The topology of a 2^D-tree: which nodes exist, their parents, children and levels.
+///
+/// ```
+/// use orthtree::{Tree, NodeId};
+/// let mut t = Tree::<2>::new();
+/// let first = t.split(NodeId::ROOT);
+/// assert_eq!(t.node_count(), 5);
+/// assert_eq!(t.leaf_count(), 4);
+/// assert_eq!(t.parent(first), Some(NodeId::ROOT));
+/// assert_eq!(t.cell(t.child(NodeId::ROOT, 3).unwrap()).coords(), [1, 1]);
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Tree<const D: usize> {
+    first_child: Vec<u32>,
+    level: Vec<u8>,
+    block_parent: Vec<u32>,
+    depth: u8,
+}
+
+impl<const D: usize> Default for Tree<D> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<const D: usize> Tree<D> {
+    /// A tree holding only its root, a leaf.
+    pub fn new() -> Self {
+        let () = Dim::<D>::CHECK;
+        Tree {
+            first_child: vec![NONE],
+            level: vec![0],
+            block_parent: Vec::new(),
+            depth: 0,
+        }
+    }
+
+    /// Number of nodes, internal and leaves.
+    #[inline]
+    pub fn node_count(&self) -> usize {
+        self.first_child.len()
+    }
+
+    /// Number of leaves: one plus (2^D - 1) per split.
+    #[inline]
+    pub fn leaf_count(&self) -> usize {
+        1 + self.block_parent.len() * (Dim::<D>::CHILDREN - 1)
+    }
+
+    /// The depth: the largest level of any node (0 for a single root).
+    #[inline]
+    pub fn depth(&self) -> u8 {
+        self.depth
+    }
+
+    /// `true` when `id` has no children.
+    #[inline]
+    pub fn is_leaf(&self, id: NodeId) -> bool {
+        self.first_child[id.index()] == NONE
+    }
+
+    /// The level of `id` (the root is at level 0).
+    #[inline]
+    pub fn level(&self, id: NodeId) -> u8 {
+        self.level[id.index()]
+    }
+
+    /// The parent of `id`; `None` for the root.
+    #[inline]
+    pub fn parent(&self, id: NodeId) -> Option<NodeId> {
+        (id.0 != 0).then(|| NodeId(self.block_parent[((id.0 - 1) >> D) as usize]))
+    }
+
+    /// Which child of its parent `id` is (bit `a` set: upper half along axis `a`); 0 for the root.
+    #[inline]
+    pub fn child_index(&self, id: NodeId) -> usize {
+        if id.0 == 0 {
+            0
+        } else {
+            ((id.0 - 1) as usize) & (Dim::<D>::CHILDREN - 1)
+        }
+    }
+
+    /// The `index`-th child of `id`; `None` if `id` is a leaf.
+    #[inline]
+    pub fn child(&self, id: NodeId, index: usize) -> Option<NodeId> {
+        debug_assert!(index < Dim::<D>::CHILDREN);
+        let first = self.first_child[id.index()];
+        (first != NONE).then(|| NodeId(first + index as u32))
+    }
+
+    /// The 2^D children of `id` in child-index order; empty for a leaf.
+    #[inline]
+    pub fn children(
+        &self,
+        id: NodeId,
+    ) -> impl ExactSizeIterator<Item = NodeId> + DoubleEndedIterator {
+        let first = self.first_child[id.index()];
+        let n = if first == NONE {
+            0
+        } else {
+            Dim::<D>::CHILDREN as u32
+        };
+        let first = if first == NONE { 0 } else { first };
+        (first..first + n).map(NodeId)
+    }
+
+    /// The cell of `id`, found by walking up to the root: O(level).
+    pub fn cell(&self, id: NodeId) -> Cell<D> {
+        let level = self.level(id);
+        let mut coords = [0u32; D];
+        let mut v = id;
+        for bit in 0..level as u32 {
+            let c = self.child_index(v);
+            for (a, x) in coords.iter_mut().enumerate() {
+                *x |= (((c >> a) & 1) as u32) << bit;
+            }
+            v = self
+                .parent(v)
+                .expect("a node above the root level has a parent");
+        }
+        Cell::new(level, coords).expect("a node's level never exceeds Cell::MAX_LEVEL")
+    }
+
+    /// Splits the leaf `id` into 2^D leaves and returns the first of them; the others follow it.
+    ///
+    /// # Panics
+    /// If `id` is not a leaf or is at [`Cell::MAX_LEVEL`]; see [`Tree::try_split`].
+    pub fn split(&mut self, id: NodeId) -> NodeId {
+        match self.try_split(id) {
+            Ok(first) => first,
+            Err(e) => panic!("{e}"),
+        }
+    }
+
+    /// Splits the leaf `id`, or says why it cannot be split.
+    pub fn try_split(&mut self, id: NodeId) -> Result<NodeId, SplitError> {
+        if !self.is_leaf(id) {
+            return Err(SplitError::NotALeaf(id));
+        }
+        let level = self.level(id);
+        if level >= Cell::<D>::MAX_LEVEL {
+            return Err(SplitError::MaxLevel(id));
+        }
+        let first = self.first_child.len();
+        if first + Dim::<D>::CHILDREN > NONE as usize {
+            return Err(SplitError::Full);
+        }
+        self.first_child[id.index()] = first as u32;
+        self.first_child.resize(first + Dim::<D>::CHILDREN, NONE);
+        self.level.resize(first + Dim::<D>::CHILDREN, level + 1);
+        self.block_parent.push(id.0);
+        self.depth = self.depth.max(level + 1);
+        Ok(NodeId(first as u32))
+    }
+
+    /// The deepest node whose cell contains `cell`: O(level of the result).
+    pub fn locate_cell(&self, cell: &Cell<D>) -> NodeId {
+        let mut v = NodeId::ROOT;
+        while let Some(first) = self.child(v, 0) {
+            let level = self.level(v);
+            if level >= cell.level() {
+                break;
+            }
+            let c = cell.ancestor(level + 1).child_index();
+            v = NodeId(first.0 + c as u32);
+        }
+        v
+    }
+
+    /// Reserves room for `splits` more splits.
+    pub fn reserve_splits(&mut self, splits: usize) {
+        self.first_child.reserve(splits * Dim::<D>::CHILDREN);
+        self.level.reserve(splits * Dim::<D>::CHILDREN);
+        self.block_parent.reserve(splits);
+    }
+
+    /// Heap bytes used by the topology.
+    pub fn heap_bytes(&self) -> usize {
+        self.first_child.capacity() * 4 + self.level.capacity() + self.block_parent.capacity() * 4
+    }
+}
+
+/// Why [`Tree::try_split`] refused.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SplitError {
+    /// The node already has children.
+    NotALeaf(NodeId),
+    /// The node is at [`Cell::MAX_LEVEL`].
+    MaxLevel(NodeId),
+    /// The tree already has 2^32 - 1 nodes.
+    Full,
+}
+
+impl core::fmt::Display for SplitError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            SplitError::NotALeaf(id) => write!(f, "node {} is not a leaf", id.0),
+            SplitError::MaxLevel(id) => write!(f, "node {} is at the deepest level", id.0),
+            SplitError::Full => write!(
+                f,
+                "the tree has the largest number of nodes a u32 can index"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for SplitError {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn split_parent_child_and_cells_agree() {
+        let mut t = Tree::<3>::new();
+        let first = t.split(NodeId::ROOT);
+        let c5 = NodeId(first.0 + 5);
+        t.split(c5);
+        let g = t.child(c5, 6).unwrap();
+        assert_eq!(t.parent(g), Some(c5));
+        assert_eq!(t.child_index(g), 6);
+        assert_eq!(t.cell(g), Cell::root().child(5).child(6));
+        assert_eq!(t.locate_cell(&Cell::root().child(5).child(6).child(1)), g);
+        assert_eq!(t.leaf_count(), 15);
+        assert_eq!(t.depth(), 2);
+        assert_eq!(t.try_split(c5), Err(SplitError::NotALeaf(c5)));
+        assert!(t.children(g).next().is_none());
+    }
+
+    #[test]
+    fn splitting_stops_at_the_deepest_level() {
+        let mut t = Tree::<8>::new();
+        let mut v = NodeId::ROOT;
+        for _ in 0..Cell::<8>::MAX_LEVEL {
+            v = t.split(v);
+        }
+        assert_eq!(t.try_split(v), Err(SplitError::MaxLevel(v)));
+    }
+}

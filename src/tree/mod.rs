@@ -1,0 +1,11 @@
+//! The topology shared by every consumer, with no payload: an arena of nodes ([`Tree`]), its
+//! traversals, neighbour finding and 2:1 balance.
+
+mod arena;
+mod balance;
+mod neighbors;
+mod traverse;
+
+pub use arena::{NodeId, SplitError, Tree};
+pub use balance::BalanceOptions;
+pub use traverse::PreOrder;
