@@ -33,3 +33,8 @@ pub use points::{
     DEFAULT_BUCKET_SIZE,
 };
 pub use tree::{BalanceOptions, NodeId, PreOrder, SplitError, Tree};
+
+/// The README's examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

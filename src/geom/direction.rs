@@ -60,6 +60,12 @@ impl Direction {
         }
     }
 
+    /// From the masks of axes moving up and down (which must be disjoint and not both empty).
+    pub(crate) const fn from_masks(plus: u8, minus: u8) -> Direction {
+        debug_assert!(plus & minus == 0 && plus | minus != 0);
+        Direction { plus, minus }
+    }
+
     /// From an offset vector; `None` if it is all zero or has an entry outside {-1, 0, 1}.
     pub fn from_offset<const D: usize>(offset: [i8; D]) -> Option<Direction> {
         let (mut plus, mut minus) = (0u8, 0u8);

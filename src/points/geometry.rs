@@ -69,7 +69,8 @@ impl<const D: usize> RootGeometry<D> {
     /// The boundary number `j` (of `2^level + 1`) along `axis` at `level`.
     #[inline]
     pub fn boundary(&self, axis: usize, j: u64, level: u8) -> f64 {
-        let t = j as f64 / (1u64 << level) as f64;
+        // j / 2^level, exactly: a multiplication by a power of two.
+        let t = j as f64 * f64::from_bits((1023 - level as u64) << 52);
         2.0 * (self.half_lo[axis] + self.half_side * t)
     }
 

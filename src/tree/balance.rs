@@ -1,4 +1,4 @@
-//! 2:1 balance: the chapter's BALANCEQUADTREE (section 14.2, Theorem 14.4) generalised to D
+//! The reference 2:1 balance: the chapter's BALANCEQUADTREE (section 14.2, Theorem 14.4) generalised to D
 //! dimensions, to face, edge and corner connectivity, and to the weak balance of exercise 14.6
 //! (adjacent leaves may differ by a factor 4, i.e. two levels).
 //!
@@ -8,6 +8,9 @@
 //! side `max_level_difference` levels down. After a split, its 2^D children are examined, and so
 //! is every neighbour leaf now too coarse next to them. Every split is forced, so the result is
 //! the coarsest balanced refinement.
+//!
+//! The crate's [`Tree::balance`] (in `ripple.rs`) gives the same tree faster; this one stays as the
+//! oracle it is tested against, and is where [`BalanceOptions`] lives.
 //!
 //! Splits: the chapter's charging argument carries over to D dimensions and to every connectivity
 //! and ratio: each split cell has an original (pre-balance) cell among its 3^D - 1 same-size
@@ -59,6 +62,10 @@ impl From<Connectivity> for BalanceOptions {
 }
 
 impl<const D: usize> Tree<D> {
+    /// The chapter's BALANCEQUADTREE, generalised: the same result as [`Tree::balance`], by a
+    /// worklist of leaves and neighbour searches below each neighbour. Kept as the reference that
+    /// [`Tree::balance`] is tested against; slower by a constant factor.
+    ///
     /// Refines the tree to the coarsest balanced tree containing it and returns the leaves it
     /// split, in the order it split them (each split leaf's children follow from
     /// [`Tree::children`]; the list may hold leaves created by earlier splits in it).
@@ -68,24 +75,7 @@ impl<const D: usize> Tree<D> {
     ///
     /// # Panics
     /// If `options.max_level_difference` is 0.
-    ///
-    /// ```
-    /// use orthtree::{Connectivity, NodeId, Tree};
-    /// let mut t = Tree::<2>::new();
-    /// // refine towards the centre from the SW quadrant, down to level 4
-    /// let mut v = t.split(NodeId::ROOT); // the SW child
-    /// for _ in 0..3 {
-    ///     t.split(v);
-    ///     v = t.child(v, 3).unwrap(); // its NE child
-    /// }
-    /// assert!(!t.is_balanced(Connectivity::Face));
-    /// let split = t.balance(Connectivity::Face);
-    /// assert!(t.is_balanced(Connectivity::Face));
-    /// // SE and NW (level 1) split, then their children next to the centre, and that
-    /// // propagates: NE (level 1) now borders level-3 leaves and splits too
-    /// assert_eq!(split.len(), 5);
-    /// ```
-    pub fn balance(&mut self, options: impl Into<BalanceOptions>) -> Vec<NodeId> {
+    pub fn balance_chapter(&mut self, options: impl Into<BalanceOptions>) -> Vec<NodeId> {
         let options = options.into();
         assert!(
             options.max_level_difference >= 1,
@@ -114,9 +104,10 @@ impl<const D: usize> Tree<D> {
         split
     }
 
-    /// `true` when no two adjacent leaves (under `options`' connectivity) differ by more than
-    /// `options.max_level_difference` levels. O((d + 1) m).
-    pub fn is_balanced(&self, options: impl Into<BalanceOptions>) -> bool {
+    /// The reference check for [`Tree::is_balanced`]: for every leaf and direction, looks for a
+    /// too-deep leaf below the neighbour. `true` when no two adjacent leaves (under `options`'
+    /// connectivity) differ by more than `options.max_level_difference` levels. O((d + 1) m).
+    pub fn is_balanced_chapter(&self, options: impl Into<BalanceOptions>) -> bool {
         let options = options.into();
         let directions: Vec<Direction> = Direction::all::<D>(options.connectivity).collect();
         self.leaves()
@@ -152,18 +143,18 @@ mod tests {
         let mut t = Tree::<2>::new();
         let f = t.split(NodeId::ROOT);
         let g = t.split(f); // SW at level 1 split: level-2 leaves next to level-1 SE
-        assert!(t.is_balanced(Connectivity::Corner));
+        assert!(t.is_balanced_chapter(Connectivity::Corner));
         t.split(NodeId(g.0 + 3)); // level-3 leaves touch SE (level 1) at a corner... and face
-        assert!(!t.is_balanced(Connectivity::Face));
-        assert!(t.is_balanced(BalanceOptions::new(Connectivity::Corner).weak()));
-        let split = t.balance(BalanceOptions::new(Connectivity::Face).weak());
+        assert!(!t.is_balanced_chapter(Connectivity::Face));
+        assert!(t.is_balanced_chapter(BalanceOptions::new(Connectivity::Corner).weak()));
+        let split = t.balance_chapter(BalanceOptions::new(Connectivity::Face).weak());
         assert!(split.is_empty());
-        let split = t.balance(Connectivity::Face);
+        let split = t.balance_chapter(Connectivity::Face);
         assert_eq!(split.len(), 2); // SE and NW
-        assert!(t.is_balanced(Connectivity::Face));
+        assert!(t.is_balanced_chapter(Connectivity::Face));
         // NE (level 1) still touches a level-3 leaf at the centre point
-        assert!(!t.is_balanced(Connectivity::Corner));
-        assert_eq!(t.balance(Connectivity::Corner).len(), 1);
-        assert!(t.is_balanced(Connectivity::Corner));
+        assert!(!t.is_balanced_chapter(Connectivity::Corner));
+        assert_eq!(t.balance_chapter(Connectivity::Corner).len(), 1);
+        assert!(t.is_balanced_chapter(Connectivity::Corner));
     }
 }

@@ -4,6 +4,7 @@
 mod arena;
 mod balance;
 mod neighbors;
+mod ripple;
 mod traverse;
 
 pub use arena::{NodeId, SplitError, Tree};

@@ -1,0 +1,219 @@
+//! Level-by-level 2:1 balance: every split forced, each internal node examined once, no worklist
+//! of leaves and no searches below neighbours.
+//!
+//! The test. A tree is balanced (adjacent leaves differ by at most k levels under a connectivity)
+//! exactly when, for every internal node C at level l and every direction δ allowed by the
+//! connectivity that leaves C's parent P on every axis it moves along, the neighbour search from C
+//! ([`Tree::neighbor`]) ends at level l - (k - 1) or deeper. (Any leaf adjacent to a child of C is
+//! found in such a direction; directions that stay inside P lead to siblings, which exist; and
+//! directions that leave P on only some of their axes reach the same node as their restriction to
+//! those axes.) So [`Tree::is_balanced`] costs one neighbour search per internal node and outward
+//! direction: (2^D - 1) searches per internal node at most, D with face connectivity.
+//!
+//! The repair. Internal nodes are taken by level, deepest first. For each outward direction whose
+//! search ends too shallow, the search's path is followed down, splitting the leaf met at each
+//! level, until level l - (k - 1) is reached. Those splits are forced: the node C is internal in
+//! every refinement, so any balanced refinement has them. They create internal nodes only at
+//! levels below l - k + 1 <= l, which are examined later, so once all levels are done the test
+//! holds for every internal node: the result is the coarsest balanced refinement, whatever order
+//! the nodes of one level are taken in.
+//!
+//! Cost: O(1) amortised per search on trees of bounded neighbour depth, O(d) worst case
+//! (Theorem 14.3), for (2^D - 1)(m + 2^D s) searches with m nodes and s splits; memory 4 bytes per
+//! internal node for the lists by level.
+
+use super::{BalanceOptions, NodeId, Tree};
+use crate::geom::{Cell, Connectivity, Direction};
+use smallvec::SmallVec;
+
+impl<const D: usize> Tree<D> {
+    /// Refines the tree to the coarsest balanced tree containing it, level by level (see the
+    /// module doc), and returns the leaves it split, each after its parent (a consumer moves its
+    /// payload from each split leaf to the leaf's children, in this order).
+    ///
+    /// Splits: at most (3^D - 1) m for a tree of m nodes (Theorem 14.4, generalised in
+    /// [the reference balance](Tree::balance_chapter)); time O(d + 1) per neighbour search, one
+    /// search per internal node and outward direction.
+    ///
+    /// ```
+    /// use orthtree::{Connectivity, NodeId, Tree};
+    /// let mut t = Tree::<2>::new();
+    /// // refine towards the centre from the SW quadrant, down to level 4
+    /// let mut v = t.split(NodeId::ROOT); // the SW child
+    /// for _ in 0..3 {
+    ///     t.split(v);
+    ///     v = t.child(v, 3).unwrap(); // its NE child
+    /// }
+    /// assert!(!t.is_balanced(Connectivity::Face));
+    /// let split = t.balance(Connectivity::Face);
+    /// assert!(t.is_balanced(Connectivity::Face));
+    /// // SE and NW (level 1) split, then their children next to the centre, and that
+    /// // propagates: NE (level 1) now borders level-3 leaves and splits too
+    /// assert_eq!(split.len(), 5);
+    /// ```
+    ///
+    /// # Panics
+    /// If `options.max_level_difference` is 0.
+    pub fn balance(&mut self, options: impl Into<BalanceOptions>) -> Vec<NodeId> {
+        let options = options.into();
+        assert!(
+            options.max_level_difference >= 1,
+            "max_level_difference must be at least 1"
+        );
+        let slack = options.max_level_difference - 1;
+        let outward = outward_directions::<D>(options.connectivity);
+        let mut by_level: Vec<Vec<NodeId>> = vec![Vec::new(); Cell::<D>::MAX_LEVEL as usize + 1];
+        for i in 0..self.node_count() as u32 {
+            let id = NodeId(i);
+            if !self.is_leaf(id) {
+                by_level[self.level(id) as usize].push(id);
+            }
+        }
+        let mut split = Vec::new();
+        for level in (1..by_level.len()).rev() {
+            let Some(min_level) = (level as u8).checked_sub(slack) else {
+                continue;
+            };
+            let nodes = core::mem::take(&mut by_level[level]);
+            for &c in &nodes {
+                for &d in &outward[self.child_index(c)] {
+                    self.reach(c, d, min_level, |tree, leaf| {
+                        split.push(leaf);
+                        by_level[tree.level(leaf) as usize].push(leaf);
+                    });
+                }
+            }
+        }
+        split
+    }
+
+    /// `true` when no two adjacent leaves (under `options`' connectivity) differ by more than
+    /// `options.max_level_difference` levels: one neighbour search per internal node and outward
+    /// direction (see the module doc).
+    ///
+    /// ```
+    /// use orthtree::{BalanceOptions, Connectivity, NodeId, Tree};
+    /// let mut t = Tree::<3>::new();
+    /// let first = t.split(NodeId::ROOT);
+    /// let g = t.split(first);
+    /// t.split(g); // level-3 cells in the corner: still balanced (a corner chain)
+    /// assert!(t.is_balanced(BalanceOptions::new(Connectivity::Corner)));
+    /// ```
+    pub fn is_balanced(&self, options: impl Into<BalanceOptions>) -> bool {
+        let options = options.into();
+        let slack = options.max_level_difference.saturating_sub(1);
+        let outward = outward_directions::<D>(options.connectivity);
+        (1..self.node_count() as u32)
+            .map(NodeId)
+            .filter(|&c| !self.is_leaf(c))
+            .all(|c| {
+                let min_level = self.level(c).saturating_sub(slack);
+                outward[self.child_index(c)].iter().all(|&d| {
+                    self.neighbor(c, d)
+                        .is_none_or(|n| self.level(n) >= min_level)
+                })
+            })
+    }
+
+    /// Follows the neighbour search from `id` in `direction`, splitting every leaf met above
+    /// `min_level` on the way down (calling `on_split` after each split), until the path reaches
+    /// `min_level` or its end.
+    fn reach(
+        &mut self,
+        id: NodeId,
+        direction: Direction,
+        min_level: u8,
+        mut on_split: impl FnMut(&Self, NodeId),
+    ) {
+        let mut path: SmallVec<[u8; 64]> = SmallVec::new();
+        let (mut plus, mut minus) = (direction.plus_mask(), direction.minus_mask());
+        let mut v = id;
+        while plus | minus != 0 {
+            let Some(parent) = self.parent(v) else { return };
+            let c = self.child_index(v) as u8;
+            path.push(c ^ (plus | minus));
+            plus &= c;
+            minus &= !c;
+            v = parent;
+        }
+        while let Some(c) = path.pop() {
+            if self.level(v) >= min_level {
+                return;
+            }
+            if self.is_leaf(v) {
+                self.split(v);
+                on_split(self, v);
+            }
+            v = self.child(v, c as usize).expect("v is internal");
+        }
+    }
+}
+
+/// For each child index c, the directions allowed by `connectivity` that move outward (away from
+/// the parent's centre) on every axis they use: one per non-empty subset of axes.
+fn outward_directions<const D: usize>(connectivity: Connectivity) -> Vec<SmallVec<[Direction; 8]>> {
+    (0..1usize << D)
+        .map(|c| {
+            (1..1u8 << D)
+                .filter(|axes| connectivity.allows(axes.count_ones()))
+                .map(|axes| Direction::from_masks(axes & c as u8, axes & !(c as u8)))
+                .collect()
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+
+    fn random_tree<const D: usize>(rng: &mut impl Rng, splits: usize, max_level: u8) -> Tree<D> {
+        let mut t = Tree::<D>::new();
+        for _ in 0..splits {
+            let leaves: Vec<NodeId> = t.leaves().map(|(id, _)| id).collect();
+            // prefer deep leaves so that the trees are unbalanced
+            let deepest = leaves.iter().map(|&l| t.level(l)).max().unwrap_or(0);
+            let pick = if rng.gen_bool(0.6) {
+                *leaves
+                    .iter()
+                    .filter(|&&l| t.level(l) == deepest)
+                    .last()
+                    .unwrap()
+            } else {
+                leaves[rng.gen_range(0..leaves.len())]
+            };
+            if t.level(pick) < max_level {
+                t.split(pick);
+            }
+        }
+        t
+    }
+
+    fn agrees_with_the_chapters_algorithm<const D: usize>(seed: u64, splits: usize) {
+        let mut rng = rand::rngs::SmallRng::seed_from_u64(seed);
+        for _ in 0..40 {
+            let t = random_tree::<D>(&mut rng, splits, 7);
+            for conn in Connectivity::ALL {
+                for opts in [BalanceOptions::new(conn), BalanceOptions::new(conn).weak()] {
+                    assert_eq!(t.is_balanced(opts), t.is_balanced_chapter(opts));
+                    let (mut a, mut b) = (t.clone(), t.clone());
+                    let sa = a.balance(opts);
+                    let sb = b.balance_chapter(opts);
+                    assert_eq!(sa.len(), sb.len());
+                    let la: Vec<_> = a.leaves().map(|(_, c)| c).collect();
+                    let lb: Vec<_> = b.leaves().map(|(_, c)| c).collect();
+                    assert_eq!(la, lb);
+                    assert!(a.is_balanced(opts) && a.is_balanced_chapter(opts));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn level_balance_equals_the_chapters_balance() {
+        agrees_with_the_chapters_algorithm::<1>(1, 12);
+        agrees_with_the_chapters_algorithm::<2>(2, 14);
+        agrees_with_the_chapters_algorithm::<3>(3, 8);
+        agrees_with_the_chapters_algorithm::<4>(4, 5);
+    }
+}
