@@ -3,9 +3,10 @@
 //! [`Svg`] is a small builder: a view (the part of the plane shown) and a width in pixels, then
 //! layers drawn in the order they are added: leaf cells ([`Svg::cells`]), the subdivision drawn
 //! line by line ([`Svg::subdivision`], for dashed or dotted styles), the lines a refinement adds
-//! ([`Svg::refinement`]), boxes and points, each with a [`Style`]. The y axis points up (north up, as in the chapter's figures): the view's `max[1]`
-//! is the top edge of the picture. [`point_tree_svg`] draws a [`PointTree`] the way the chapter's
-//! Figure 14.5 does: the balanced refinement dotted, the tree itself solid, the points as dots.
+//! ([`Svg::refinement`]), boxes and points, each with a [`Style`]. The y axis points up (north
+//! up, as in the chapter's figures): the view's `max[1]` is the top edge of the picture.
+//! [`point_tree_svg`] draws a [`PointTree`] the way the chapter's Figure 14.5 does: the lines
+//! balance adds dotted, the tree itself solid, the points as dots.
 //!
 //! Nothing here panics on odd input: a view of zero or non-finite size, a non-positive width, or
 //! NaN coordinates are all mapped to something drawable (see [`Svg::new`]), and colours are

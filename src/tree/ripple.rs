@@ -174,11 +174,7 @@ mod tests {
             // prefer deep leaves so that the trees are unbalanced
             let deepest = leaves.iter().map(|&l| t.level(l)).max().unwrap_or(0);
             let pick = if rng.gen_bool(0.6) {
-                *leaves
-                    .iter()
-                    .filter(|&&l| t.level(l) == deepest)
-                    .last()
-                    .unwrap()
+                *leaves.iter().rfind(|&&l| t.level(l) == deepest).unwrap()
             } else {
                 leaves[rng.gen_range(0..leaves.len())]
             };

@@ -1,0 +1,131 @@
+//! p4est's "timings" fractal, then 2:1 balance: the workload of p4est's balance benchmarks.
+//!
+//! `cargo run --release --example balance_fractal -- --dim 2|3|4 --level L --connect face|edge|corner [--weak]`
+//!
+//! The uniform tree at level L - 4 is refined; a cell of level l, L - 4 <= l < L, is refined
+//! further when its child id has an even number of set bits (0 or 3 in 2D; 0, 3, 5 or 6 in 3D,
+//! as in p4est). Prints the leaf counts before and after balance, the refine, balance and
+//! is_balanced times, peak memory, and a checksum of the sorted leaf cells.
+
+use orthtree::{BalanceOptions, Connectivity, NodeId, Tree};
+use std::time::Instant;
+
+struct Args {
+    dim: usize,
+    level: u8,
+    options: BalanceOptions,
+}
+
+fn parse() -> Result<Args, String> {
+    let mut args = Args {
+        dim: 2,
+        level: 12,
+        options: BalanceOptions::new(Connectivity::Face),
+    };
+    let mut it = std::env::args().skip(1);
+    while let Some(flag) = it.next() {
+        let mut value = || it.next().ok_or(format!("{flag} needs a value"));
+        match flag.as_str() {
+            "--dim" => args.dim = value()?.parse().map_err(|e| format!("--dim: {e}"))?,
+            "--level" => args.level = value()?.parse().map_err(|e| format!("--level: {e}"))?,
+            "--connect" => {
+                args.options.connectivity = match value()?.as_str() {
+                    "face" => Connectivity::Face,
+                    "edge" => Connectivity::Edge,
+                    "corner" | "full" => Connectivity::Corner,
+                    other => return Err(format!("--connect: unknown connectivity {other:?}")),
+                }
+            }
+            "--weak" => args.options = args.options.weak(),
+            other => return Err(format!("unknown argument {other:?}")),
+        }
+    }
+    Ok(args)
+}
+
+/// The fractal refinement of p4est's timings example.
+fn refine<const D: usize>(level: u8) -> Tree<D> {
+    let uniform = level.saturating_sub(4);
+    let mut tree = Tree::<D>::new();
+    let mut stack = vec![NodeId::ROOT];
+    while let Some(v) = stack.pop() {
+        let l = tree.level(v);
+        let even = tree.child_index(v).count_ones() % 2 == 0;
+        if l < uniform || (l < level && even) {
+            tree.split(v);
+            stack.extend(tree.children(v));
+        }
+    }
+    tree
+}
+
+/// FNV-1a over (level, coordinates) of the leaves in Morton order.
+fn checksum<const D: usize>(tree: &Tree<D>) -> u64 {
+    let mut h = 0xcbf2_9ce4_8422_2325u64;
+    for (_, cell) in tree.leaves() {
+        for x in std::iter::once(cell.level() as u32).chain(cell.coords()) {
+            for b in x.to_le_bytes() {
+                h = (h ^ b as u64).wrapping_mul(0x0100_0000_01b3);
+            }
+        }
+    }
+    h
+}
+
+fn peak_memory_mib() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib / 1024.0)
+}
+
+fn run<const D: usize>(args: &Args) {
+    let t = Instant::now();
+    let mut tree = refine::<D>(args.level);
+    let refine_s = t.elapsed().as_secs_f64();
+    let before = tree.leaf_count();
+    let t = Instant::now();
+    let split = tree.balance(args.options);
+    let balance_s = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let balanced = tree.is_balanced(args.options);
+    let check_s = t.elapsed().as_secs_f64();
+    println!("dim {D}, level {}, {:?}", args.level, args.options);
+    println!("leaves before balance: {before}");
+    println!("leaves after balance:  {}", tree.leaf_count());
+    println!("splits:                {}", split.len());
+    println!("refine time:           {refine_s:.4} s");
+    println!("balance time:          {balance_s:.4} s");
+    println!("is_balanced time:      {check_s:.4} s ({balanced})");
+    println!(
+        "tree bytes per leaf:   {:.1}",
+        tree.heap_bytes() as f64 / tree.leaf_count() as f64
+    );
+    if let Some(mib) = peak_memory_mib() {
+        println!("peak memory:           {mib:.1} MiB");
+    }
+    println!("checksum:              {:016x}", checksum(&tree));
+    if !balanced {
+        eprintln!("error: the tree is not balanced after balance()");
+        std::process::exit(1);
+    }
+}
+
+fn main() {
+    let args = match parse() {
+        Ok(a) => a,
+        Err(e) => {
+            eprintln!("error: {e}\nusage: balance_fractal --dim 2|3|4 --level L --connect face|edge|corner [--weak]");
+            std::process::exit(2);
+        }
+    };
+    match args.dim {
+        2 => run::<2>(&args),
+        3 => run::<3>(&args),
+        4 => run::<4>(&args),
+        d => {
+            eprintln!("error: --dim {d} is not supported (2, 3 or 4)");
+            std::process::exit(2);
+        }
+    }
+}

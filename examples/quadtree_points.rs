@@ -1,0 +1,116 @@
+//! Point quadtrees of uniform and of clustered random points in the unit square, before and after
+//! 2:1 balance (de Berg et al., chapter 14), with a table of sizes and times and two pictures in
+//! the style of Figure 14.5: `quadtree_uniform.svg` and `quadtree_clustered.svg`.
+//!
+//! ```text
+//! cargo run --release --example quadtree_points [-- --n 2000]
+//! ```
+
+use orthtree::io::svg::point_tree_svg;
+use orthtree::{Aabb, Connectivity, Quadtree, DEFAULT_BUCKET_SIZE};
+use rand::rngs::SmallRng;
+use rand::{Rng, SeedableRng};
+use std::time::Instant;
+
+/// `n` points uniform in the unit square.
+fn uniform(n: usize, seed: u64) -> Vec<[f64; 2]> {
+    let mut rng = SmallRng::seed_from_u64(seed);
+    (0..n).map(|_| [rng.gen(), rng.gen()]).collect()
+}
+
+/// `n` points from a few Gaussian clusters (Box-Muller), redrawn until inside the unit square.
+fn clustered(n: usize, seed: u64) -> Vec<[f64; 2]> {
+    let mut rng = SmallRng::seed_from_u64(seed);
+    let clusters: Vec<([f64; 2], f64)> = (0..5)
+        .map(|_| {
+            let centre = [rng.gen_range(0.15..0.85), rng.gen_range(0.15..0.85)];
+            (centre, rng.gen_range(0.01..0.06))
+        })
+        .collect();
+    let mut points = Vec::with_capacity(n);
+    while points.len() < n {
+        let (c, sigma) = clusters[rng.gen_range(0..clusters.len())];
+        let (u1, u2): (f64, f64) = (1.0 - rng.gen::<f64>(), rng.gen());
+        let r = sigma * (-2.0 * u1.ln()).sqrt();
+        let t = std::f64::consts::TAU * u2;
+        let p = [c[0] + r * t.cos(), c[1] + r * t.sin()];
+        if p.iter().all(|x| (0.0..=1.0).contains(x)) {
+            points.push(p);
+        }
+    }
+    points
+}
+
+/// Builds, balances and checks one tree; prints a table row; returns the tree before and after
+/// balance and whether every check passed.
+fn run(name: &str, points: &[[f64; 2]], bucket: usize) -> (Quadtree<usize>, Quadtree<usize>, bool) {
+    let entries: Vec<([f64; 2], usize)> = points.iter().enumerate().map(|(i, &p)| (p, i)).collect();
+    let unit = Aabb::new([0.0, 0.0], [1.0, 1.0]).expect("the unit square is a box");
+    let start = Instant::now();
+    let tree = Quadtree::builder()
+        .root_box(unit)
+        .bucket_size(bucket)
+        .build(&entries)
+        .expect("points in the unit square are valid");
+    let build = start.elapsed();
+    let mut balanced = tree.clone();
+    let start = Instant::now();
+    let splits = balanced.balance(Connectivity::Face).len();
+    let balance = start.elapsed();
+    let valid = tree.validate().and(balanced.validate());
+    let is_balanced = balanced.tree().is_balanced(Connectivity::Face);
+    println!(
+        "{name:<10} {bucket:>6} {:>7} {:>5} {:>7} {:>7} {:>7} {:>7} {:>7} {:>9.3} {:>9.3}  {:<5} {}",
+        tree.len(),
+        tree.depth(),
+        tree.node_count(),
+        tree.leaf_count(),
+        balanced.node_count(),
+        balanced.leaf_count(),
+        splits,
+        build.as_secs_f64() * 1e3,
+        balance.as_secs_f64() * 1e3,
+        if valid.is_ok() { "ok" } else { "FAIL" },
+        is_balanced,
+    );
+    if let Err(e) = &valid {
+        eprintln!("{name} (bucket {bucket}): validation failed: {e}");
+    }
+    (tree, balanced, valid.is_ok() && is_balanced)
+}
+
+fn main() {
+    let mut n = 2000;
+    let mut args = std::env::args().skip(1);
+    while let Some(arg) = args.next() {
+        match (arg.as_str(), args.next().map(|v| v.parse::<usize>())) {
+            ("--n", Some(Ok(value))) => n = value,
+            _ => {
+                eprintln!("usage: quadtree_points [--n N]");
+                std::process::exit(2);
+            }
+        }
+    }
+
+    let header = "data       bucket       n depth   nodes  leaves  nodes' leaves'  splits  build ms   bal. ms  valid balanced";
+    println!("{header}");
+    let mut ok = true;
+    for (name, points) in [("uniform", uniform(n, 1)), ("clustered", clustered(n, 2))] {
+        let (tree, balanced, good) = run(name, &points, 1);
+        ok &= good;
+        ok &= run(name, &points, DEFAULT_BUCKET_SIZE).2;
+        let file = format!("quadtree_{name}.svg");
+        match std::fs::write(&file, point_tree_svg(&tree, Some(&balanced))) {
+            Ok(()) => println!("{:>10} wrote {file}", ""),
+            Err(e) => {
+                eprintln!("cannot write {file}: {e}");
+                ok = false;
+            }
+        }
+    }
+    println!("(nodes', leaves': after 2:1 balance with face connectivity; solid lines in the");
+    println!(" pictures are the bucket-1 quadtree, dotted ones the cells balance adds)");
+    if !ok {
+        std::process::exit(1);
+    }
+}
