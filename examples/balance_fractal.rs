@@ -2,12 +2,13 @@
 //!
 //! `cargo run --release --example balance_fractal -- --dim 2|3|4 --level L --connect face|edge|corner [--weak]`
 //!
-//! The uniform tree at level L - 4 is refined; a cell of level l, L - 4 <= l < L, is refined
-//! further when its child id has an even number of set bits (0 or 3 in 2D; 0, 3, 5 or 6 in 3D,
-//! as in p4est). Prints the leaf counts before and after balance, the refine, balance and
+//! The refinement is p4est's (see `benches/workloads/fractal.rs`). Prints the leaf counts before and after balance, the refine, balance and
 //! is_balanced times, peak memory, and a checksum of the sorted leaf cells.
 
-use orthtree::{BalanceOptions, Connectivity, NodeId, Tree};
+use orthtree::{BalanceOptions, Connectivity, Tree};
+
+#[path = "../benches/workloads/fractal.rs"]
+mod fractal;
 use std::time::Instant;
 
 struct Args {
@@ -43,22 +44,6 @@ fn parse() -> Result<Args, String> {
     Ok(args)
 }
 
-/// The fractal refinement of p4est's timings example.
-fn refine<const D: usize>(level: u8) -> Tree<D> {
-    let uniform = level.saturating_sub(4);
-    let mut tree = Tree::<D>::new();
-    let mut stack = vec![NodeId::ROOT];
-    while let Some(v) = stack.pop() {
-        let l = tree.level(v);
-        let even = tree.child_index(v).count_ones() % 2 == 0;
-        if l < uniform || (l < level && even) {
-            tree.split(v);
-            stack.extend(tree.children(v));
-        }
-    }
-    tree
-}
-
 /// FNV-1a over (level, coordinates) of the leaves in Morton order.
 fn checksum<const D: usize>(tree: &Tree<D>) -> u64 {
     let mut h = 0xcbf2_9ce4_8422_2325u64;
@@ -81,7 +66,7 @@ fn peak_memory_mib() -> Option<f64> {
 
 fn run<const D: usize>(args: &Args) {
     let t = Instant::now();
-    let mut tree = refine::<D>(args.level);
+    let mut tree = fractal::fractal::<D>(args.level);
     let refine_s = t.elapsed().as_secs_f64();
     let before = tree.leaf_count();
     let t = Instant::now();
