@@ -3,7 +3,9 @@
 //!
 //! The boundary between cells `j - 1` and `j` at level `l` on axis `a` is
 //! `b(t) = 2 * (lo_a / 2 + h * t)` with `t = j / 2^l` and `h` half the root cube's side, evaluated
-//! in `f64`. Halving keeps the arithmetic finite for any finite root box, and rounding is monotone,
+//! in `f64` (`lo_a / 2` rounded down). Halving keeps every boundary strictly inside the points'
+//! range finite for any finite coordinates (only the root cube's far side can overflow to
+//! infinity, when one axis spans nearly all of `f64` and another sits near `f64::MAX`), and rounding is monotone,
 //! so `b` is non-decreasing in `t`: the boundaries of every level are a subset of those of the
 //! next, and a point lies in cell `j` (at the finest level) exactly when `b(j) < x <= b(j + 1)`.
 //! A coordinate on a split line (`x == b(t)`) therefore goes to the lower cell, as in the chapter,
@@ -44,7 +46,7 @@ impl<const D: usize> RootGeometry<D> {
     /// The smallest cube with lower corner at the per-axis minimum of `bounds` that contains
     /// `bounds` (side 1 when `bounds` is a single point); for any finite `bounds`.
     pub fn enclosing(bounds: &Aabb<f64, D>) -> Self {
-        let half_lo = bounds.min.map(|m| m * 0.5);
+        let half_lo = bounds.min.map(half_down);
         let mut half_side = (0..D)
             .map(|a| bounds.max[a] * 0.5 - half_lo[a])
             .fold(0.0, f64::max);
@@ -130,6 +132,17 @@ impl<const D: usize> RootGeometry<D> {
     /// The cell at `level` that holds `point` under the split convention.
     pub fn cell_of(&self, point: &[f64; D], level: u8) -> Cell<D> {
         Cell::from_aligned_key(self.key(point), level)
+    }
+}
+
+/// Half of `m`, rounded down: halving a subnormal can round up (to even), which would put the
+/// root's lower side above the smallest point.
+fn half_down(m: f64) -> f64 {
+    let h = m * 0.5;
+    if 2.0 * h > m {
+        h.next_down()
+    } else {
+        h
     }
 }
 

@@ -91,6 +91,9 @@ impl<const D: usize> Tree<D> {
     /// `options.max_level_difference` levels: one neighbour search per internal node and outward
     /// direction (see the module doc).
     ///
+    /// # Panics
+    /// If `options.max_level_difference` is 0.
+    ///
     /// ```
     /// use orthtree::{BalanceOptions, Connectivity, NodeId, Tree};
     /// let mut t = Tree::<3>::new();
@@ -101,7 +104,11 @@ impl<const D: usize> Tree<D> {
     /// ```
     pub fn is_balanced(&self, options: impl Into<BalanceOptions>) -> bool {
         let options = options.into();
-        let slack = options.max_level_difference.saturating_sub(1);
+        assert!(
+            options.max_level_difference >= 1,
+            "max_level_difference must be at least 1"
+        );
+        let slack = options.max_level_difference - 1;
         let outward = outward_directions::<D>(options.connectivity);
         (1..self.node_count() as u32)
             .map(NodeId)

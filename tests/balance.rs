@@ -1,0 +1,344 @@
+//! 2:1 and weak (4:1) balance (`Tree::balance`, level by level, and `Tree::balance_chapter`, the
+//! chapter's worklist algorithm, with their `is_balanced` checks) against a brute-force fixpoint,
+//! in 1 to 4 dimensions, for every connectivity; the split list they return; and the generalised
+//! Theorem 14.4 bound on random and adversarial trees.
+
+mod common;
+
+use common::*;
+use orthtree::{BalanceOptions, Cell, Connectivity, NodeId, Tree};
+use std::collections::HashSet;
+
+/// Largest expected result (in leaves) still checked against the O(L^2)-per-round brute force.
+const BRUTE_LIMIT: usize = 700;
+
+/// What `check_balance` learnt.
+struct Outcome {
+    splits: usize,
+    brute_checked: bool,
+}
+
+/// The connectivity strength, for "weaker options are implied".
+fn strength(c: Connectivity) -> u8 {
+    match c {
+        Connectivity::Face => 0,
+        Connectivity::Edge => 1,
+        Connectivity::Corner => 2,
+    }
+}
+
+/// The two balancing algorithms: `Tree::balance` (level by level) and `Tree::balance_chapter`
+/// (the chapter's BALANCEQUADTREE with a worklist), each with its `is_balanced` check.
+#[derive(Clone, Copy, Debug)]
+enum Algo {
+    Levels,
+    Chapter,
+}
+
+impl Algo {
+    const ALL: [Algo; 2] = [Algo::Levels, Algo::Chapter];
+
+    fn balance<const D: usize>(self, t: &mut Tree<D>, opts: BalanceOptions) -> Vec<NodeId> {
+        match self {
+            Algo::Levels => t.balance(opts),
+            Algo::Chapter => t.balance_chapter(opts),
+        }
+    }
+
+    fn is_balanced<const D: usize>(self, t: &Tree<D>, opts: BalanceOptions) -> bool {
+        match self {
+            Algo::Levels => t.is_balanced(opts),
+            Algo::Chapter => t.is_balanced_chapter(opts),
+        }
+    }
+}
+
+/// Balances a clone of `original` with `opts`, with both algorithms, and checks everything against
+/// the oracles.
+fn check_balance<const D: usize>(original: &Tree<D>, opts: BalanceOptions) -> Outcome {
+    let children = 1usize << D;
+    let before = leaf_cells(original);
+    assert!(tiles_root(&before));
+    let m = original.node_count();
+
+    // The expected result: the fast oracle always, the literal brute force when small enough;
+    // both are fixpoints of forced splits and must agree.
+    let expected = fast_balance(&before, opts);
+    let brute_checked = expected.len() <= BRUTE_LIMIT;
+    let balanced_before = expected.len() == before.len();
+    if brute_checked {
+        assert_cells_eq(&brute_balance(&before, opts), &expected, "the two oracles");
+        assert_eq!(brute_is_balanced(&before, opts), balanced_before);
+    }
+
+    let mut splits = 0;
+    for algo in Algo::ALL {
+        assert_eq!(
+            algo.is_balanced(original, opts),
+            balanced_before,
+            "{algo:?} is_balanced before balance, {opts:?}"
+        );
+        let mut t = original.clone();
+        let split = algo.balance(&mut t, opts);
+        let after = leaf_cells(&t);
+        assert_cells_eq(&after, &expected, &format!("{algo:?} with {opts:?}"));
+        for a in Algo::ALL {
+            assert!(a.is_balanced(&t, opts), "{a:?} is_balanced after {algo:?}");
+        }
+        if brute_checked {
+            assert!(brute_is_balanced(&after, opts));
+        }
+
+        // The split list: one entry per split, each a leaf when split, in the order of the
+        // blocks of children appended to the arena (so each entry comes after its parent's).
+        let growth = t.node_count() - m;
+        assert_eq!(growth % children, 0);
+        assert_eq!(split.len(), growth / children);
+        assert_eq!(
+            t.leaf_count(),
+            original.leaf_count() + split.len() * (children - 1)
+        );
+        let mut seen = HashSet::new();
+        for (i, &v) in split.iter().enumerate() {
+            assert!(seen.insert(v), "a leaf is split once");
+            let block = m + i * children;
+            assert!(
+                v.index() < block,
+                "split entry {i} existed before its split"
+            );
+            assert_eq!(t.child(v, 0).map(NodeId::index), Some(block));
+            if v.index() < m {
+                assert!(
+                    original.is_leaf(v),
+                    "an original internal node is never split"
+                );
+            }
+            assert!(!t.is_leaf(v));
+        }
+        // Nothing of the original tree moved.
+        for (id, cell) in original.pre_order() {
+            assert_eq!(t.cell(id), cell);
+            for c in 0..children {
+                if let Some(child) = original.child(id, c) {
+                    assert_eq!(t.child(id, c), Some(child));
+                }
+            }
+        }
+
+        // Theorem 14.4 generalised: every split cell has an original cell among its 3^D - 1
+        // same-size neighbours (the chapter's charging argument, 8 in 2D), and each original
+        // cell is charged at most once per neighbour, so splits <= (3^D - 1) * m for a tree of
+        // m nodes.
+        let bound = (3usize.pow(D as u32) - 1) * m;
+        assert!(split.len() <= bound, "{} splits > {bound}", split.len());
+
+        // Idempotent, and every weaker notion of balance holds too.
+        for a in Algo::ALL {
+            assert!(a.balance(&mut t.clone(), opts).is_empty());
+        }
+        for weaker in all_options() {
+            if strength(weaker.connectivity) <= strength(opts.connectivity)
+                && weaker.max_level_difference >= opts.max_level_difference
+            {
+                assert!(t.is_balanced(weaker), "{opts:?} implies {weaker:?}");
+                assert!(t.is_balanced_chapter(weaker));
+            }
+        }
+        splits = split.len();
+    }
+    Outcome {
+        splits,
+        brute_checked,
+    }
+}
+
+fn random_balance<const D: usize>(seed: u64, count: usize, max_splits: usize, max_level: u8) {
+    let mut r = rng(seed);
+    let mut brute = 0;
+    let mut total = 0;
+    let mut any_split = false;
+    for i in 0..count {
+        let splits = 1 + (i * 31) % max_splits;
+        let bias = [0.3, 0.6, 0.9][i % 3];
+        let t = random_tree::<D>(&mut r, splits, max_level, bias);
+        for opts in all_options() {
+            let o = check_balance(&t, opts);
+            total += 1;
+            brute += usize::from(o.brute_checked);
+            any_split |= o.splits > 0;
+        }
+    }
+    // guard on the generator: the brute force really ran, on trees that needed balancing
+    assert!(brute * 4 >= total * 3, "{brute} of {total} brute-checked");
+    assert!(any_split);
+}
+
+#[test]
+fn balance_matches_brute_force_fixpoint_1d() {
+    random_balance::<1>(21, 80, 30, 16);
+}
+
+#[test]
+fn balance_matches_brute_force_fixpoint_2d() {
+    random_balance::<2>(22, 100, 30, 8);
+}
+
+#[test]
+fn balance_matches_brute_force_fixpoint_3d() {
+    random_balance::<3>(23, 60, 10, 5);
+}
+
+#[test]
+fn balance_matches_brute_force_fixpoint_4d() {
+    random_balance::<4>(24, 30, 5, 4);
+}
+
+/// Adversarial trees: one deep chain of splits toward a corner, the centre (deep refinement next
+/// to huge leaves on every side), the middle of a side, or random points.
+fn adversarial<const D: usize>(seed: u64, depth: u8) {
+    let mut r = rng(seed);
+    let mut trees = vec![
+        corner_chain::<D>(depth),
+        centre_chain::<D>(depth),
+        face_chain::<D>(depth),
+    ];
+    for _ in 0..2 {
+        trees.push(random_point_chain::<D>(&mut r, depth));
+    }
+    // two chains side by side: refinement meeting from both sides of the centre
+    let mut two = centre_chain::<D>(depth);
+    let mut v = two.child(NodeId::ROOT, (1 << D) - 1).unwrap();
+    for _ in 1..depth {
+        two.split(v);
+        v = two.child(v, 0).unwrap();
+    }
+    trees.push(two);
+    for (i, t) in trees.iter().enumerate() {
+        let mut splits = Vec::new();
+        for opts in all_options() {
+            splits.push(check_balance(t, opts).splits);
+        }
+        if i == 0 {
+            // a chain toward a corner is already 2:1 balanced: every leaf of level l touches
+            // only leaves of levels l - 1 to l + 1
+            assert!(splits.iter().all(|&s| s == 0));
+        }
+        if i == 1 && depth >= 4 {
+            // toward the centre, level-1 leaves touch level-`depth` leaves
+            assert!(splits.iter().all(|&s| s > 0));
+        }
+    }
+}
+
+#[test]
+fn balance_adversarial_chains() {
+    adversarial::<1>(31, Cell::<1>::MAX_LEVEL);
+    adversarial::<2>(32, Cell::<2>::MAX_LEVEL);
+    adversarial::<3>(33, Cell::<3>::MAX_LEVEL);
+    adversarial::<4>(34, 10);
+}
+
+/// Larger random trees, checked against the fast oracle only, for the split bound over many trees.
+#[test]
+fn balance_bound_on_larger_random_trees() {
+    fn run<const D: usize>(seed: u64, count: usize, splits: usize, max_level: u8) {
+        let mut r = rng(seed);
+        for _ in 0..count {
+            let t = random_tree::<D>(&mut r, splits, max_level, 0.9);
+            for opts in [
+                BalanceOptions::new(Connectivity::Face),
+                BalanceOptions::new(Connectivity::Corner),
+            ] {
+                check_balance(&t, opts);
+            }
+        }
+    }
+    run::<2>(41, 20, 150, 16);
+    run::<3>(42, 10, 60, 10);
+}
+
+/// The chapter's 2:1 balance with a larger allowed difference (3 levels) still reaches the
+/// brute-force fixpoint.
+#[test]
+fn balance_with_three_levels_difference() {
+    let mut r = rng(51);
+    for i in 0..30 {
+        let t = random_tree::<2>(&mut r, 5 + i % 20, 10, 0.9);
+        for conn in Connectivity::ALL {
+            let opts = BalanceOptions {
+                connectivity: conn,
+                max_level_difference: 3,
+            };
+            check_balance(&t, opts);
+        }
+    }
+}
+
+const ZERO_DIFFERENCE: BalanceOptions = BalanceOptions {
+    connectivity: Connectivity::Face,
+    max_level_difference: 0,
+};
+
+#[test]
+#[should_panic]
+fn balance_refuses_zero_level_difference() {
+    let mut t = Tree::<2>::new();
+    t.split(NodeId::ROOT);
+    t.balance(ZERO_DIFFERENCE);
+}
+
+#[test]
+#[should_panic]
+fn balance_chapter_refuses_zero_level_difference() {
+    let mut t = Tree::<2>::new();
+    t.split(NodeId::ROOT);
+    t.balance_chapter(ZERO_DIFFERENCE);
+}
+
+/// Balance of a single leaf, and of uniform trees, changes nothing.
+#[test]
+fn balanced_trees_are_left_alone() {
+    let mut t = Tree::<3>::new();
+    for opts in all_options() {
+        assert!(t.is_balanced(opts) && t.is_balanced_chapter(opts));
+        assert!(t.clone().balance(opts).is_empty());
+        assert!(t.clone().balance_chapter(opts).is_empty());
+    }
+    t.split(NodeId::ROOT);
+    for v in leaf_ids(&t) {
+        t.split(v);
+    }
+    for opts in all_options() {
+        assert!(t.is_balanced(opts) && t.is_balanced_chapter(opts));
+        assert!(t.clone().balance(opts).is_empty());
+        assert!(t.clone().balance_chapter(opts).is_empty());
+    }
+}
+
+/// BUG (minor, src/tree/ripple.rs, `Tree::is_balanced`): `max_level_difference: 0` is outside the
+/// documented range ("at least 1") and `balance` / `balance_chapter` refuse it with a panic, but
+/// `is_balanced` silently treats it as 1 (`saturating_sub(1)`) and answers `true` for a tree whose
+/// adjacent leaves differ by one level, although its documented question ("no two adjacent leaves
+/// differ by more than 0 levels") has the answer `false` (`is_balanced_chapter` answers `false`).
+/// Either refusing the option (a panic) or the exact answer passes this test.
+#[test]
+fn is_balanced_with_zero_difference_refuses_or_is_exact() {
+    let mut t = Tree::<2>::new();
+    t.split(NodeId::ROOT);
+    let sw = t.child(NodeId::ROOT, 0).unwrap();
+    t.split(sw); // 2:1 balanced, not uniform
+    let leaves = leaf_cells(&t);
+    for conn in Connectivity::ALL {
+        let opts = BalanceOptions {
+            connectivity: conn,
+            max_level_difference: 0,
+        };
+        let want = brute_is_balanced(&leaves, opts);
+        assert!(!want, "level-1 and level-2 leaves are adjacent");
+        for algo in Algo::ALL {
+            if let Ok(got) = std::panic::catch_unwind(|| algo.is_balanced(&t, opts)) {
+                assert_eq!(got, want, "{algo:?}.is_balanced with {opts:?}");
+            }
+        }
+    }
+}

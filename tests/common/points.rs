@@ -1,0 +1,192 @@
+//! Point-tree oracles: the chapter's recursive quadtree definition (generalised to D dimensions,
+//! buckets and a maximum depth) and a checker of every property a built or balanced
+//! `PointTree` must have.
+
+use super::{all_options, leaf_cells};
+use orthtree::{BalanceOptions, Cell, PointTree, RootGeometry, Scalar};
+use proptest::test_runner::{Config, RngSeed};
+
+/// A proptest configuration with a fixed seed, `cases` cases and no regression files.
+pub fn config(cases: u32, seed: u64) -> Config {
+    Config {
+        cases,
+        rng_seed: RngSeed::Fixed(seed),
+        failure_persistence: None,
+        ..Config::default()
+    }
+}
+
+/// The chapter's recursive definition (section 14.2), generalised: a node whose closed cell holds
+/// at most `bucket` points, or which is at `max_depth`, is a leaf; otherwise its cell is cut at
+/// the midpoints `x_mid` of every axis and a point goes to the upper child on axis a exactly when
+/// `p_a > x_mid` (so a point on a split line goes to the lower side), and all 2^D children are
+/// built recursively. With `bucket == 1` and distinct points this is the chapter's quadtree.
+///
+/// The split values are the tree's own boundaries (`RootGeometry::boundary`), so the comparison
+/// is exact. Returns the leaves in child-index pre-order with their sorted items.
+pub fn reference_leaves<S: Scalar, const D: usize>(
+    g: &RootGeometry<D>,
+    entries: &[([S; D], usize)],
+    bucket: usize,
+    max_depth: u8,
+) -> Vec<(Cell<D>, Vec<usize>)> {
+    let pts: Vec<([f64; D], usize)> = entries
+        .iter()
+        .map(|(p, i)| (p.map(Scalar::to_f64), *i))
+        .collect();
+    let mut out = Vec::new();
+    build_reference(g, Cell::root(), pts, bucket, max_depth, &mut out);
+    out
+}
+
+fn build_reference<const D: usize>(
+    g: &RootGeometry<D>,
+    cell: Cell<D>,
+    pts: Vec<([f64; D], usize)>,
+    bucket: usize,
+    max_depth: u8,
+    out: &mut Vec<(Cell<D>, Vec<usize>)>,
+) {
+    if pts.len() <= bucket || cell.level() >= max_depth {
+        let mut items: Vec<usize> = pts.iter().map(|p| p.1).collect();
+        items.sort_unstable();
+        out.push((cell, items));
+        return;
+    }
+    let level = cell.level() + 1;
+    let c = cell.coords();
+    let mid: [f64; D] = core::array::from_fn(|a| g.boundary(a, 2 * u64::from(c[a]) + 1, level));
+    let mut parts: Vec<Vec<([f64; D], usize)>> = vec![Vec::new(); 1 << D];
+    for (p, item) in pts {
+        let i = (0..D).fold(0usize, |i, a| i | (usize::from(p[a] > mid[a]) << a));
+        parts[i].push((p, item));
+    }
+    for (i, part) in parts.into_iter().enumerate() {
+        let coords: [u32; D] = core::array::from_fn(|a| (c[a] << 1) | ((i >> a) & 1) as u32);
+        let child = Cell::new(level, coords).unwrap();
+        build_reference(g, child, part, bucket, max_depth, out);
+    }
+}
+
+/// Checks a point tree built from `entries` (items are the input positions): nothing lost; every
+/// point in exactly one leaf, the one `locate` finds, whose closed box holds it with the split
+/// convention; node runs nest; bucket and depth limits; `validate`. With `balanced` set, the
+/// internal-node bucket rule is waived (balance splits small leaves) and the tree must be balanced.
+pub fn check_points<S: Scalar, const D: usize>(
+    t: &PointTree<S, usize, D>,
+    entries: &[([S; D], usize)],
+    balanced: Option<BalanceOptions>,
+) {
+    let n = entries.len();
+    assert_eq!(t.len(), n);
+    assert_eq!(t.is_empty(), n == 0);
+    assert_eq!(t.points().len(), n);
+    assert_eq!(t.items().len(), n);
+    // the multiset of (point, item) is the input's
+    let mut items: Vec<usize> = t.items().to_vec();
+    items.sort_unstable();
+    assert!(items.iter().copied().eq(0..n), "every item exactly once");
+    for (p, &item) in t.iter() {
+        assert_eq!(*p, entries[item].0, "item {item} keeps its point");
+    }
+
+    let g = t.geometry();
+    let tree = t.tree();
+    let bucket = t.bucket_size();
+    let max_depth = t.max_depth();
+    assert!(t.depth() <= max_depth);
+    let mut seen = 0usize;
+    for leaf in t.leaves() {
+        assert!(tree.is_leaf(leaf.id));
+        assert_eq!(tree.cell(leaf.id), leaf.cell);
+        assert_eq!(leaf.points.len(), leaf.items.len());
+        assert_eq!(leaf.points, t.node_points(leaf.id));
+        assert_eq!(leaf.items, t.node_items(leaf.id));
+        if leaf.points.len() > bucket {
+            assert_eq!(
+                leaf.cell.level(),
+                max_depth,
+                "over-full leaf above the maximum depth"
+            );
+        }
+        let bx = t.cell_box(leaf.id);
+        assert_eq!(bx, g.cell_box(&leaf.cell));
+        for (p, &item) in leaf.points.iter().zip(leaf.items) {
+            seen += 1;
+            assert_eq!(*p, entries[item].0);
+            assert_eq!(t.locate(p), Ok(leaf.id), "locate {p:?}");
+            let q = p.map(Scalar::to_f64);
+            assert!(t.domain().contains(&q), "{q:?} in the domain");
+            assert_eq!(g.cell_of(&q, leaf.cell.level()), leaf.cell);
+            for a in 0..D {
+                assert!(
+                    bx.min[a] <= q[a] && q[a] <= bx.max[a],
+                    "point {q:?} outside its leaf box {bx:?} on axis {a}"
+                );
+                // (lo, hi]: the lower side belongs to the cell only on the root's lower side
+                assert!(
+                    q[a] > bx.min[a] || leaf.cell.coords()[a] == 0,
+                    "point {q:?} on the lower side of {:?} on axis {a}",
+                    leaf.cell
+                );
+            }
+        }
+    }
+    assert_eq!(seen, n, "every point in exactly one leaf");
+
+    // runs nest: a node's points are its children's
+    for (id, _) in tree.pre_order() {
+        let own = t.node_points(id).len();
+        if tree.is_leaf(id) {
+            continue;
+        }
+        let sum: usize = tree.children(id).map(|c| t.node_points(c).len()).sum();
+        assert_eq!(own, sum);
+        if balanced.is_none() {
+            assert!(
+                own > bucket,
+                "an internal node holds more than the bucket size"
+            );
+        }
+    }
+    if let Some(opts) = balanced {
+        assert!(tree.is_balanced(opts));
+    }
+    if let Err(e) = t.validate() {
+        panic!("validate: {e}");
+    }
+}
+
+/// The leaves of `t` with their sorted items, in pre-order.
+pub fn leaves_with_items<S: Scalar, const D: usize>(
+    t: &PointTree<S, usize, D>,
+) -> Vec<(Cell<D>, Vec<usize>)> {
+    t.leaves()
+        .map(|l| {
+            let mut items = l.items.to_vec();
+            items.sort_unstable();
+            (l.cell, items)
+        })
+        .collect()
+}
+
+/// Everything: the built tree's properties, equality with the chapter's recursive definition, and
+/// the same properties after balance with every option (the topology being exactly
+/// `Tree::balance`'s).
+pub fn check_all<S: Scalar, const D: usize>(
+    t: &PointTree<S, usize, D>,
+    entries: &[([S; D], usize)],
+) {
+    check_points(t, entries, None);
+    let reference = reference_leaves(t.geometry(), entries, t.bucket_size(), t.max_depth());
+    assert_eq!(leaves_with_items(t), reference, "the chapter's definition");
+    for opts in all_options() {
+        let mut b = t.clone();
+        let split = b.balance(opts);
+        let mut topo = t.tree().clone();
+        assert_eq!(split, topo.balance(opts));
+        assert_eq!(b.tree(), &topo);
+        assert_eq!(leaf_cells(b.tree()), leaf_cells(&topo));
+        check_points(&b, entries, Some(opts));
+    }
+}
