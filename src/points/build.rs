@@ -91,15 +91,21 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
         &self,
         entries: Vec<([S; D], T)>,
     ) -> Result<PointTree<S, T, D>, Error> {
-        let mut slots: Vec<Option<([S; D], T)>> = entries.into_iter().map(Some).collect();
-        let points: Vec<[S; D]> = slots
-            .iter()
-            .map(|s| s.as_ref().map_or([S::zero(); D], |e| e.0))
-            .collect();
+        let mut points = Vec::with_capacity(entries.len());
+        let mut items: Vec<Option<T>> = Vec::with_capacity(entries.len());
+        for (p, item) in entries {
+            points.push(p);
+            items.push(Some(item));
+        }
         self.build_with(
             points.len(),
             |i| &points[i],
-            |i| slots[i].take().expect("each input index is taken once"),
+            |i| {
+                (
+                    points[i],
+                    items[i].take().expect("each input index is taken once"),
+                )
+            },
         )
     }
 
@@ -114,18 +120,19 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
     {
         let (geometry, domain) = self.settle(n, &point)?;
         let max_depth = self.max_depth.unwrap_or(Cell::<D>::MAX_LEVEL);
-        let mut keyed: Vec<(u64, u32)> = (0..n)
-            .map(|i| (geometry.key(&point(i).map(Scalar::to_f64)), i as u32))
+        // (key << 32 | index) sorts like (key, index) and faster.
+        let mut keyed: Vec<u128> = (0..n)
+            .map(|i| ((geometry.key(&point(i).map(Scalar::to_f64)) as u128) << 32) | i as u128)
             .collect();
         keyed.sort_unstable();
         let mut points = Vec::with_capacity(n);
         let mut items = Vec::with_capacity(n);
-        for &(_, i) in &keyed {
-            let (p, item) = take(i as usize);
+        for &k in &keyed {
+            let (p, item) = take(k as u32 as usize);
             points.push(p);
             items.push(item);
         }
-        let keys: Vec<u64> = keyed.into_iter().map(|(k, _)| k).collect();
+        let keys: Vec<u64> = keyed.into_iter().map(|k| (k >> 32) as u64).collect();
         let mut tree = PointTree {
             tree: Tree::new(),
             geometry,

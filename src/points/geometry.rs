@@ -28,6 +28,9 @@ use crate::geom::{Aabb, Cell};
 pub struct RootGeometry<const D: usize> {
     half_lo: [f64; D],
     half_side: f64,
+    /// 2^FINEST / half_side (0 for an empty cube): turns a coordinate into a first guess of its
+    /// cell, which `coordinate` then checks exactly.
+    scale: f64,
 }
 
 impl<const D: usize> RootGeometry<D> {
@@ -37,9 +40,20 @@ impl<const D: usize> RootGeometry<D> {
     /// The cube with lower corner `min` and side `side` (finite, non-negative).
     pub fn new(min: [f64; D], side: f64) -> Self {
         debug_assert!(side >= 0.0 && side.is_finite());
+        Self::from_halves(min.map(half_down), side * 0.5)
+    }
+
+    fn from_halves(half_lo: [f64; D], half_side: f64) -> Self {
+        let finest = (1u64 << Self::FINEST) as f64;
+        let scale = if half_side > 0.0 {
+            finest / half_side
+        } else {
+            0.0
+        };
         RootGeometry {
-            half_lo: min.map(|m| m * 0.5),
-            half_side: side * 0.5,
+            half_lo,
+            half_side,
+            scale,
         }
     }
 
@@ -53,7 +67,7 @@ impl<const D: usize> RootGeometry<D> {
         if half_side == 0.0 {
             half_side = 0.5;
         }
-        let mut g = RootGeometry { half_lo, half_side };
+        let mut g = Self::from_halves(half_lo, half_side);
         // Rounding can leave the upper side a hair short: grow one ulp at a time, then
         // geometrically, so that this ends whatever the magnitudes.
         let mut tries = 0u32;
@@ -65,14 +79,14 @@ impl<const D: usize> RootGeometry<D> {
             };
             tries += 1;
         }
-        g
+        Self::from_halves(g.half_lo, g.half_side)
     }
 
     /// The boundary number `j` (of `2^level + 1`) along `axis` at `level`.
     #[inline]
     pub fn boundary(&self, axis: usize, j: u64, level: u8) -> f64 {
         // j / 2^level, exactly: a multiplication by a power of two.
-        let t = j as f64 * f64::from_bits((1023 - level as u64) << 52);
+        let t = (j as i64) as f64 * f64::from_bits((1023 - level as u64) << 52);
         2.0 * (self.half_lo[axis] + self.half_side * t)
     }
 
@@ -101,9 +115,9 @@ impl<const D: usize> RootGeometry<D> {
     pub fn coordinate(&self, axis: usize, x: f64) -> u32 {
         let at = |j: u64| self.boundary(axis, j, Self::FINEST as u8);
         let fits = |j: u64| (j == 0 || at(j) < x) && (j == Self::LAST || x <= at(j + 1));
-        let scaled = (x * 0.5 - self.half_lo[axis]) / self.half_side;
-        let guess = (scaled * (1u64 << Self::FINEST) as f64) as u64; // saturating; NaN -> 0
-        let guess = guess.min(Self::LAST);
+        // A guess, then the exact test; `as` saturates and maps NaN to 0.
+        let scaled = (x * 0.5 - self.half_lo[axis]) * self.scale;
+        let guess = scaled.clamp(0.0, Self::LAST as f64) as i64 as u64;
         for j in [guess, guess.saturating_sub(1), (guess + 1).min(Self::LAST)] {
             if fits(j) {
                 return j as u32;
