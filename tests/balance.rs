@@ -193,6 +193,11 @@ fn balance_matches_brute_force_fixpoint_4d() {
     random_balance::<4>(24, 30, 5, 4);
 }
 
+#[test]
+fn balance_matches_brute_force_fixpoint_5d() {
+    random_balance::<5>(25, 12, 4, 3);
+}
+
 /// Adversarial trees: one deep chain of splits toward a corner, the centre (deep refinement next
 /// to huge leaves on every side), the middle of a side, or random points.
 fn adversarial<const D: usize>(seed: u64, depth: u8) {
@@ -236,6 +241,7 @@ fn balance_adversarial_chains() {
     adversarial::<2>(32, Cell::<2>::MAX_LEVEL);
     adversarial::<3>(33, Cell::<3>::MAX_LEVEL);
     adversarial::<4>(34, 10);
+    adversarial::<5>(35, 5);
 }
 
 /// Larger random trees, checked against the fast oracle only, for the split bound over many trees.
