@@ -22,7 +22,9 @@
 
 mod error;
 pub mod geom;
+mod hash;
 pub mod io;
+pub mod mesh;
 pub mod points;
 pub mod tree;
 

@@ -1,8 +1,19 @@
 //! Readers and writers at the edge of the crate: nothing in the trees depends on them.
 //!
 //! - [`svg`]: SVG pictures of 2D trees (cells, refinements, points), y axis up, written as
-//!   plain strings with no dependencies.
+//!   plain strings with no dependencies; [`mesh_svg`] draws a mesh on its board.
+//! - [`triangle`]: a mesh as Triangle's `.node`, `.ele` and `.edge` files.
+//! - [`gmsh`]: a mesh as a Gmsh MSH 4.1 ASCII file with physical groups.
+//! - [`vtk`]: a mesh as a legacy VTK ASCII unstructured grid with a `region` cell array.
+//! - [`poly`]: a board for the mesher in Triangle's `.poly` format (read and write).
+//! - [`board_text`]: a board for the mesher as plain text, one component per line (read and
+//!   write).
 
+pub mod board_text;
+pub mod gmsh;
+pub mod poly;
 pub mod svg;
+pub mod triangle;
+pub mod vtk;
 
-pub use svg::{point_tree_svg, Style, Svg};
+pub use svg::{mesh_svg, point_tree_svg, Style, Svg};

@@ -6,7 +6,7 @@ use crate::geom::Aabb;
 /// Pixel coordinates are clamped to this magnitude, so every number written is finite.
 pub(super) const MAX_PX: f64 = 1e7;
 
-/// The view with the repairs documented at [`Svg::new`].
+/// The view with the repairs documented at [`Svg::new`](super::Svg::new).
 pub(super) fn repair_view(view: Aabb<f64, 2>) -> Aabb<f64, 2> {
     if !view.min.iter().chain(&view.max).all(|v| v.is_finite()) {
         return Aabb {

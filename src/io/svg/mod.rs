@@ -6,18 +6,21 @@
 //! ([`Svg::refinement`]), boxes and points, each with a [`Style`]. The y axis points up (north
 //! up, as in the chapter's figures): the view's `max[1]` is the top edge of the picture.
 //! [`point_tree_svg`] draws a [`PointTree`] the way the chapter's Figure 14.5 does: the lines
-//! balance adds dotted, the tree itself solid, the points as dots.
+//! balance adds dotted, the tree itself solid, the points as dots. [`mesh_svg`] draws a mesh
+//! on its board with the layers [`Svg::triangles`] and [`Svg::segments`].
 //!
 //! Nothing here panics on odd input: a view of zero or non-finite size, a non-positive width, or
 //! NaN coordinates are all mapped to something drawable (see [`Svg::new`]), and colours are
 //! escaped.
 
 mod format;
+mod mesh;
 mod style;
 #[cfg(test)]
 mod tests;
 
 use format::{clamp_px, escape, length, num, repair_view, MAX_PX};
+pub use mesh::mesh_svg;
 pub use style::Style;
 
 use crate::geom::{Aabb, Cell, Scalar};

@@ -22,7 +22,7 @@ pub struct Style {
     pub dash: Vec<f64>,
     /// The fill colour; `"none"` for no fill.
     pub fill: String,
-    /// The radius of a point's dot in pixels ([`Svg::points`]).
+    /// The radius of a point's dot in pixels ([`Svg::points`](super::Svg::points)).
     pub point_radius: f64,
 }
 
@@ -46,7 +46,7 @@ impl Style {
     }
 
     /// Dotted grey lines, no fill: a refinement drawn under a tree (the chapter's Figure 14.5).
-    /// Draw it with [`Svg::subdivision`], which strokes every segment once, so dots from
+    /// Draw it with [`Svg::subdivision`](super::Svg::subdivision), which strokes every segment once, so dots from
     /// neighbouring cells do not overlap out of phase.
     pub fn dotted() -> Self {
         Style {

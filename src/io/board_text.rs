@@ -1,0 +1,135 @@
+//! Boards as plain text, one component per line: [`read_board_text`] and [`write_board_text`].
+//!
+//! The format:
+//!
+//! ```text
+//! # A board of side 16 with two components.
+//! size 16
+//! 1 14  2 14  2 15  1 15      # a unit square: x y pairs
+//! (4, 4) (8, 4) (8, 8)        # a triangle: parentheses and commas are optional
+//! ```
+//!
+//! - `#` starts a comment, anywhere on a line; blank lines are ignored.
+//! - `size U` (at most once, anywhere) gives the board's side U, a power of two from 1 to 2^30.
+//!   Without it U is the caller's choice (the `size` argument), else the smallest power of two at
+//!   least the largest coordinate (at least 1, at most 2^30).
+//! - Every other line is one component: its vertices in order, as integer `x y` pairs (`3.0` is
+//!   read as 3; `3.5` is refused). `(`, `)` and `,` count as spaces. The outline closes by itself,
+//!   from the last vertex back to the first; a last vertex equal to the first is dropped. Either
+//!   orientation is accepted, and vertices between collinear edges are allowed (both are
+//!   normalised away).
+//! - Component i is the i-th component line, numbered from 1, and edge k runs from its k-th
+//!   vertex to the next; errors name both and the line.
+//!
+//! The rules on the components themselves are those of [`Board::new`]: vertices in [0, U]^2,
+//! edges at 0, 45, 90 or 135 degrees, simple outlines, no two components touching and none inside
+//! another.
+//!
+//! ```
+//! use orthtree::io::board_text::{read_board_text, write_board_text};
+//! let board = read_board_text("size 16\n1 14  2 14  2 15  1 15\n(4, 4) (8, 4) (8, 8)\n", None)
+//!     .unwrap();
+//! assert_eq!(board.size(), 16);
+//! assert_eq!(board.components().len(), 2);
+//! assert_eq!(board.components()[1].outline, vec![[4, 4], [8, 4], [8, 8]]);
+//! assert_eq!(board.components()[1].lines, vec![Some(3); 3]);
+//! let text = write_board_text(&board);
+//! assert_eq!(write_board_text(&read_board_text(&text, None).unwrap()), text);
+//!
+//! let err = read_board_text("0 0  4 0  7 5\n", Some(8)).unwrap_err();
+//! assert_eq!(
+//!     err.to_string(),
+//!     "component 1, edge 2 (line 1): edge (4, 0)-(7, 5) is not at 0, 45, 90 or 135 degrees"
+//! );
+//! ```
+
+use super::poly::{board_size, parse_coordinate};
+use crate::mesh::{Board, BoardError, Component, Point};
+use core::fmt::Write;
+
+/// Reads a board in the text format of the module doc; `size` is the caller's choice of U, used
+/// when the text has no `size` line.
+///
+/// Errors: [`BoardError::Parse`] naming the line for a field that is not an integer, an odd
+/// number of coordinates, or a bad or repeated `size` line; otherwise any error of
+/// [`Board::new`], naming the component's line.
+///
+/// Complexity: O(n + E log E) for n bytes of text and E edges.
+pub fn read_board_text(text: &str, size: Option<i64>) -> Result<Board, BoardError> {
+    let mut size_line: Option<(i64, usize)> = None;
+    let mut components = Vec::new();
+    for (i, raw) in text.lines().enumerate() {
+        let line = i + 1;
+        let content = raw.split_once('#').map_or(raw, |(content, _)| content);
+        let content = content.replace(['(', ')', ','], " ");
+        let fields: Vec<&str> = content.split_whitespace().collect();
+        let Some(&first) = fields.first() else {
+            continue;
+        };
+        if first.eq_ignore_ascii_case("size") {
+            let u = match fields[1..] {
+                [value] => value.parse::<i64>().ok(),
+                _ => None,
+            }
+            .ok_or_else(|| parse_error(line, "expected `size U` with an integer U"))?;
+            if let Some((_, earlier)) = size_line {
+                return Err(parse_error(
+                    line,
+                    format!("a second size line (the first is line {earlier})"),
+                ));
+            }
+            size_line = Some((u, line));
+            continue;
+        }
+        if fields.len() % 2 != 0 {
+            return Err(parse_error(
+                line,
+                format!(
+                    "{} coordinates: a component is a list of x y pairs",
+                    fields.len()
+                ),
+            ));
+        }
+        let mut outline: Vec<Point> = Vec::with_capacity(fields.len() / 2);
+        for pair in fields.chunks_exact(2) {
+            let x = parse_coordinate(pair[0]).map_err(|m| parse_error(line, m))?;
+            let y = parse_coordinate(pair[1]).map_err(|m| parse_error(line, m))?;
+            outline.push([x, y]);
+        }
+        if outline.len() > 1 && outline.first() == outline.last() {
+            outline.pop();
+        }
+        let lines = vec![Some(line); outline.len()];
+        components.push(Component { outline, lines });
+    }
+    let size = board_size(size_line.map(|(u, _)| u), size, &components);
+    Board::new(size, components)
+}
+
+/// Writes a board in the text format of the module doc (a `size` line, then one line per
+/// component); [`read_board_text`] reads it back to the same board.
+pub fn write_board_text(board: &Board) -> String {
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "# orthtree board: side {}, {} components",
+        board.size(),
+        board.components().len()
+    );
+    let _ = writeln!(out, "size {}", board.size());
+    for c in board.components() {
+        for (i, p) in c.outline.iter().enumerate() {
+            let sep = if i == 0 { "" } else { "  " };
+            let _ = write!(out, "{sep}{} {}", p[0], p[1]);
+        }
+        out.push('\n');
+    }
+    out
+}
+
+fn parse_error(line: usize, message: impl Into<String>) -> BoardError {
+    BoardError::Parse {
+        line,
+        message: message.into(),
+    }
+}

@@ -1,0 +1,19 @@
+//! The circuit-board mesher of the chapter's section 14.3 (D = 2): a [`Board`] in, a conforming
+//! triangle [`Mesh`] that respects the input, with every angle in [45, 90] degrees, out.
+
+mod board;
+mod check;
+mod error;
+mod generate;
+mod halfedge;
+mod output;
+mod samples;
+mod validate;
+
+pub use board::{Board, Component, Point};
+pub use error::BoardError;
+pub use generate::{generate_mesh, MeshOutcome};
+pub use halfedge::{HalfEdgeError, HalfEdges, Outgoing};
+pub use output::{Mesh, Segment, SegmentKind};
+pub use samples::{random_board, sample_board};
+pub use validate::{Check, ValidationReport};

@@ -1,0 +1,956 @@
+//! [`Mesh::validate`]: checks a mesh against its board, property by property, in exact integer
+//! arithmetic (coordinates lie in [0, U]^2 with U <= 2^30, so every product fits an `i128`).
+//!
+//! The checks, one field of [`ValidationReport`] each, are described there, with why
+//! `orientation` and `conforming` together rule out T-junctions.
+
+use super::{Board, Mesh, Point, SegmentKind};
+use crate::hash::FastMap;
+use core::fmt;
+
+/// The outcome of one check of [`Mesh::validate`].
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Check {
+    /// `true` if the property holds.
+    pub ok: bool,
+    /// On failure, what is wrong, naming the first offending triangle, edge or vertex (0-based
+    /// indices); on success, a short summary.
+    pub message: String,
+}
+
+impl Check {
+    fn pass(message: impl Into<String>) -> Self {
+        Check {
+            ok: true,
+            message: message.into(),
+        }
+    }
+
+    /// `true` if the property holds.
+    pub fn is_ok(&self) -> bool {
+        self.ok
+    }
+}
+
+impl fmt::Display for Check {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.ok {
+            write!(f, "ok ({})", self.message)
+        } else {
+            write!(f, "FAILED: {}", self.message)
+        }
+    }
+}
+
+/// The first failure of a check, or a summary if none.
+#[derive(Default)]
+struct Finding(Option<String>);
+
+impl Finding {
+    /// Records `message` unless a failure is already recorded (the first one is kept).
+    fn fail(&mut self, message: impl FnOnce() -> String) {
+        if self.0.is_none() {
+            self.0 = Some(message());
+        }
+    }
+
+    fn finish(self, summary: impl FnOnce() -> String) -> Check {
+        match self.0 {
+            Some(message) => Check { ok: false, message },
+            None => Check::pass(summary()),
+        }
+    }
+}
+
+/// What [`Mesh::validate`] found: one [`Check`] per property, the counts, and the angle range.
+/// Its `Display` prints a one-line verdict, then one line per failed check. Every check is
+/// exact, in integer arithmetic (coordinates lie in [0, U]^2 with U <= 2^30, so every product
+/// fits an `i128`).
+///
+/// The checks, one field each:
+///
+/// - `indices`: every vertex index in range, one region per triangle, every vertex inside the
+///   board. A triangle failing this is left out of all other checks (which may fail in turn).
+/// - `orientation`: every triangle counter-clockwise with positive area.
+/// - `conforming`: every directed edge used by at most one triangle; every edge shared by two
+///   triangles in opposite directions, except edges on the board boundary, which are used once
+///   and run counter-clockwise around the board; these boundary edges cover each side of the
+///   board exactly (no gap, no overlap); no two used vertices at the same point.
+/// - `area`: the triangles' total area is U^2.
+/// - `respects_input`: every component edge is a chain of mesh edges. All mesh vertices are
+///   integer points, so the edge is walked in unit lattice steps ((±1, 0), (0, ±1) or (±1, ±1))
+///   and each step must be a mesh edge.
+/// - `angles`: every angle in [45, 90] degrees, exactly: for the angle between integer vectors
+///   `u` and `v`, it is at most 90 degrees iff `u·v >= 0`, and at least 45 iff `u·v <= |u×v|`.
+/// - `regions`: across an interior edge that is not an input edge both triangles have the same
+///   region; left of an input edge of component `i` (outlines run counter-clockwise) the triangle
+///   has region `i`, right of it region 0; every region is at most the number of components; the
+///   triangles of region `i` cover the component's area (shoelace formula).
+/// - `euler`: V - E + F = 1 (a disc), counting only vertices some triangle uses.
+/// - `delaunay` (the chapter's exercise 14.3): across every interior edge, the opposite vertex of
+///   one triangle is not strictly inside the circumcircle of the other (the incircle determinant).
+/// - `segments`: every segment is a mesh edge, none is repeated, and the marked segments are
+///   exactly the board-boundary edges (kind `Boundary`) and the lattice steps of the component
+///   edges (kind `Component(i)`); an outline along the board boundary is marked both ways.
+///
+/// Why `orientation` and `conforming` together rule out T-junctions (a vertex inside another
+/// triangle's edge): the oriented edges of all triangles add up, as a 1-chain, to the board's
+/// counter-clockwise boundary, since interior edges cancel in pairs and the boundary edges cover
+/// each side exactly. Winding numbers are additive, so for a point `p` on no edge the number of
+/// triangles winding around `p` equals the board boundary's winding number: 1 inside the board,
+/// 0 outside. Every triangle is counter-clockwise, so it winds around `p` once if `p` is inside
+/// and never otherwise: every point of the board lies in exactly one triangle, none outside.
+/// Now let vertex `v` lie strictly inside edge `ab` of triangle T. Near `v`, the side of `ab`
+/// inside T is covered by T, and the other side by the triangle T' using `ba` (or lies outside
+/// the board if `ab` is on its boundary). A triangle with a corner at `v` has positive area, so
+/// it has interior points near `v` off the line `ab`, which would be covered twice (or lie
+/// outside the board): a contradiction, since such a triangle is neither T nor T' (their
+/// corners are `a`, `b` and points off the line). For a valid mesh the total area and Euler's
+/// formula follow as well; they are kept as cheap cross-checks that name a different symptom.
+/// Likewise 45-90 degree triangles are always Delaunay (exercise 14.3), so `delaunay` fails only
+/// together with `angles`.
+///
+/// Validation never panics on a malformed mesh: indices out of range, vertices outside the board,
+/// missing regions and degenerate triangles are reported, and the triangles concerned skipped.
+/// Time: O(n log n) for n triangles (edges are paired by sorting), plus O(log n) per lattice
+/// step of the component edges and O(1) expected per segment.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ValidationReport {
+    /// Vertex indices in range, one region per triangle, vertices inside the board.
+    pub indices: Check,
+    /// Every triangle counter-clockwise with positive area.
+    pub orientation: Check,
+    /// Edges paired in opposite directions except on the board boundary, which they cover
+    /// exactly; no two vertices at one point.
+    pub conforming: Check,
+    /// Total area U^2.
+    pub area: Check,
+    /// Every component edge a chain of mesh edges.
+    pub respects_input: Check,
+    /// Every angle in [45, 90] degrees.
+    pub angles: Check,
+    /// Regions constant across non-input edges, component `i` left of its outline and the board
+    /// right of it, component areas matching.
+    pub regions: Check,
+    /// V - E + F = 1.
+    pub euler: Check,
+    /// No vertex strictly inside the circumcircle of the triangle across an edge.
+    pub delaunay: Check,
+    /// The segments: mesh edges, exactly the board boundary plus the input-edge chains.
+    pub segments: Check,
+    /// Vertices used by some triangle.
+    pub vertices_used: usize,
+    /// Distinct (undirected) edges.
+    pub edges: usize,
+    /// Triangles.
+    pub triangles: usize,
+    /// The smallest and largest angle in degrees (floating point, for reporting), `None` without
+    /// triangles.
+    pub angle_range_deg: Option<[f64; 2]>,
+}
+
+impl ValidationReport {
+    /// `true` if every check passed.
+    pub fn is_ok(&self) -> bool {
+        self.checks().iter().all(|(_, c)| c.ok)
+    }
+
+    /// The checks with their field names, in the order of the struct.
+    pub fn checks(&self) -> [(&'static str, &Check); 10] {
+        [
+            ("indices", &self.indices),
+            ("orientation", &self.orientation),
+            ("conforming", &self.conforming),
+            ("area", &self.area),
+            ("respects_input", &self.respects_input),
+            ("angles", &self.angles),
+            ("regions", &self.regions),
+            ("euler", &self.euler),
+            ("delaunay", &self.delaunay),
+            ("segments", &self.segments),
+        ]
+    }
+
+    /// The names of the failed checks.
+    pub fn failed(&self) -> Vec<&'static str> {
+        self.checks()
+            .iter()
+            .filter(|(_, c)| !c.ok)
+            .map(|(name, _)| *name)
+            .collect()
+    }
+}
+
+impl fmt::Display for ValidationReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let failed = self.failed();
+        if failed.is_empty() {
+            write!(f, "valid mesh: ")?;
+        } else {
+            write!(f, "INVALID mesh ({} of 10 checks failed): ", failed.len())?;
+        }
+        write!(
+            f,
+            "{} triangles, {} vertices, {} edges",
+            self.triangles, self.vertices_used, self.edges
+        )?;
+        if let Some([lo, hi]) = self.angle_range_deg {
+            write!(f, ", angles {lo:.1} to {hi:.1} degrees")?;
+        }
+        for (name, check) in self.checks() {
+            if !check.ok {
+                write!(f, "\n  {name}: {}", check.message)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Mesh {
+    /// The cheap part of [`Mesh::validate`] that a file writer needs: every triangle and segment
+    /// vertex index in range, and one region per triangle. The error names the first offender.
+    ///
+    /// ```
+    /// use orthtree::mesh::Mesh;
+    /// let mut mesh = Mesh {
+    ///     vertices: vec![[0, 0], [1, 0], [1, 1]],
+    ///     triangles: vec![[0, 1, 2]],
+    ///     regions: vec![0],
+    ///     segments: vec![],
+    /// };
+    /// assert!(mesh.check_indices().is_ok());
+    /// mesh.triangles[0][2] = 3;
+    /// assert!(mesh.check_indices().unwrap_err().contains("triangle 0"));
+    /// ```
+    pub fn check_indices(&self) -> Result<(), String> {
+        let nv = self.vertices.len();
+        if let Some((t, tri)) = (self.triangles.iter().enumerate())
+            .find(|(_, tri)| tri.iter().any(|&v| v as usize >= nv))
+        {
+            return Err(format!(
+                "triangle {t} {tri:?} refers to a vertex out of range (there are {nv} vertices)"
+            ));
+        }
+        if self.regions.len() != self.triangles.len() {
+            return Err(format!(
+                "{} regions for {} triangles",
+                self.regions.len(),
+                self.triangles.len()
+            ));
+        }
+        if let Some((k, s)) = (self.segments.iter().enumerate())
+            .find(|(_, s)| s.vertices.iter().any(|&v| v as usize >= nv))
+        {
+            return Err(format!(
+                "segment {k} {:?} refers to a vertex out of range (there are {nv} vertices)",
+                s.vertices
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Twice the signed area of (a, b, c).
+fn cross(a: Point, b: Point, c: Point) -> i128 {
+    let (ux, uy) = (b[0] as i128 - a[0] as i128, b[1] as i128 - a[1] as i128);
+    let (vx, vy) = (c[0] as i128 - a[0] as i128, c[1] as i128 - a[1] as i128);
+    ux * vy - uy * vx
+}
+
+/// Positive iff `d` is strictly inside the circumcircle of the counter-clockwise (a, b, c).
+/// With coordinates in [0, 2^30] every term is below 2^123.
+fn incircle(a: Point, b: Point, c: Point, d: Point) -> i128 {
+    let diff = |p: Point| (p[0] as i128 - d[0] as i128, p[1] as i128 - d[1] as i128);
+    let ((ax, ay), (bx, by), (cx, cy)) = (diff(a), diff(b), diff(c));
+    let lift = |x: i128, y: i128| x * x + y * y;
+    lift(ax, ay) * (bx * cy - cx * by)
+        + lift(bx, by) * (cx * ay - ax * cy)
+        + lift(cx, cy) * (ax * by - bx * ay)
+}
+
+/// A doubled area as text (`7` or `7.5`).
+fn half(doubled: i128) -> String {
+    let sign = if doubled < 0 { "-" } else { "" };
+    let m = doubled.unsigned_abs();
+    if m % 2 == 0 {
+        format!("{sign}{}", m / 2)
+    } else {
+        format!("{sign}{}.5", m / 2)
+    }
+}
+
+/// The side of the board a directed edge lies on, running counter-clockwise, with its extent
+/// measured along that side from the side's start.
+fn boundary_side(a: Point, b: Point, u: i64) -> Option<(usize, i64, i64)> {
+    if a[1] == 0 && b[1] == 0 && b[0] > a[0] {
+        Some((0, a[0], b[0]))
+    } else if a[0] == u && b[0] == u && b[1] > a[1] {
+        Some((1, a[1], b[1]))
+    } else if a[1] == u && b[1] == u && b[0] < a[0] {
+        Some((2, u - a[0], u - b[0]))
+    } else if a[0] == 0 && b[0] == 0 && b[1] < a[1] {
+        Some((3, u - a[1], u - b[1]))
+    } else {
+        None
+    }
+}
+
+const SIDES: [&str; 4] = [
+    "bottom (y = 0)",
+    "right (x = U)",
+    "top (y = U)",
+    "left (x = 0)",
+];
+
+/// An undirected edge key, smaller vertex first.
+fn undirected(a: u32, b: u32) -> (u32, u32) {
+    (a.min(b), a.max(b))
+}
+
+impl Mesh {
+    /// Checks this mesh against `board`, property by property (see [`ValidationReport`]): exact,
+    /// never panicking on malformed meshes.
+    ///
+    /// ```
+    /// use orthtree::mesh::{Board, Mesh, Segment, SegmentKind};
+    /// // the board U = 1 cut along its rising diagonal
+    /// let board = Board::new(1, vec![]).unwrap();
+    /// let side = |a, b| Segment { vertices: [a, b], kind: SegmentKind::Boundary };
+    /// let mut mesh = Mesh {
+    ///     vertices: vec![[0, 0], [1, 0], [1, 1], [0, 1]],
+    ///     triangles: vec![[0, 1, 2], [0, 2, 3]],
+    ///     regions: vec![0, 0],
+    ///     segments: vec![side(0, 1), side(1, 2), side(2, 3), side(3, 0)],
+    /// };
+    /// let report = mesh.validate(&board);
+    /// assert!(report.is_ok(), "{report}");
+    /// assert_eq!(report.angle_range_deg, Some([45.0, 90.0]));
+    /// mesh.triangles[1] = [0, 3, 2]; // clockwise
+    /// let report = mesh.validate(&board);
+    /// assert!(!report.orientation.ok);
+    /// assert!(report.orientation.message.contains("triangle 1"));
+    /// ```
+    pub fn validate(&self, board: &Board) -> ValidationReport {
+        Validator::new(self, board).run()
+    }
+}
+
+/// No half-edge.
+const NONE: u32 = u32::MAX;
+
+/// What an input step makes of a half-edge: the component on its left, or on its right.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Input {
+    None,
+    Left(u32),
+    Right(u32),
+}
+
+/// State shared by the checks. Half-edge `3t + i` runs from `triangles[t][i]` to
+/// `triangles[t][(i + 1) % 3]`; edges are found by sorting, not hashing, which keeps the
+/// validation of a mesh with a million triangles well under a second.
+struct Validator<'m> {
+    mesh: &'m Mesh,
+    board: &'m Board,
+    /// Triangles whose indices are in range and vertices inside the board.
+    good: Vec<bool>,
+    /// Doubled signed area of each good triangle (0 for the others).
+    area2: Vec<i128>,
+    /// (undirected edge key, half-edge) of the good triangles' half-edges, sorted.
+    keys: Vec<(u64, u32)>,
+    /// The opposite half-edge of each half-edge, [`NONE`] if there is none (or more than one).
+    twins: Vec<u32>,
+    /// Used vertices sorted by position.
+    points: Vec<(Point, u32)>,
+    /// Undirected board-boundary edges, in half-edge order.
+    boundary_edges: Vec<(u32, u32)>,
+    /// The input step on each half-edge, if any.
+    input: Vec<Input>,
+    /// The lattice steps of the component edges that are mesh edges, in board order, with their
+    /// component (from 1).
+    input_steps: Vec<((u32, u32), u32)>,
+}
+
+/// The sort key of an undirected edge.
+fn edge_key(a: u32, b: u32) -> u64 {
+    (u64::from(a.min(b)) << 32) | u64::from(a.max(b))
+}
+
+impl<'m> Validator<'m> {
+    fn new(mesh: &'m Mesh, board: &'m Board) -> Self {
+        Validator {
+            mesh,
+            board,
+            good: Vec::new(),
+            area2: Vec::new(),
+            keys: Vec::new(),
+            twins: Vec::new(),
+            points: Vec::new(),
+            boundary_edges: Vec::new(),
+            input: Vec::new(),
+            input_steps: Vec::new(),
+        }
+    }
+
+    fn point(&self, v: u32) -> Point {
+        self.mesh.vertices[v as usize]
+    }
+
+    fn tri_points(&self, t: usize) -> [Point; 3] {
+        self.mesh.triangles[t].map(|v| self.point(v))
+    }
+
+    fn origin(&self, h: u32) -> u32 {
+        self.mesh.triangles[h as usize / 3][h as usize % 3]
+    }
+
+    fn target(&self, h: u32) -> u32 {
+        self.mesh.triangles[h as usize / 3][(h as usize % 3 + 1) % 3]
+    }
+
+    fn twin(&self, h: u32) -> Option<u32> {
+        Some(self.twins[h as usize]).filter(|&g| g != NONE)
+    }
+
+    /// The good triangles with their indices.
+    fn good_triangles(&self) -> impl Iterator<Item = (usize, [u32; 3])> + '_ {
+        (self.mesh.triangles.iter().enumerate())
+            .filter(|(t, _)| self.good[*t])
+            .map(|(t, &tri)| (t, tri))
+    }
+
+    /// The half-edges (3t + i, from, to) of the good triangles.
+    fn half_edges(&self) -> impl Iterator<Item = (u32, u32, u32)> + '_ {
+        self.good_triangles().flat_map(|(t, tri)| {
+            (0..3).map(move |i| ((3 * t + i) as u32, tri[i], tri[(i + 1) % 3]))
+        })
+    }
+
+    /// A half-edge running from `a` to `b`, if any.
+    fn find(&self, a: u32, b: u32) -> Option<u32> {
+        let key = edge_key(a, b);
+        let start = self.keys.partition_point(|&(k, _)| k < key);
+        (self.keys[start..].iter())
+            .take_while(|&&(k, _)| k == key)
+            .map(|&(_, h)| h)
+            .find(|&h| self.origin(h) == a)
+    }
+
+    fn is_edge(&self, a: u32, b: u32) -> bool {
+        let key = edge_key(a, b);
+        let i = self.keys.partition_point(|&(k, _)| k < key);
+        self.keys.get(i).is_some_and(|&(k, _)| k == key)
+    }
+
+    /// The used vertex at `p`, if any.
+    fn vertex_at(&self, p: Point) -> Option<u32> {
+        let i = self.points.partition_point(|&(q, _)| q < p);
+        self.points
+            .get(i)
+            .filter(|&&(q, _)| q == p)
+            .map(|&(_, v)| v)
+    }
+
+    fn region(&self, t: usize) -> Option<u32> {
+        self.mesh.regions.get(t).copied()
+    }
+
+    fn run(mut self) -> ValidationReport {
+        let indices = self.indices();
+        let orientation = self.orientation();
+        let conforming = self.conforming();
+        let area = self.area();
+        let respects_input = self.respects_input();
+        let (angles, angle_range_deg) = self.angles();
+        let regions = self.regions();
+        let (euler, vertices_used, edges) = self.euler();
+        let delaunay = self.delaunay();
+        let segments = self.segments();
+        ValidationReport {
+            indices,
+            orientation,
+            conforming,
+            area,
+            respects_input,
+            angles,
+            regions,
+            euler,
+            delaunay,
+            segments,
+            vertices_used,
+            edges,
+            triangles: self.mesh.triangles.len(),
+            angle_range_deg,
+        }
+    }
+
+    fn indices(&mut self) -> Check {
+        let mesh = self.mesh;
+        let (nv, u) = (mesh.vertices.len(), self.board.size());
+        let mut f = Finding::default();
+        if let Err(problem) = mesh.check_indices() {
+            f.fail(|| problem);
+        }
+        if 3 * mesh.triangles.len() >= NONE as usize {
+            f.fail(|| format!("{} triangles: too many to check", mesh.triangles.len()));
+        }
+        let inside = |p: &Point| (0..=u).contains(&p[0]) && (0..=u).contains(&p[1]);
+        if let Some((v, p)) = mesh.vertices.iter().enumerate().find(|(_, p)| !inside(p)) {
+            f.fail(|| format!("vertex {v} at {p:?} lies outside the board [0, {u}]^2"));
+        }
+        let fits = 3 * mesh.triangles.len() < NONE as usize;
+        self.good = (mesh.triangles.iter())
+            .map(|tri| {
+                fits && tri
+                    .iter()
+                    .all(|&v| mesh.vertices.get(v as usize).is_some_and(inside))
+            })
+            .collect();
+        f.finish(|| {
+            format!(
+                "{} vertices, {} triangles, {} segments",
+                nv,
+                mesh.triangles.len(),
+                mesh.segments.len()
+            )
+        })
+    }
+
+    fn orientation(&mut self) -> Check {
+        let mut f = Finding::default();
+        let mut area2 = vec![0; self.mesh.triangles.len()];
+        for (t, tri) in self.good_triangles() {
+            let [a, b, c] = self.tri_points(t);
+            let a2 = cross(a, b, c);
+            area2[t] = a2;
+            if a2 <= 0 {
+                let what = if a2 == 0 { "degenerate" } else { "clockwise" };
+                f.fail(|| {
+                    format!(
+                        "triangle {t} {tri:?} at {a:?}, {b:?}, {c:?} is {what} (doubled area {a2})"
+                    )
+                });
+            }
+        }
+        self.area2 = area2;
+        f.finish(|| "every triangle counter-clockwise".into())
+    }
+
+    fn conforming(&mut self) -> Check {
+        let mut f = Finding::default();
+        let u = self.board.size();
+        let mut keys: Vec<(u64, u32)> = self
+            .half_edges()
+            .map(|(h, a, b)| (edge_key(a, b), h))
+            .collect();
+        keys.sort_unstable();
+        let mut twins = vec![NONE; 3 * self.mesh.triangles.len()];
+        for group in keys.chunk_by(|x, y| x.0 == y.0) {
+            let (g, h) = (group[0].1, group.get(1).map_or(NONE, |x| x.1));
+            if group.len() > 2 {
+                let (a, b) = (self.origin(g), self.target(g));
+                f.fail(|| {
+                    let ts: Vec<u32> = group.iter().map(|x| x.1 / 3).collect();
+                    format!("edge {a}-{b} belongs to {} triangles {ts:?}", ts.len())
+                });
+            } else if h != NONE && self.origin(g) == self.origin(h) {
+                let (a, b) = (self.origin(g), self.target(g));
+                f.fail(|| {
+                    format!(
+                        "triangles {} and {} both use the directed edge {a} -> {b}",
+                        g / 3,
+                        h / 3
+                    )
+                });
+            } else if h != NONE {
+                twins[g as usize] = h;
+                twins[h as usize] = g;
+            }
+        }
+        self.keys = keys;
+        self.twins = twins;
+
+        let mut sides: [Vec<(i64, i64, u32)>; 4] = Default::default();
+        let mut boundary_edges = Vec::new();
+        for (h, a, b) in self.half_edges() {
+            if self.twins[h as usize] != NONE {
+                continue;
+            }
+            let (pa, pb) = (self.point(a), self.point(b));
+            match boundary_side(pa, pb, u) {
+                Some((side, s, e)) => {
+                    sides[side].push((s, e, h));
+                    boundary_edges.push(undirected(a, b));
+                }
+                None => f.fail(|| {
+                    format!(
+                        "edge {a} -> {b} ({pa:?} -> {pb:?}) of triangle {} has no triangle on \
+                         its other side and does not run counter-clockwise along the board boundary",
+                        h / 3
+                    )
+                }),
+            }
+        }
+        self.boundary_edges = boundary_edges;
+        for (side, edges) in sides.iter_mut().enumerate() {
+            edges.sort_unstable();
+            let mut at = 0;
+            for &(s, e, h) in edges.iter() {
+                if s != at {
+                    let what = if s > at { "a gap" } else { "an overlap" };
+                    f.fail(|| {
+                        format!(
+                            "the boundary edges on the {} side have {what} at {} (triangle {})",
+                            SIDES[side],
+                            s.min(at),
+                            h / 3
+                        )
+                    });
+                }
+                at = at.max(e);
+            }
+            if at != u {
+                f.fail(|| {
+                    format!(
+                        "the boundary edges on the {} side end at {at}, not at U = {u}",
+                        SIDES[side]
+                    )
+                });
+            }
+        }
+
+        let mut used = vec![false; self.mesh.vertices.len()];
+        for (_, tri) in self.good_triangles() {
+            for v in tri {
+                used[v as usize] = true;
+            }
+        }
+        let mut points: Vec<(Point, u32)> = (used.iter().enumerate())
+            .filter(|(_, &u)| u)
+            .map(|(v, _)| (self.point(v as u32), v as u32))
+            .collect();
+        points.sort_unstable();
+        if let Some(w) = points.windows(2).find(|w| w[0].0 == w[1].0) {
+            f.fail(|| {
+                format!(
+                    "vertices {} and {} are both at {:?}",
+                    w[0].1, w[1].1, w[0].0
+                )
+            });
+        }
+        self.points = points;
+        f.finish(|| {
+            format!(
+                "interior edges paired, {} edges cover the board boundary",
+                self.boundary_edges.len()
+            )
+        })
+    }
+
+    fn area(&self) -> Check {
+        let total: i128 = self.area2.iter().sum();
+        let u = self.board.size() as i128;
+        if total == 2 * u * u {
+            Check::pass(format!("{} = U^2", u * u))
+        } else {
+            Check {
+                ok: false,
+                message: format!(
+                    "the triangles cover area {}, not U^2 = {}",
+                    half(total),
+                    u * u
+                ),
+            }
+        }
+    }
+
+    fn respects_input(&mut self) -> Check {
+        let mut f = Finding::default();
+        let mut input = vec![Input::None; self.twins.len()];
+        let mut steps = Vec::new();
+        for (ci, comp) in self.board.components().iter().enumerate() {
+            let c = ci as u32 + 1;
+            for (k, (p, q)) in comp.edges().enumerate() {
+                let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
+                if (dx == 0 && dy == 0) || (dx != 0 && dy != 0 && dx.abs() != dy.abs()) {
+                    f.fail(|| {
+                        format!("component {c} edge {k} {p:?} -> {q:?} is not a lattice direction")
+                    });
+                    continue;
+                }
+                let d = [dx.signum(), dy.signum()];
+                let Some(first) = self.vertex_at(p) else {
+                    f.fail(|| format!("component {c} vertex {p:?} is not a mesh vertex"));
+                    continue;
+                };
+                let (mut at, mut from) = (p, first);
+                while at != q {
+                    let next = [at[0] + d[0], at[1] + d[1]];
+                    let to = self.vertex_at(next).filter(|&to| self.is_edge(from, to));
+                    let Some(to) = to else {
+                        f.fail(|| {
+                            format!(
+                                "component {c} edge {k} {p:?} -> {q:?}: the step {at:?} -> \
+                                 {next:?} is not a mesh edge"
+                            )
+                        });
+                        break;
+                    };
+                    let mut mark = |h: u32, side: Input| {
+                        if input[h as usize] == Input::None {
+                            input[h as usize] = side;
+                        }
+                    };
+                    if let Some(h) = self.find(from, to) {
+                        mark(h, Input::Left(c));
+                        if let Some(g) = self.twin(h) {
+                            mark(g, Input::Right(c));
+                        }
+                    } else if let Some(g) = self.find(to, from) {
+                        mark(g, Input::Right(c));
+                    }
+                    steps.push(((from, to), c));
+                    (at, from) = (next, to);
+                }
+            }
+        }
+        self.input = input;
+        self.input_steps = steps;
+        f.finish(|| {
+            format!(
+                "{} component edges are chains of {} mesh edges",
+                self.board
+                    .components()
+                    .iter()
+                    .map(|c| c.outline.len())
+                    .sum::<usize>(),
+                self.input_steps.len()
+            )
+        })
+    }
+
+    fn angles(&self) -> (Check, Option<[f64; 2]>) {
+        let mut f = Finding::default();
+        // The smallest and largest angle as (dot, |cross|): vectors in the closed upper half
+        // plane, compared exactly by their cross product; converted to degrees at the end.
+        let mut range: Option<[(i128, i128); 2]> = None;
+        let less = |(d1, c1): (i128, i128), (d2, c2): (i128, i128)| d1 * c2 - c1 * d2 > 0;
+        let degrees = |(dot, cr): (i128, i128)| (cr as f64).atan2(dot as f64).to_degrees();
+        for (t, tri) in self.good_triangles() {
+            let p = self.tri_points(t);
+            for i in 0..3 {
+                let (a, b, c) = (p[i], p[(i + 1) % 3], p[(i + 2) % 3]);
+                let u = [b[0] as i128 - a[0] as i128, b[1] as i128 - a[1] as i128];
+                let v = [c[0] as i128 - a[0] as i128, c[1] as i128 - a[1] as i128];
+                let dot = u[0] * v[0] + u[1] * v[1];
+                let cr = (u[0] * v[1] - u[1] * v[0]).abs();
+                let angle = (dot, cr);
+                range = Some(match range {
+                    None => [angle, angle],
+                    Some([lo, hi]) => [
+                        if less(angle, lo) { angle } else { lo },
+                        if less(hi, angle) { angle } else { hi },
+                    ],
+                });
+                if dot < 0 || dot > cr {
+                    let what = if dot < 0 { "above 90" } else { "below 45" };
+                    f.fail(|| {
+                        format!(
+                            "triangle {t} {tri:?}: the angle at vertex {} {a:?} is {:.2} \
+                             degrees, {what}",
+                            tri[i],
+                            degrees(angle)
+                        )
+                    });
+                }
+            }
+        }
+        let range = range.map(|r| r.map(degrees));
+        let check = f.finish(|| match range {
+            Some([lo, hi]) => format!("angles from {lo:.1} to {hi:.1} degrees"),
+            None => "no triangles".into(),
+        });
+        (check, range)
+    }
+
+    fn regions(&self) -> Check {
+        let mut f = Finding::default();
+        let k = self.board.components().len() as u32;
+        let mut area = vec![0i128; k as usize + 1];
+        for (t, tri) in self.good_triangles() {
+            let Some(r) = self.region(t) else { continue };
+            if r > k {
+                f.fail(|| {
+                    format!("triangle {t} {tri:?} has region {r}, but the board has {k} components")
+                });
+            } else {
+                area[r as usize] += self.area2[t];
+            }
+        }
+        for (h, a, b) in self.half_edges() {
+            let t = h as usize / 3;
+            let Some(r) = self.region(t) else { continue };
+            let (expected, why) = match (self.input[h as usize], self.twin(h)) {
+                (Input::Left(c), _) if r != c => (c, format!("left of component {c}'s outline")),
+                (Input::Right(c), _) if r != 0 => (0, format!("right of component {c}'s outline")),
+                (Input::None, Some(g)) => match self.region(g as usize / 3) {
+                    Some(other) if other != r => (
+                        other,
+                        format!("across a non-input edge from triangle {}", g / 3),
+                    ),
+                    _ => continue,
+                },
+                _ => continue,
+            };
+            f.fail(|| {
+                format!(
+                    "triangle {t} has region {r}, but it lies {why} (edge {a} -> {b}), so \
+                     region {expected}"
+                )
+            });
+        }
+        for (ci, comp) in self.board.components().iter().enumerate() {
+            let (got, want) = (area[ci + 1], comp.doubled_area().abs());
+            if got != want {
+                f.fail(|| {
+                    format!(
+                        "the triangles of region {} cover area {}, component {} has area {}",
+                        ci + 1,
+                        half(got),
+                        ci + 1,
+                        half(want)
+                    )
+                });
+            }
+        }
+        f.finish(|| format!("{} regions consistent", k + 1))
+    }
+
+    fn euler(&self) -> (Check, usize, usize) {
+        let v = self.points.len();
+        let e = self.keys.chunk_by(|x, y| x.0 == y.0).count();
+        let t = self.good.iter().filter(|&&g| g).count();
+        let chi = v as i64 - e as i64 + t as i64;
+        let text = format!("V - E + F = {v} - {e} + {t} = {chi}");
+        let check = if chi == 1 {
+            Check::pass(text)
+        } else {
+            Check {
+                ok: false,
+                message: format!("{text}, not 1"),
+            }
+        };
+        (check, v, e)
+    }
+
+    fn delaunay(&self) -> Check {
+        let mut f = Finding::default();
+        let mut pairs = 0usize;
+        for (h, a, b) in self.half_edges() {
+            let Some(g) = self.twin(h) else { continue };
+            let (s, t) = (h as usize / 3, g as usize / 3);
+            if h > g || self.area2[s] <= 0 || self.area2[t] <= 0 {
+                continue;
+            }
+            pairs += 1;
+            let [p0, p1, p2] = self.tri_points(s);
+            let d_index = self.mesh.triangles[t][(g as usize % 3 + 2) % 3];
+            let d = self.point(d_index);
+            if incircle(p0, p1, p2, d) > 0 {
+                let c = self.mesh.triangles[s][(h as usize % 3 + 2) % 3];
+                f.fail(|| {
+                    format!(
+                        "across edge {a}-{b}: vertex {d_index} {d:?} of triangle {t} lies \
+                         strictly inside the circumcircle of triangle {s} (opposite vertex {c})"
+                    )
+                });
+            }
+        }
+        f.finish(|| format!("{pairs} interior edges locally Delaunay"))
+    }
+
+    fn segments(&self) -> Check {
+        let mut f = Finding::default();
+        let nv = self.mesh.vertices.len() as u64;
+        let mut marked: FastMap<((u32, u32), SegmentKind), usize> = FastMap::default();
+        for (k, s) in self.mesh.segments.iter().enumerate() {
+            let [a, b] = s.vertices;
+            if u64::from(a) >= nv || u64::from(b) >= nv {
+                f.fail(|| {
+                    format!(
+                        "segment {k} {:?} refers to a vertex out of range",
+                        s.vertices
+                    )
+                });
+                continue;
+            }
+            if !self.is_edge(a, b) {
+                f.fail(|| format!("segment {k} {a}-{b} ({:?}) is not a mesh edge", s.kind));
+            }
+            if let Some(&j) = marked.get(&(undirected(a, b), s.kind)) {
+                f.fail(|| format!("segments {j} and {k} both mark {a}-{b} as {:?}", s.kind));
+            } else {
+                marked.insert((undirected(a, b), s.kind), k);
+            }
+        }
+        let mut expected: FastMap<((u32, u32), SegmentKind), ()> = FastMap::default();
+        for &e in &self.boundary_edges {
+            expected.insert((e, SegmentKind::Boundary), ());
+            if !marked.contains_key(&(e, SegmentKind::Boundary)) {
+                f.fail(|| {
+                    format!(
+                        "board boundary edge {}-{} has no Boundary segment",
+                        e.0, e.1
+                    )
+                });
+            }
+        }
+        for &((a, b), c) in &self.input_steps {
+            let key = (undirected(a, b), SegmentKind::Component(c));
+            expected.insert(key, ());
+            if !marked.contains_key(&key) {
+                f.fail(|| format!("edge {a}-{b} of component {c}'s outline has no segment"));
+            }
+        }
+        for (k, s) in self.mesh.segments.iter().enumerate() {
+            let [a, b] = s.vertices;
+            let in_range = u64::from(a) < nv && u64::from(b) < nv;
+            if in_range && !expected.contains_key(&(undirected(a, b), s.kind)) {
+                let what = match s.kind {
+                    SegmentKind::Boundary => "the board boundary".to_string(),
+                    SegmentKind::Component(c) => format!("component {c}'s outline"),
+                };
+                f.fail(|| format!("segment {k} {a}-{b} is marked as on {what}, but is not"));
+            }
+        }
+        f.finish(|| format!("{} segments", self.mesh.segments.len()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn incircle_signs() {
+        let (a, b, c) = ([0, 0], [2, 0], [0, 2]);
+        assert!(incircle(a, b, c, [1, 1]) > 0);
+        assert_eq!(incircle(a, b, c, [2, 2]), 0); // cocircular
+        assert!(incircle(a, b, c, [3, 3]) < 0);
+        // extreme coordinates do not overflow
+        let u = 1i64 << 30;
+        assert!(incircle([0, 0], [u, 0], [0, u], [u, u]) == 0);
+        assert!(incircle([0, 0], [u, 0], [0, u], [1, 1]) > 0);
+    }
+
+    #[test]
+    fn boundary_sides() {
+        assert_eq!(boundary_side([0, 0], [1, 0], 2), Some((0, 0, 1)));
+        assert_eq!(boundary_side([1, 0], [0, 0], 2), None);
+        assert_eq!(boundary_side([2, 2], [1, 2], 2), Some((2, 0, 1)));
+        assert_eq!(boundary_side([0, 1], [0, 0], 2), Some((3, 1, 2)));
+        assert_eq!(half(7), "3.5");
+        assert_eq!(half(8), "4");
+        assert_eq!(half(-1), "-0.5");
+    }
+}
