@@ -32,8 +32,25 @@ impl<const D: usize> Tree<D> {
     /// assert_eq!(t.neighbor(sw_ne, Direction::NORTH), Some(nw));
     /// ```
     pub fn neighbor(&self, id: NodeId, direction: Direction) -> Option<NodeId> {
-        // Child indices to take on the way down, innermost last.
-        let mut path: SmallVec<[u8; 64]> = SmallVec::new();
+        let (mut v, mut path) = self.neighbor_path(id, direction)?;
+        while let Some(c) = path.pop() {
+            match self.child(v, c as usize) {
+                Some(child) => v = child,
+                None => return Some(v),
+            }
+        }
+        Some(v)
+    }
+
+    /// The first half of the neighbour search: climbs from `id` while the step in `direction`
+    /// leaves the current cell, and returns the ancestor where it stops with the child indices to
+    /// take on the way back down (innermost last); `None` when the step leaves the root cube.
+    pub(crate) fn neighbor_path(
+        &self,
+        id: NodeId,
+        direction: Direction,
+    ) -> Option<(NodeId, SmallVec<[u8; 64]>)> {
+        let mut path = SmallVec::new();
         let (mut plus, mut minus) = (direction.plus_mask(), direction.minus_mask());
         let mut v = id;
         while plus | minus != 0 {
@@ -45,13 +62,7 @@ impl<const D: usize> Tree<D> {
             minus &= !c;
             v = parent;
         }
-        while let Some(c) = path.pop() {
-            match self.child(v, c as usize) {
-                Some(child) => v = child,
-                None => return Some(v),
-            }
-        }
-        Some(v)
+        Some((v, path))
     }
 
     /// Appends to `out` every leaf whose cell touches the cell of `id` across the face, edge or

@@ -132,17 +132,9 @@ impl<const D: usize> Tree<D> {
         min_level: u8,
         mut on_split: impl FnMut(&Self, NodeId),
     ) {
-        let mut path: SmallVec<[u8; 64]> = SmallVec::new();
-        let (mut plus, mut minus) = (direction.plus_mask(), direction.minus_mask());
-        let mut v = id;
-        while plus | minus != 0 {
-            let Some(parent) = self.parent(v) else { return };
-            let c = self.child_index(v) as u8;
-            path.push(c ^ (plus | minus));
-            plus &= c;
-            minus &= !c;
-            v = parent;
-        }
+        let Some((mut v, mut path)) = self.neighbor_path(id, direction) else {
+            return;
+        };
         while let Some(c) = path.pop() {
             if self.level(v) >= min_level {
                 return;
