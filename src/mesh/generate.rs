@@ -15,6 +15,7 @@
 //!    in the component; labels spread from piece to piece across leaf sides that are not on an
 //!    outline, which visits only the pieces inside components; every other piece is board.
 
+use super::vertices::Numbering;
 use super::{Board, BoardError, Mesh, Point, Segment, SegmentKind};
 use crate::geom::{Cell, Connectivity};
 use crate::hash::FastMap;
@@ -89,8 +90,12 @@ pub fn generate_mesh(board: &Board) -> Result<MeshOutcome, BoardError> {
 
     let start = Instant::now();
     let diagonals = diagonal_cells(&edges);
-    let labels = label_pieces(board, &tree, &edges, &diagonals);
-    let mesh = triangulate(board, &tree, &edges, &diagonals, &labels);
+    let mut cells = vec![Cell::<2>::root(); tree.node_count()];
+    for (id, cell) in tree.pre_order() {
+        cells[id.index()] = cell;
+    }
+    let labels = label_pieces(board, &tree, &cells, &edges, &diagonals);
+    let mesh = triangulate(board, &tree, &cells, &edges, &diagonals, &labels);
     let triangulate_time = start.elapsed();
     Ok(MeshOutcome {
         mesh,
@@ -159,33 +164,6 @@ fn build_quadtree(board: &Board, edges: &[InputEdge]) -> Tree<2> {
     tree
 }
 
-/// Vertex numbering by grid point.
-struct Vertices {
-    index: FastMap<u64, u32>,
-    coords: Vec<Point>,
-}
-
-impl Vertices {
-    #[inline]
-    fn key(p: Point) -> u64 {
-        ((p[0] as u64) << 32) | p[1] as u64
-    }
-
-    #[inline]
-    fn id(&mut self, p: Point) -> u32 {
-        let next = self.coords.len() as u32;
-        *self.index.entry(Self::key(p)).or_insert_with(|| {
-            self.coords.push(p);
-            next
-        })
-    }
-
-    #[inline]
-    fn get(&self, p: Point) -> Option<u32> {
-        self.index.get(&Self::key(p)).copied()
-    }
-}
-
 /// Unit cells cut by a component diagonal, keyed by their lower-left corner; `true` for the
 /// rising diagonal (SW-NE).
 fn diagonal_cells(edges: &[InputEdge]) -> FastMap<Point, bool> {
@@ -209,25 +187,27 @@ fn diagonal_cells(edges: &[InputEdge]) -> FastMap<Point, bool> {
 fn triangulate(
     board: &Board,
     tree: &Tree<2>,
+    cells: &[Cell<2>],
     edges: &[InputEdge],
     diagonals: &FastMap<Point, bool>,
     labels: &Labels,
 ) -> Mesh {
-    let mut v = Vertices {
-        index: FastMap::default(),
-        coords: Vec::new(),
+    let u = board.size();
+    let cut = |leaf: NodeId| {
+        let (x, y, s) = square(&cells[leaf.index()], u);
+        s == 1 && diagonals.contains_key(&[x, y])
     };
-    v.index.reserve(tree.leaf_count() * 2);
+    let numbering = Numbering::new(tree, cells, u, cut);
     let mut triangles = Vec::with_capacity(tree.leaf_count() * 3);
     let mut regions = Vec::with_capacity(tree.leaf_count() * 3);
     let mut segments = Vec::new();
+    let mut ring = Vec::with_capacity(8);
     for (leaf, cell) in tree.leaves() {
-        let (x, y, s) = square(&cell, board.size());
-        let corners = [[x, y], [x + s, y], [x + s, y + s], [x, y + s]];
-        let ids = corners.map(|p| v.id(p));
+        let (x, y, s) = square(&cell, u);
+        let vx = numbering.leaf(leaf);
+        let ids = vx.corners;
         // Sides on the board's boundary (south, east, north, west): one mesh edge each, since
         // no smaller leaf lies beyond them.
-        let u = board.size();
         for (k, on_boundary) in [y == 0, x + s == u, y + s == u, x == 0]
             .into_iter()
             .enumerate()
@@ -251,35 +231,24 @@ fn triangulate(
             continue;
         }
         let region = labels.of(leaf)[0];
-        // Midpoint of side k (south, east, north, west) when the neighbour there is split.
-        let mid = |k: usize| {
-            tree.neighbor(leaf, SIDES[k])
-                .is_some_and(|n| tree.level(n) == cell.level() && !tree.is_leaf(n))
-        };
-        let mids = [mid(0), mid(1), mid(2), mid(3)];
-        if !mids.iter().any(|&m| m) {
+        let Some(centre) = vx.centre else {
             triangles.extend([[ids[0], ids[1], ids[2]], [ids[0], ids[2], ids[3]]]);
             regions.extend([region; 2]);
             continue;
-        }
-        let h = s / 2;
-        let centre = v.id([x + h, y + h]);
-        let mut ring = Vec::with_capacity(8);
+        };
+        ring.clear();
         for k in 0..4 {
             ring.push(ids[k]);
-            if mids[k] {
-                let (a, b) = (corners[k], corners[(k + 1) % 4]);
-                ring.push(v.id([(a[0] + b[0]) / 2, (a[1] + b[1]) / 2]));
-            }
+            ring.extend(vx.mids[k]);
         }
         for k in 0..ring.len() {
             triangles.push([centre, ring[k], ring[(k + 1) % ring.len()]]);
             regions.push(region);
         }
     }
-    outline_segments(edges, &v, &mut segments);
+    outline_segments(edges, &numbering, &mut segments);
     Mesh {
-        vertices: v.coords,
+        vertices: numbering.coords,
         triangles,
         regions,
         segments,
@@ -287,20 +256,20 @@ fn triangulate(
 }
 
 /// The unit steps of every component edge, as mesh segments.
-fn outline_segments(edges: &[InputEdge], v: &Vertices, out: &mut Vec<Segment>) {
+fn outline_segments(edges: &[InputEdge], numbering: &Numbering, out: &mut Vec<Segment>) {
     for e in edges {
         let d = [(e.b[0] - e.a[0]).signum(), (e.b[1] - e.a[1]).signum()];
         let steps = (e.b[0] - e.a[0]).abs().max((e.b[1] - e.a[1]).abs());
-        let at = |t: i64| v.get([e.a[0] + t * d[0], e.a[1] + t * d[1]]);
-        for t in 0..steps {
-            // Every lattice point of an outline is a corner of the unit cells along it.
-            let (Some(a), Some(b)) = (at(t), at(t + 1)) else {
-                continue;
-            };
+        // Every lattice point of an outline is a corner of the unit cells along it.
+        let at = |t: i64| numbering.at([e.a[0] + t * d[0], e.a[1] + t * d[1]]);
+        let mut from = at(0);
+        for t in 1..=steps {
+            let to = at(t);
             out.push(Segment {
-                vertices: [a, b],
+                vertices: [from, to],
                 kind: SegmentKind::Component(e.component),
             });
+            from = to;
         }
     }
 }
@@ -347,6 +316,7 @@ fn sides_of(half: Option<(bool, usize)>) -> &'static [usize] {
 fn label_pieces(
     board: &Board,
     tree: &Tree<2>,
+    cells: &[Cell<2>],
     edges: &[InputEdge],
     diagonals: &FastMap<Point, bool>,
 ) -> Labels {
@@ -392,13 +362,6 @@ fn label_pieces(
             labels.0[leaf.index()][half] = component;
             stack.push((leaf, half));
         }
-    }
-    if stack.is_empty() {
-        return labels;
-    }
-    let mut cells = vec![Cell::<2>::root(); tree.node_count()];
-    for (id, cell) in tree.pre_order() {
-        cells[id.index()] = cell;
     }
     let mut neighbours = Vec::new();
     while let Some((leaf, half)) = stack.pop() {

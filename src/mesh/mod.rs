@@ -9,6 +9,7 @@ mod halfedge;
 mod output;
 mod samples;
 mod validate;
+mod vertices;
 
 pub use board::{Board, Component, Point};
 pub use error::BoardError;
