@@ -23,6 +23,7 @@
 mod error;
 pub mod geom;
 mod hash;
+pub mod image;
 pub mod io;
 pub mod mesh;
 pub mod points;
@@ -30,6 +31,7 @@ pub mod tree;
 
 pub use error::Error;
 pub use geom::{morton, validate_point, Aabb, AabbError, Cell, Connectivity, Direction, Scalar};
+pub use image::{ImageTree, RegionTree, VoxelTree};
 pub use points::{
     Leaf, Leaves, Octree, PointTree, PointTreeBuilder, Quadtree, RootGeometry, ValidationError,
     DEFAULT_BUCKET_SIZE,

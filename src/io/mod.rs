@@ -6,11 +6,16 @@
 //! - [`gmsh`]: a mesh as a Gmsh MSH 4.1 ASCII file with physical groups.
 //! - [`vtk`]: a mesh as a legacy VTK ASCII unstructured grid with a `region` cell array.
 //! - [`poly`]: a board for the mesher in Triangle's `.poly` format (read and write).
+//! - [`pbm`]: 2D region trees as PBM bitmaps (P1 and P4); `png` (behind the `png`
+//!   feature) the same as PNG; [`svg::image_tree_svg`] draws a region tree's leaves.
 //! - [`board_text`]: a board for the mesher as plain text, one component per line (read and
 //!   write).
 
 pub mod board_text;
 pub mod gmsh;
+pub mod pbm;
+#[cfg(feature = "png")]
+pub mod png;
 pub mod poly;
 pub mod svg;
 pub mod triangle;

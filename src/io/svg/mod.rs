@@ -14,12 +14,14 @@
 //! escaped.
 
 mod format;
+mod image;
 mod mesh;
 mod style;
 #[cfg(test)]
 mod tests;
 
 use format::{clamp_px, escape, length, num, repair_view, MAX_PX};
+pub use image::image_tree_svg;
 pub use mesh::mesh_svg;
 pub use style::Style;
 
