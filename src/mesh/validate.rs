@@ -371,6 +371,30 @@ struct Validator<'m> {
     input_steps: Vec<((u32, u32), u32)>,
 }
 
+/// Sorts (edge key, half-edge) pairs as `sort_unstable` would: a counting sort on the edge's
+/// smaller vertex (the key's high half, below `vertices`), then a sort of each vertex's few edges.
+/// O(n + V) plus O(d log d) per vertex of degree d.
+fn sort_edge_keys(keys: Vec<(u64, u32)>, vertices: usize) -> Vec<(u64, u32)> {
+    let mut start = vec![0usize; vertices + 1];
+    for k in &keys {
+        start[(k.0 >> 32) as usize + 1] += 1;
+    }
+    for v in 0..vertices {
+        start[v + 1] += start[v];
+    }
+    let mut out = vec![(0u64, 0u32); keys.len()];
+    let mut next = start.clone();
+    for k in keys {
+        let b = (k.0 >> 32) as usize;
+        out[next[b]] = k;
+        next[b] += 1;
+    }
+    for v in 0..vertices {
+        out[start[v]..start[v + 1]].sort_unstable();
+    }
+    out
+}
+
 /// The sort key of an undirected edge.
 fn edge_key(a: u32, b: u32) -> u64 {
     (u64::from(a.min(b)) << 32) | u64::from(a.max(b))
@@ -539,11 +563,11 @@ impl<'m> Validator<'m> {
     fn conforming(&mut self) -> Check {
         let mut f = Finding::default();
         let u = self.board.size();
-        let mut keys: Vec<(u64, u32)> = self
+        let keys: Vec<(u64, u32)> = self
             .half_edges()
             .map(|(h, a, b)| (edge_key(a, b), h))
             .collect();
-        keys.sort_unstable();
+        let keys = sort_edge_keys(keys, self.mesh.vertices.len());
         let mut twins = vec![NONE; 3 * self.mesh.triangles.len()];
         for group in keys.chunk_by(|x, y| x.0 == y.0) {
             let (g, h) = (group[0].1, group.get(1).map_or(NONE, |x| x.1));
