@@ -237,9 +237,9 @@ fn triangulate(
             continue;
         };
         ring.clear();
-        for k in 0..4 {
-            ring.push(ids[k]);
-            ring.extend(vx.mids[k]);
+        for (&corner, &mid) in ids.iter().zip(&vx.mids) {
+            ring.push(corner);
+            ring.extend(mid);
         }
         for k in 0..ring.len() {
             triangles.push([centre, ring[k], ring[(k + 1) % ring.len()]]);
