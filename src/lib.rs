@@ -27,6 +27,7 @@ pub mod image;
 pub mod io;
 pub mod mesh;
 pub mod points;
+pub mod query;
 pub mod tree;
 
 pub use error::Error;
@@ -36,6 +37,7 @@ pub use points::{
     Leaf, Leaves, Octree, PointTree, PointTreeBuilder, Quadtree, RootGeometry, ValidationError,
     DEFAULT_BUCKET_SIZE,
 };
+pub use query::{Ball, HalfSpace, Metric, Neighbor, QueryError, Region, Relation, SpatialIndex};
 pub use tree::{BalanceOptions, NodeId, PreOrder, SplitError, Tree};
 
 /// The README's examples, compiled and run as doctests.

@@ -151,6 +151,11 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         &self.items[s as usize..e as usize]
     }
 
+    /// The run `(start, end)` of every node's points, indexed by node.
+    pub(crate) fn ranges(&self) -> &[(u32, u32)] {
+        &self.ranges
+    }
+
     /// Heap bytes used: points, items, node runs and topology.
     pub fn heap_bytes(&self) -> usize {
         self.points.capacity() * core::mem::size_of::<[S; D]>()

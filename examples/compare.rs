@@ -1,0 +1,379 @@
+//! orthtree beside kiddo 5 (`ImmutableKdTree`) and rstar 0.12 (`RTree::bulk_load`) on the
+//! standard workloads, in one process, single-threaded: prints a markdown table of median times
+//! and the ratio orthtree / best rival per row (below 1: orthtree is faster).
+//!
+//! ```sh
+//! cargo run --release --example compare                       # N = 10^6, 10^5 queries
+//! cargo run --release --example compare -- --n 100000 --queries 10000 --reps 3
+//! ```
+//!
+//! Workloads: D = 2 and 3, f64; uniform in the unit cube, 64 Gaussian clusters (sigma 0.01),
+//! duplicate-heavy (N / 8 uniform points, each 8 times) and lattice (integer grid points). Rows:
+//! build; box queries with about 100 results; radius queries with about 100 results; k-nearest for
+//! k = 1, 10, 100. Query centres follow the data's distribution; the box side and radius are
+//! calibrated so that the average answer holds about 100 points. Every query's answer is
+//! consumed (item ids summed), and the sums are checked equal across the crates.
+
+#[path = "../benches/common/mod.rs"]
+mod common;
+
+use common::Distribution;
+use kiddo::immutable::float::kdtree::ImmutableKdTree;
+use kiddo::SquaredEuclidean as KiddoSq;
+use orthtree::{Aabb, Ball, PointTree};
+use rand::rngs::SmallRng;
+use rand::{Rng, SeedableRng};
+use rstar::{RTree, AABB};
+use std::hint::black_box;
+use std::num::NonZeroUsize;
+use std::time::Instant;
+
+const KIDDO_BUCKET: usize = 32;
+type Kiddo<const D: usize> = ImmutableKdTree<f64, u64, D, KIDDO_BUCKET>;
+
+struct Args {
+    n: usize,
+    queries: usize,
+    reps: usize,
+}
+
+fn args() -> Args {
+    let mut a = Args {
+        n: 1_000_000,
+        queries: 100_000,
+        reps: 5,
+    };
+    let mut it = std::env::args().skip(1);
+    while let Some(flag) = it.next() {
+        let value = it.next().and_then(|v| v.parse().ok());
+        match (flag.as_str(), value) {
+            ("--n", Some(v)) => a.n = v,
+            ("--queries", Some(v)) => a.queries = v,
+            ("--reps", Some(v)) => a.reps = v,
+            _ => {
+                eprintln!("usage: compare [--n N] [--queries Q] [--reps R]");
+                std::process::exit(2);
+            }
+        }
+    }
+    a
+}
+
+/// The median time in milliseconds of `reps` runs of `f`, and its (checked equal) result.
+fn time<R: PartialEq + std::fmt::Debug>(reps: usize, mut f: impl FnMut() -> R) -> (f64, R) {
+    let mut times = Vec::with_capacity(reps);
+    let mut result = None;
+    for _ in 0..reps.max(1) {
+        let start = Instant::now();
+        let r = black_box(f());
+        times.push(start.elapsed().as_secs_f64() * 1e3);
+        if let Some(prev) = &result {
+            assert_eq!(prev, &r);
+        }
+        result = Some(r);
+    }
+    times.sort_by(f64::total_cmp);
+    (times[times.len() / 2], result.unwrap())
+}
+
+struct Row {
+    workload: String,
+    op: String,
+    ours: f64,
+    kiddo: Option<f64>,
+    rstar: Option<f64>,
+}
+
+fn ratio(r: &Row) -> f64 {
+    let best = [r.kiddo, r.rstar]
+        .into_iter()
+        .flatten()
+        .fold(f64::INFINITY, f64::min);
+    r.ours / best
+}
+
+/// A side (or radius) `s` such that the average count over the first queries is about 100.
+fn calibrate<const D: usize>(
+    tree: &PointTree<f64, u64, D>,
+    queries: &[[f64; D]],
+    n: usize,
+    count: impl Fn(&PointTree<f64, u64, D>, &[f64; D], f64) -> usize,
+) -> f64 {
+    let sample = &queries[..queries.len().min(2000)];
+    let mut s = (100.0 / n as f64).powf(1.0 / D as f64);
+    for _ in 0..6 {
+        let total: usize = sample.iter().map(|q| count(tree, q, s)).sum();
+        let avg = (total as f64 / sample.len() as f64).max(0.5);
+        s *= (100.0 / avg).powf(1.0 / D as f64).clamp(0.25, 4.0);
+    }
+    s
+}
+
+fn corners<const D: usize>(q: &[f64; D], s: f64) -> ([f64; D], [f64; D]) {
+    (q.map(|x| x - s / 2.0), q.map(|x| x + s / 2.0))
+}
+
+fn run<const D: usize>(
+    name: &str,
+    points: &[[f64; D]],
+    queries: &[[f64; D]],
+    a: &Args,
+    rows: &mut Vec<Row>,
+) {
+    let workload = format!("{name} {D}D");
+    let n = points.len();
+    eprintln!("{workload}: n = {n}, {} queries", queries.len());
+    let entries: Vec<([f64; D], u64)> = points
+        .iter()
+        .enumerate()
+        .map(|(i, &p)| (p, i as u64))
+        .collect();
+    let mut row = |op: &str, ours: f64, kiddo: Option<f64>, rstar: Option<f64>| {
+        rows.push(Row {
+            workload: workload.clone(),
+            op: op.into(),
+            ours,
+            kiddo,
+            rstar,
+        })
+    };
+
+    let (t_ours, ours) = time(a.reps, || {
+        PointTree::builder().build(&entries).unwrap().len()
+    });
+    let (t_kiddo, _) = time(a.reps, || Kiddo::<D>::new_from_slice(points).size());
+    let (t_rstar, _) = time(a.reps, || RTree::bulk_load(points.to_vec()).size());
+    assert_eq!(ours, n);
+    row("build", t_ours, Some(t_kiddo), Some(t_rstar));
+    let tree = PointTree::builder().build(&entries).unwrap();
+    let kd = Kiddo::<D>::new_from_slice(points);
+    let rt = RTree::bulk_load(points.to_vec());
+
+    // Box queries (kiddo has none).
+    let side = calibrate(&tree, queries, n, |t, q, s| {
+        let (lo, hi) = corners(q, s);
+        t.query_count(Aabb { min: lo, max: hi }).unwrap()
+    });
+    let (t_ours, ours) = time(a.reps, || {
+        let mut sum = 0u64;
+        for q in queries {
+            let (lo, hi) = corners(q, side);
+            sum += tree
+                .query(Aabb { min: lo, max: hi })
+                .unwrap()
+                .map(|(_, &i)| i)
+                .sum::<u64>();
+        }
+        sum
+    });
+    let (t_rstar, theirs) = time(a.reps, || {
+        let mut sum = 0u64;
+        for q in queries {
+            let (lo, hi) = corners(q, side);
+            sum += rt.locate_in_envelope(&AABB::from_corners(lo, hi)).count() as u64;
+        }
+        sum
+    });
+    let found: u64 = queries
+        .iter()
+        .map(|q| {
+            let (lo, hi) = corners(q, side);
+            tree.query_count(Aabb { min: lo, max: hi }).unwrap() as u64
+        })
+        .sum();
+    assert_eq!(found, theirs, "box counts differ");
+    black_box(ours);
+    row(
+        &format!("box (~{:.0} results)", found as f64 / queries.len() as f64),
+        t_ours,
+        None,
+        Some(t_rstar),
+    );
+
+    // Radius queries.
+    let radius = calibrate(&tree, queries, n, |t, q, r| {
+        t.query_count(Ball {
+            center: *q,
+            radius: r,
+        })
+        .unwrap()
+    });
+    let r2 = radius * radius;
+    let (t_ours, ours) = time(a.reps, || {
+        let mut sum = 0u64;
+        for q in queries {
+            sum += tree
+                .query(Ball { center: *q, radius })
+                .unwrap()
+                .map(|(_, &i)| i)
+                .sum::<u64>();
+        }
+        sum
+    });
+    let (t_kiddo, theirs_k) = time(a.reps, || {
+        let mut sum = 0u64;
+        for q in queries {
+            sum += kd
+                .within_unsorted::<KiddoSq>(q, r2)
+                .iter()
+                .map(|nn| nn.item)
+                .sum::<u64>();
+        }
+        sum
+    });
+    let (t_rstar, theirs_r) = time(a.reps, || {
+        let mut sum = 0u64;
+        for q in queries {
+            sum += rt.locate_within_distance(*q, r2).count() as u64;
+        }
+        sum
+    });
+    assert_eq!(ours, theirs_k, "radius answers differ");
+    let avg = theirs_r as f64 / queries.len() as f64;
+    row(
+        &format!("radius (~{avg:.0} results)"),
+        t_ours,
+        Some(t_kiddo),
+        Some(t_rstar),
+    );
+
+    // k-nearest.
+    for k in [1usize, 10, 100] {
+        let nz = NonZeroUsize::new(k).unwrap();
+        let (t_ours, ours) = time(a.reps, || {
+            let mut sum = 0.0;
+            for q in queries {
+                if k == 1 {
+                    sum += tree.nearest(q).unwrap().map_or(0.0, |nn| nn.distance);
+                } else {
+                    sum += tree
+                        .k_nearest(q, k)
+                        .unwrap()
+                        .iter()
+                        .map(|nn| nn.distance)
+                        .sum::<f64>();
+                }
+            }
+            sum
+        });
+        let (t_kiddo, theirs) = time(a.reps, || {
+            let mut sum = 0.0;
+            for q in queries {
+                if k == 1 {
+                    sum += kd.nearest_one::<KiddoSq>(q).distance;
+                } else {
+                    sum += kd
+                        .nearest_n::<KiddoSq>(q, nz)
+                        .iter()
+                        .map(|nn| nn.distance)
+                        .sum::<f64>();
+                }
+            }
+            sum
+        });
+        let (t_rstar, _) = time(a.reps, || {
+            let mut sum = 0.0;
+            for q in queries {
+                sum += rt
+                    .nearest_neighbor_iter(q)
+                    .take(k)
+                    .map(|p| p[0])
+                    .sum::<f64>();
+            }
+            sum
+        });
+        let rel = (ours - theirs).abs() / theirs.abs().max(1e-300);
+        assert!(
+            rel < 1e-9,
+            "k = {k}: distance sums differ: {ours} vs {theirs}"
+        );
+        row(
+            &format!("{k}-nearest"),
+            t_ours,
+            Some(t_kiddo),
+            Some(t_rstar),
+        );
+    }
+
+    if name == "uniform" {
+        let extra = |heap: usize| heap as f64 / n as f64;
+        let ours = tree.heap_bytes()
+            - std::mem::size_of_val(tree.points())
+            - std::mem::size_of_val(tree.items());
+        let leaves = n.div_ceil(KIDDO_BUCKET);
+        let stems = if leaves < 2 {
+            0
+        } else {
+            leaves.next_power_of_two()
+        };
+        let kiddo = stems * 8 + leaves * 8;
+        eprintln!(
+            "memory beyond points and items, {D}D uniform: orthtree {:.2} B/point ({} nodes), kiddo {:.2} B/point (estimated from its stems and leaf extents)",
+            extra(ours),
+            tree.node_count(),
+            extra(kiddo)
+        );
+        println!(
+            "<!-- memory {D}D: orthtree {:.2} B/point, kiddo {:.2} B/point -->",
+            extra(ours),
+            extra(kiddo)
+        );
+    }
+}
+
+fn workloads<const D: usize>(a: &Args, rows: &mut Vec<Row>) {
+    let mut rng = SmallRng::seed_from_u64(7);
+    for dist in Distribution::ALL {
+        let points = dist.points::<D>(a.n, 1);
+        let queries = dist.points::<D>(a.queries, 2);
+        run(dist.name(), &points, &queries, a, rows);
+    }
+    let distinct = common::uniform::<D>(a.n.div_ceil(8), 3);
+    let dup: Vec<[f64; D]> = distinct
+        .iter()
+        .flat_map(|p| std::iter::repeat_n(*p, 8))
+        .take(a.n)
+        .collect();
+    let queries = common::uniform::<D>(a.queries, 4);
+    run("duplicates x8", &dup, &queries, a, rows);
+    let side = (a.n as f64).powf(1.0 / D as f64).round().max(1.0) as usize;
+    let total = side.pow(D as u32);
+    let lattice: Vec<[f64; D]> = (0..total)
+        .map(|mut i| {
+            core::array::from_fn(|_| {
+                let c = i % side;
+                i /= side;
+                c as f64
+            })
+        })
+        .collect();
+    let queries: Vec<[f64; D]> = (0..a.queries)
+        .map(|_| core::array::from_fn(|_| rng.gen::<f64>() * side as f64))
+        .collect();
+    run("lattice", &lattice, &queries, a, rows);
+}
+
+fn main() {
+    let a = args();
+    let mut rows = Vec::new();
+    workloads::<2>(&a, &mut rows);
+    workloads::<3>(&a, &mut rows);
+    println!(
+        "\nN = {}, {} queries per row, median of {} runs, ms (total over all queries; build: one build)\n",
+        a.n, a.queries, a.reps
+    );
+    println!("| workload | operation | orthtree | kiddo | rstar | orthtree / best rival |");
+    println!("| --- | --- | ---: | ---: | ---: | ---: |");
+    let show = |t: Option<f64>| t.map_or("-".to_string(), |t| format!("{t:.1}"));
+    for r in &rows {
+        println!(
+            "| {} | {} | {:.1} | {} | {} | {:.2} |",
+            r.workload,
+            r.op,
+            r.ours,
+            show(r.kiddo),
+            show(r.rstar),
+            ratio(r)
+        );
+    }
+}

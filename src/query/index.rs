@@ -1,0 +1,137 @@
+//! [`SpatialIndex`]: the little a query engine needs from a tree (a root, children with their
+//! closed boxes, and one contiguous run of points per node), and its implementation for
+//! [`PointTree`].
+//!
+//! The engines in this module ([`range`](super::range), nearest neighbours, the nearest iterator)
+//! are written against this trait only, so any hierarchy of boxes over a sorted point array (the
+//! point tree, a compressed quadtree) gets every query by implementing five methods.
+
+use crate::geom::{Aabb, Cell, Dim, Scalar};
+use crate::points::PointTree;
+use crate::tree::NodeId;
+use core::ops::Range;
+
+/// A tree of closed boxes over one array of points, each node owning a contiguous run of it.
+///
+/// Contract: the run of a node is the union of its children's runs; every point of a node's run
+/// lies in the node's closed box (as `f64`); a node without children is a leaf.
+///
+/// ```
+/// use orthtree::query::SpatialIndex;
+/// use orthtree::Quadtree;
+/// let t = Quadtree::new(&[([0.0, 0.0], 'a'), ([1.0, 1.0], 'b')]).unwrap();
+/// let (root, bbox) = t.root().unwrap();
+/// assert_eq!(t.run(root), 0..2);
+/// assert!(bbox.contains(&[1.0, 1.0]));
+/// let mut children = 0;
+/// let internal = t.for_each_child(root, |_, _| children += 1);
+/// assert_eq!((internal, children), (false, 0)); // two points fit one bucket
+/// ```
+pub trait SpatialIndex<const D: usize> {
+    /// The coordinate type of the points.
+    type Scalar: Scalar;
+    /// The payload stored with each point.
+    type Item;
+    /// A handle on a node, small and cheap to copy.
+    type Node: Copy;
+
+    /// Every point, in the order the runs index.
+    fn points(&self) -> &[[Self::Scalar; D]];
+    /// The items, in the order of [`SpatialIndex::points`].
+    fn items(&self) -> &[Self::Item];
+    /// The root and its closed box; `None` when the index holds no point.
+    fn root(&self) -> Option<(Self::Node, Aabb<f64, D>)>;
+    /// The indices of the node's points.
+    fn run(&self, node: Self::Node) -> Range<usize>;
+    /// Calls `f` with every child whose run is not empty, and its closed box; returns `false`
+    /// (calling nothing) for a leaf.
+    fn for_each_child(&self, node: Self::Node, f: impl FnMut(Self::Node, &Aabb<f64, D>)) -> bool;
+}
+
+/// A node of a [`PointTree`] as the query engines see it: its id and its cell.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PointNode<const D: usize> {
+    /// The node.
+    pub id: NodeId,
+    /// Its cell (carried along so that boxes need no walk up the tree).
+    pub cell: Cell<D>,
+}
+
+impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointTree<S, T, D> {
+    type Scalar = S;
+    type Item = T;
+    type Node = PointNode<D>;
+
+    #[inline]
+    fn points(&self) -> &[[S; D]] {
+        PointTree::points(self)
+    }
+
+    #[inline]
+    fn items(&self) -> &[T] {
+        PointTree::items(self)
+    }
+
+    fn root(&self) -> Option<(PointNode<D>, Aabb<f64, D>)> {
+        if self.is_empty() {
+            return None;
+        }
+        let cell = Cell::root();
+        let node = PointNode {
+            id: NodeId::ROOT,
+            cell,
+        };
+        Some((node, self.geometry().cell_box(&cell)))
+    }
+
+    #[inline]
+    fn run(&self, node: PointNode<D>) -> Range<usize> {
+        let (s, e) = self.ranges()[node.id.index()];
+        s as usize..e as usize
+    }
+
+    #[inline]
+    fn for_each_child(
+        &self,
+        node: PointNode<D>,
+        mut f: impl FnMut(PointNode<D>, &Aabb<f64, D>),
+    ) -> bool {
+        let Some(first) = self.tree().child(node.id, 0) else {
+            return false;
+        };
+        // The children's boundaries are the parent's two and its middle one on every axis:
+        // boundary(2c, l + 1) == boundary(c, l) exactly, so no child box is recomputed.
+        let g = self.geometry();
+        let level = node.cell.level() + 1;
+        let c = node.cell.coords();
+        let mut lo = [0.0; D];
+        let mut mid = [0.0; D];
+        let mut hi = [0.0; D];
+        for a in 0..D {
+            let j = 2 * c[a] as u64;
+            lo[a] = g.boundary(a, j, level);
+            mid[a] = g.boundary(a, j + 1, level);
+            hi[a] = g.boundary(a, j + 2, level);
+        }
+        let ranges = self.ranges();
+        for i in 0..Dim::<D>::CHILDREN {
+            let id = NodeId(first.0 + i as u32);
+            let (s, e) = ranges[id.index()];
+            if s == e {
+                continue;
+            }
+            let b = Aabb {
+                min: core::array::from_fn(|a| if (i >> a) & 1 == 0 { lo[a] } else { mid[a] }),
+                max: core::array::from_fn(|a| if (i >> a) & 1 == 0 { mid[a] } else { hi[a] }),
+            };
+            f(
+                PointNode {
+                    id,
+                    cell: node.cell.child(i),
+                },
+                &b,
+            );
+        }
+        true
+    }
+}

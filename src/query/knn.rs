@@ -1,0 +1,244 @@
+//! Nearest and k-nearest neighbours: depth-first branch and bound (Arya and Mount's priority
+//! search in depth-first form; Friedman, Bentley and Finkel's kd-tree search on a 2^D-tree) with
+//! a bounded candidate list on any [`SpatialIndex`] and [`Metric`].
+//!
+//! Keep the best `k` (distance, index) pairs found so far, sorted. Pop a node from an explicit
+//! stack; skip it if its box's lower bound exceeds the `k`-th distance (or the maximum distance
+//! while fewer than `k` are known); scan a leaf's run; push an internal node's children farthest
+//! first, so the nearest box is searched first and tightens the bound soonest.
+//!
+//! Ties are broken by index in [`PointTree::points`] (Morton order): the answer is exactly the
+//! first `k` of all points within the maximum distance sorted by `(distance, index)`. A box whose
+//! bound equals the `k`-th distance is still searched, so a tie cannot be lost.
+
+use super::index::SpatialIndex;
+use super::metric::{Metric, SquaredEuclidean};
+use super::{check_max, check_point, QueryError};
+use crate::geom::Scalar;
+use crate::points::PointTree;
+use smallvec::SmallVec;
+
+/// A point found by a nearest-neighbour query.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Neighbor<'a, S, T, const D: usize> {
+    /// The point.
+    pub point: &'a [S; D],
+    /// Its item.
+    pub item: &'a T,
+    /// Its distance from the query point, in the metric's units (squared for
+    /// [`SquaredEuclidean`]).
+    pub distance: f64,
+    /// Its index in [`PointTree::points`], which breaks ties.
+    pub index: usize,
+}
+
+impl<'a, S, T, const D: usize> Neighbor<'a, S, T, D> {
+    pub(crate) fn at<I: SpatialIndex<D, Scalar = S, Item = T>>(
+        index: &'a I,
+        distance: f64,
+        i: usize,
+    ) -> Self {
+        Neighbor {
+            point: &index.points()[i],
+            item: &index.items()[i],
+            distance,
+            index: i,
+        }
+    }
+}
+
+/// The best `k` candidates so far, sorted by `(distance, index)`.
+struct Best {
+    k: usize,
+    max: f64,
+    list: Vec<(f64, usize)>,
+}
+
+impl Best {
+    /// The distance a candidate must not exceed.
+    #[inline(always)]
+    fn bound(&self) -> f64 {
+        if self.list.len() == self.k {
+            self.list[self.k - 1].0
+        } else {
+            self.max
+        }
+    }
+
+    #[inline(always)]
+    fn offer(&mut self, d: f64, i: usize) {
+        if self.list.len() == self.k {
+            let (wd, wi) = self.list[self.k - 1];
+            if d > wd || (d == wd && i > wi) {
+                return;
+            }
+            self.list.pop();
+        } else if d > self.max {
+            return;
+        }
+        let mut at = self.list.len();
+        while at > 0 && (d, i) < self.list[at - 1] {
+            at -= 1;
+        }
+        self.list.insert(at, (d, i));
+    }
+}
+
+/// The `k` nearest points to `q` within distance `max` (inclusive) as (distance, index) pairs,
+/// sorted by distance then index. `q` finite, `max` not NaN.
+pub(crate) fn k_nearest<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
+    index: &I,
+    q: &[f64; D],
+    k: usize,
+    max: f64,
+    metric: &M,
+) -> Vec<(f64, usize)> {
+    let mut best = Best {
+        k,
+        max,
+        list: Vec::with_capacity(k.min(index.points().len())),
+    };
+    if k == 0 {
+        return best.list;
+    }
+    let Some((root, b)) = index.root() else {
+        return best.list;
+    };
+    let points = index.points();
+    let mut stack: SmallVec<[(f64, I::Node); 64]> = SmallVec::new();
+    stack.push((metric.box_distance(q, &b), root));
+    while let Some((lower, node)) = stack.pop() {
+        let bound = best.bound();
+        if lower > bound {
+            continue;
+        }
+        let mut kids: SmallVec<[(f64, I::Node); 8]> = SmallVec::new();
+        let internal = index.for_each_child(node, |child, b| {
+            let d = metric.box_distance(q, b);
+            if d <= bound {
+                // Insertion sort, farthest first: the nearest child is popped next.
+                let mut at = kids.len();
+                kids.push((d, child));
+                while at > 0 && kids[at - 1].0 < d {
+                    kids.swap(at - 1, at);
+                    at -= 1;
+                }
+            }
+        });
+        if internal {
+            stack.extend(kids);
+        } else {
+            for i in index.run(node) {
+                let d = metric.distance(q, &points[i].map(Scalar::to_f64));
+                if d <= best.bound() {
+                    best.offer(d, i);
+                }
+            }
+        }
+    }
+    best.list
+}
+
+impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
+    /// The nearest point to `p` (squared Euclidean distance); `None` for an empty tree. Ties go to
+    /// the point first in [`PointTree::points`].
+    ///
+    /// Errors: a NaN or infinite coordinate in `p`.
+    ///
+    /// ```
+    /// use orthtree::Quadtree;
+    /// let t = Quadtree::new(&[([0.0, 0.0], 'a'), ([3.0, 4.0], 'b')]).unwrap();
+    /// let n = t.nearest(&[2.0, 3.0]).unwrap().unwrap();
+    /// assert_eq!((*n.item, n.distance), ('b', 2.0)); // squared distance
+    /// ```
+    pub fn nearest(&self, p: &[S; D]) -> Result<Option<Neighbor<'_, S, T, D>>, QueryError> {
+        self.nearest_within(p, f64::INFINITY)
+    }
+
+    /// The nearest point to `p` at squared distance at most `max`; `None` if there is none.
+    ///
+    /// Errors: a non-finite `p`; a negative or NaN `max`.
+    ///
+    /// ```
+    /// use orthtree::Quadtree;
+    /// let t = Quadtree::new(&[([0.0, 0.0], 'a'), ([3.0, 4.0], 'b')]).unwrap();
+    /// assert!(t.nearest_within(&[3.0, 0.0], 8.0).unwrap().is_none());
+    /// assert_eq!(*t.nearest_within(&[3.0, 0.0], 9.0).unwrap().unwrap().item, 'a');
+    /// ```
+    pub fn nearest_within(
+        &self,
+        p: &[S; D],
+        max: f64,
+    ) -> Result<Option<Neighbor<'_, S, T, D>>, QueryError> {
+        Ok(self
+            .k_nearest_by(p, 1, max, &SquaredEuclidean)?
+            .into_iter()
+            .next())
+    }
+
+    /// The `k` nearest points to `p` (squared Euclidean), sorted by distance, ties by index in
+    /// [`PointTree::points`]. Fewer when the tree holds fewer; empty for `k = 0` or an empty tree.
+    ///
+    /// Errors: a NaN or infinite coordinate in `p`.
+    ///
+    /// ```
+    /// use orthtree::Quadtree;
+    /// let pts: Vec<([f64; 2], usize)> = (0..10).map(|i| ([i as f64, 0.0], i)).collect();
+    /// let t = Quadtree::new(&pts).unwrap();
+    /// let near: Vec<usize> = t.k_nearest(&[4.2, 0.0], 3).unwrap().iter().map(|n| *n.item).collect();
+    /// assert_eq!(near, [4, 5, 3]);
+    /// assert!(t.k_nearest(&[4.2, 0.0], 0).unwrap().is_empty());
+    /// ```
+    pub fn k_nearest(
+        &self,
+        p: &[S; D],
+        k: usize,
+    ) -> Result<Vec<Neighbor<'_, S, T, D>>, QueryError> {
+        self.k_nearest_by(p, k, f64::INFINITY, &SquaredEuclidean)
+    }
+
+    /// [`PointTree::k_nearest`] among the points at squared distance at most `max`.
+    ///
+    /// ```
+    /// use orthtree::Quadtree;
+    /// let pts: Vec<([f64; 2], usize)> = (0..10).map(|i| ([i as f64, 0.0], i)).collect();
+    /// let t = Quadtree::new(&pts).unwrap();
+    /// assert_eq!(t.k_nearest_within(&[0.0, 0.0], 5, 4.0).unwrap().len(), 3);
+    /// ```
+    pub fn k_nearest_within(
+        &self,
+        p: &[S; D],
+        k: usize,
+        max: f64,
+    ) -> Result<Vec<Neighbor<'_, S, T, D>>, QueryError> {
+        self.k_nearest_by(p, k, max, &SquaredEuclidean)
+    }
+
+    /// The `k` nearest points to `p` at distance at most `max` (inclusive; `f64::INFINITY` for no
+    /// limit) under `metric`, sorted by distance then index.
+    ///
+    /// Errors: a non-finite `p`; a negative or NaN `max`.
+    ///
+    /// ```
+    /// use orthtree::{query::{Chebyshev, Manhattan}, Quadtree};
+    /// let t = Quadtree::new(&[([3.0, 3.0], 'a'), ([0.0, 4.0], 'b')]).unwrap();
+    /// let q = [0.0, 0.0];
+    /// assert_eq!(*t.k_nearest_by(&q, 1, f64::INFINITY, &Manhattan).unwrap()[0].item, 'b');
+    /// assert_eq!(*t.k_nearest_by(&q, 1, f64::INFINITY, &Chebyshev).unwrap()[0].item, 'a');
+    /// ```
+    pub fn k_nearest_by<M: Metric<D>>(
+        &self,
+        p: &[S; D],
+        k: usize,
+        max: f64,
+        metric: &M,
+    ) -> Result<Vec<Neighbor<'_, S, T, D>>, QueryError> {
+        let q = p.map(Scalar::to_f64);
+        check_point(&q)?;
+        check_max(max)?;
+        Ok(k_nearest(self, &q, k, max, metric)
+            .into_iter()
+            .map(|(d, i)| Neighbor::at(self, d, i))
+            .collect())
+    }
+}

@@ -1,0 +1,121 @@
+//! Distances for nearest-neighbour queries: the [`Metric`] trait (a point distance and a lower
+//! bound of it over a closed box, the pruning test of branch-and-bound search) and three
+//! metrics: [`SquaredEuclidean`] (the default), [`Manhattan`] and [`Chebyshev`].
+//!
+//! Each box bound is computed with the same operations, in the same order, as the point distance,
+//! on the box's nearest point along each axis. Rounding is monotone, so the bound never exceeds
+//! the computed distance of any point in the box: pruning never loses a neighbour, even at ties.
+
+// Loops over axes index the point, the box's min and max together; an index reads best.
+#![allow(clippy::needless_range_loop)]
+
+// Axis loops index several arrays in one fixed order, the order the exactness argument needs.
+
+use crate::geom::Aabb;
+
+/// A distance between points, and a lower bound of it over a box.
+///
+/// Contract: `box_distance(q, b) <= distance(q, p)` for every `p` in the closed box `b` (as
+/// computed), both non-negative; smaller means nearer.
+///
+/// ```
+/// use orthtree::query::{Chebyshev, Manhattan, Metric, SquaredEuclidean};
+/// use orthtree::Aabb;
+/// let (p, q) = ([0.0, 0.0], [3.0, 4.0]);
+/// assert_eq!(SquaredEuclidean.distance(&p, &q), 25.0);
+/// assert_eq!(Manhattan.distance(&p, &q), 7.0);
+/// assert_eq!(Chebyshev.distance(&p, &q), 4.0);
+/// let b = Aabb { min: [1.0, 1.0], max: [2.0, 2.0] };
+/// assert_eq!(SquaredEuclidean.box_distance(&p, &b), 2.0);
+/// ```
+pub trait Metric<const D: usize> {
+    /// The distance between `a` and `b`.
+    fn distance(&self, a: &[f64; D], b: &[f64; D]) -> f64;
+    /// A lower bound of `distance(q, p)` over the points `p` of the closed box `b` (0 inside it).
+    fn box_distance(&self, q: &[f64; D], b: &Aabb<f64, D>) -> f64;
+}
+
+/// The offset from `q` to the nearest point of `[lo, hi]`, as `p - q` would round for that point
+/// (0 inside).
+#[inline(always)]
+fn axis_gap(q: f64, lo: f64, hi: f64) -> f64 {
+    if q < lo {
+        lo - q
+    } else if q > hi {
+        q - hi
+    } else {
+        0.0
+    }
+}
+
+/// The squared Euclidean distance, sum of `(a_i - b_i)^2` (distances and maximum distances are in
+/// these squared units).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SquaredEuclidean;
+
+impl<const D: usize> Metric<D> for SquaredEuclidean {
+    #[inline(always)]
+    fn distance(&self, a: &[f64; D], b: &[f64; D]) -> f64 {
+        let mut s = 0.0;
+        for i in 0..D {
+            let d = a[i] - b[i];
+            s += d * d;
+        }
+        s
+    }
+    #[inline(always)]
+    fn box_distance(&self, q: &[f64; D], b: &Aabb<f64, D>) -> f64 {
+        let mut s = 0.0;
+        for i in 0..D {
+            let d = axis_gap(q[i], b.min[i], b.max[i]);
+            s += d * d;
+        }
+        s
+    }
+}
+
+/// The Manhattan (L1) distance, sum of `|a_i - b_i|`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Manhattan;
+
+impl<const D: usize> Metric<D> for Manhattan {
+    #[inline(always)]
+    fn distance(&self, a: &[f64; D], b: &[f64; D]) -> f64 {
+        let mut s = 0.0;
+        for i in 0..D {
+            s += (a[i] - b[i]).abs();
+        }
+        s
+    }
+    #[inline(always)]
+    fn box_distance(&self, q: &[f64; D], b: &Aabb<f64, D>) -> f64 {
+        let mut s = 0.0;
+        for i in 0..D {
+            s += axis_gap(q[i], b.min[i], b.max[i]);
+        }
+        s
+    }
+}
+
+/// The Chebyshev (L-infinity) distance, max of `|a_i - b_i|`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Chebyshev;
+
+impl<const D: usize> Metric<D> for Chebyshev {
+    #[inline(always)]
+    fn distance(&self, a: &[f64; D], b: &[f64; D]) -> f64 {
+        let mut s: f64 = 0.0;
+        for i in 0..D {
+            s = s.max((a[i] - b[i]).abs());
+        }
+        s
+    }
+    #[inline(always)]
+    fn box_distance(&self, q: &[f64; D], b: &Aabb<f64, D>) -> f64 {
+        let mut s: f64 = 0.0;
+        for i in 0..D {
+            s = s.max(axis_gap(q[i], b.min[i], b.max[i]));
+        }
+        s
+    }
+}

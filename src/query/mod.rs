@@ -1,0 +1,147 @@
+//! Queries on point trees: range queries over any [`Region`] (boxes, balls, half-spaces, your own
+//! shapes), nearest and k-nearest neighbours under any [`Metric`], and a lazy best-first nearest
+//! iterator.
+//!
+//! Algorithms: the range query of exercise 14.13 of de Berg, Cheong, van Kreveld and Overmars,
+//! *Computational Geometry* (chapter 14): descend into the children of every node whose cell
+//! crosses the region's boundary, report the whole run of a cell inside it untested, skip a cell
+//! outside it (see [`range`] for the worst-case analysis). Nearest neighbours: depth-first
+//! branch and bound with a bounded candidate list, children visited nearest box first (Arya and
+//! Mount's priority search in its depth-first form); the iterator is Hjaltason and Samet's
+//! best-first incremental search ("Distance browsing in spatial databases", 1999).
+//!
+//! Every engine works on a [`SpatialIndex`]: anything with a root, children, closed cell boxes and
+//! a contiguous run of points per node. [`PointTree`](crate::PointTree) is one; the compressed
+//! quadtree can be another.
+//!
+//! Coordinates are compared as `f64` ([`Scalar::to_f64`](crate::Scalar::to_f64), exact for
+//! `f32`, `f64` and integers up to 32 bits), and every region's cell test is computed so that it
+//! agrees with its point test: a query returns exactly the points its region's
+//! [`Region::contains`] accepts.
+
+mod index;
+mod knn;
+mod metric;
+mod nearest_iter;
+pub mod range;
+mod region;
+
+pub use index::{PointNode, SpatialIndex};
+pub use knn::Neighbor;
+pub use metric::{Chebyshev, Manhattan, Metric, SquaredEuclidean};
+pub use nearest_iter::NearestIter;
+pub use range::{QueryStats, RegionIter};
+pub use region::{Ball, HalfSpace, Region, Relation};
+
+/// A query the crate refuses, naming what is wrong with it.
+///
+/// ```
+/// use orthtree::{query::QueryError, Quadtree};
+/// let t = Quadtree::new(&[([0.0, 0.0], 'a')]).unwrap();
+/// assert_eq!(
+///     t.nearest(&[f64::NAN, 0.0]).unwrap_err(),
+///     QueryError::NotFinite { axis: 0, value: f64::NAN.into() }
+/// );
+/// assert!(matches!(t.in_ball(&[0.0, 0.0], -1.0), Err(QueryError::InvalidRadius { .. })));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum QueryError {
+    /// A query point or ball centre has NaN or an infinity on `axis`.
+    NotFinite {
+        /// The axis holding the bad coordinate.
+        axis: usize,
+        /// The bad coordinate (compare its bits: NaN is not equal to itself).
+        value: FloatBits,
+    },
+    /// A box bound on `axis` is NaN (infinite bounds are allowed).
+    NanBound {
+        /// The axis holding the bad bound.
+        axis: usize,
+    },
+    /// A ball radius that is negative or NaN.
+    InvalidRadius {
+        /// The radius given.
+        radius: FloatBits,
+    },
+    /// A maximum distance that is negative or NaN.
+    InvalidMaxDistance {
+        /// The maximum distance given.
+        value: FloatBits,
+    },
+    /// A half-space normal with NaN or an infinity on `axis`.
+    InvalidNormal {
+        /// The axis holding the bad component.
+        axis: usize,
+    },
+    /// A half-space offset that is NaN.
+    NanOffset,
+}
+
+/// An `f64` compared by its bits, so that errors holding NaN still compare equal to themselves.
+///
+/// ```
+/// use orthtree::query::FloatBits;
+/// assert_eq!(FloatBits::from(f64::NAN), FloatBits::from(f64::NAN));
+/// assert_eq!(FloatBits::from(-1.5).get(), -1.5);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FloatBits(u64);
+
+impl FloatBits {
+    /// The value.
+    pub fn get(self) -> f64 {
+        f64::from_bits(self.0)
+    }
+}
+
+impl From<f64> for FloatBits {
+    fn from(x: f64) -> Self {
+        FloatBits(x.to_bits())
+    }
+}
+
+impl core::fmt::Display for QueryError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            QueryError::NotFinite { axis, value } => write!(
+                f,
+                "query coordinate {} on axis {axis} is not finite",
+                value.get()
+            ),
+            QueryError::NanBound { axis } => write!(f, "box bound on axis {axis} is NaN"),
+            QueryError::InvalidRadius { radius } => {
+                write!(f, "radius {} is negative or NaN", radius.get())
+            }
+            QueryError::InvalidMaxDistance { value } => {
+                write!(f, "maximum distance {} is negative or NaN", value.get())
+            }
+            QueryError::InvalidNormal { axis } => {
+                write!(f, "half-space normal on axis {axis} is not finite")
+            }
+            QueryError::NanOffset => f.write_str("half-space offset is NaN"),
+        }
+    }
+}
+
+impl std::error::Error for QueryError {}
+
+/// Checks a query point: every coordinate finite.
+pub(crate) fn check_point<const D: usize>(p: &[f64; D]) -> Result<(), QueryError> {
+    match p.iter().position(|x| !x.is_finite()) {
+        Some(axis) => Err(QueryError::NotFinite {
+            axis,
+            value: p[axis].into(),
+        }),
+        None => Ok(()),
+    }
+}
+
+/// Checks a maximum distance: not negative, not NaN (infinity means no limit).
+pub(crate) fn check_max(max: f64) -> Result<(), QueryError> {
+    if max >= 0.0 {
+        Ok(())
+    } else {
+        Err(QueryError::InvalidMaxDistance { value: max.into() })
+    }
+}

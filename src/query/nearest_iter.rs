@@ -1,0 +1,188 @@
+//! [`NearestIter`]: the points in order of distance, lazily, by best-first search (Hjaltason and
+//! Samet, "Distance browsing in spatial databases", ACM TODS 24(2), 1999) on any
+//! [`SpatialIndex`] and [`Metric`].
+//!
+//! One priority queue holds nodes, keyed by their box's lower bound, and points, keyed by their
+//! distance. Popping a node pushes its children (or a leaf's points); popping a point reports it:
+//! no node or point still queued can be nearer. At equal keys nodes come before points, and points
+//! by index, so the order is exactly `(distance, index)`, the order of
+//! [`PointTree::k_nearest`]. Each step costs O(log of the queue's size).
+
+use super::index::SpatialIndex;
+use super::knn::Neighbor;
+use super::metric::{Metric, SquaredEuclidean};
+use super::{check_max, check_point, QueryError};
+use crate::geom::Scalar;
+use crate::points::PointTree;
+use core::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+/// A queued node (`node: Some`) or point, ordered so that the heap's top is the least
+/// `(key, is point, index)`.
+struct Entry<N> {
+    key: f64,
+    node: Option<N>,
+    index: usize,
+}
+
+impl<N> Entry<N> {
+    fn rank(&self) -> (f64, bool, usize) {
+        (self.key, self.node.is_none(), self.index)
+    }
+}
+
+impl<N> PartialEq for Entry<N> {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+
+impl<N> Eq for Entry<N> {}
+
+impl<N> PartialOrd for Entry<N> {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl<N> Ord for Entry<N> {
+    fn cmp(&self, other: &Self) -> Ordering {
+        let (a, b) = (self.rank(), other.rank());
+        // Reversed: BinaryHeap is a max-heap.
+        b.0.total_cmp(&a.0).then(b.1.cmp(&a.1)).then(b.2.cmp(&a.2))
+    }
+}
+
+/// Iterator returned by [`PointTree::nearest_iter`] (and its `_within` and `_by` forms): every
+/// point within the maximum distance, nearest first, ties by index in [`PointTree::points`].
+pub struct NearestIter<'a, I: SpatialIndex<D>, M, const D: usize> {
+    index: &'a I,
+    metric: M,
+    q: [f64; D],
+    max: f64,
+    heap: BinaryHeap<Entry<I::Node>>,
+}
+
+impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> NearestIter<'a, I, M, D> {
+    /// A lazy nearest-first search from `q` on `index`, up to distance `max` (inclusive).
+    ///
+    /// Errors: a non-finite `q`; a negative or NaN `max`.
+    pub fn new(index: &'a I, q: [f64; D], max: f64, metric: M) -> Result<Self, QueryError> {
+        check_point(&q)?;
+        check_max(max)?;
+        let mut heap = BinaryHeap::new();
+        if let Some((root, b)) = index.root() {
+            let key = metric.box_distance(&q, &b);
+            if key <= max {
+                heap.push(Entry {
+                    key,
+                    node: Some(root),
+                    index: 0,
+                });
+            }
+        }
+        Ok(NearestIter {
+            index,
+            metric,
+            q,
+            max,
+            heap,
+        })
+    }
+}
+
+impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> Iterator for NearestIter<'a, I, M, D> {
+    type Item = Neighbor<'a, I::Scalar, I::Item, D>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        loop {
+            let entry = self.heap.pop()?;
+            let Some(node) = entry.node else {
+                return Some(Neighbor::at(self.index, entry.key, entry.index));
+            };
+            let (heap, metric, q, max) = (&mut self.heap, &self.metric, &self.q, self.max);
+            let internal = self.index.for_each_child(node, |child, b| {
+                let key = metric.box_distance(q, b);
+                if key <= max {
+                    heap.push(Entry {
+                        key,
+                        node: Some(child),
+                        index: 0,
+                    });
+                }
+            });
+            if !internal {
+                let points = self.index.points();
+                for i in self.index.run(node) {
+                    let key = metric.distance(q, &points[i].map(Scalar::to_f64));
+                    if key <= max {
+                        heap.push(Entry {
+                            key,
+                            node: None,
+                            index: i,
+                        });
+                    }
+                }
+            }
+        }
+    }
+}
+
+impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
+    /// Every point, nearest to `p` first (squared Euclidean), lazily: taking `k` of them costs
+    /// about what [`PointTree::k_nearest`] does, without knowing `k` in advance.
+    ///
+    /// Errors: a NaN or infinite coordinate in `p`.
+    ///
+    /// ```
+    /// use orthtree::Quadtree;
+    /// let pts: Vec<([f64; 2], usize)> = (0..100).map(|i| ([(i % 10) as f64, (i / 10) as f64], i)).collect();
+    /// let t = Quadtree::new(&pts).unwrap();
+    /// let mut it = t.nearest_iter(&[0.0, 0.0]).unwrap();
+    /// assert_eq!(*it.next().unwrap().item, 0);
+    /// let next: Vec<usize> = it.take(2).map(|n| *n.item).collect();
+    /// assert_eq!(next.len(), 2);
+    /// assert!(next.contains(&1) && next.contains(&10));
+    /// ```
+    pub fn nearest_iter(
+        &self,
+        p: &[S; D],
+    ) -> Result<NearestIter<'_, PointTree<S, T, D>, SquaredEuclidean, D>, QueryError> {
+        self.nearest_iter_by(p, f64::INFINITY, SquaredEuclidean)
+    }
+
+    /// [`PointTree::nearest_iter`] up to squared distance `max` (inclusive).
+    ///
+    /// ```
+    /// use orthtree::Quadtree;
+    /// let t = Quadtree::new(&[([0.0, 0.0], 'a'), ([1.0, 0.0], 'b'), ([2.0, 0.0], 'c')]).unwrap();
+    /// assert_eq!(t.nearest_iter_within(&[0.0, 0.0], 1.0).unwrap().count(), 2);
+    /// ```
+    pub fn nearest_iter_within(
+        &self,
+        p: &[S; D],
+        max: f64,
+    ) -> Result<NearestIter<'_, PointTree<S, T, D>, SquaredEuclidean, D>, QueryError> {
+        self.nearest_iter_by(p, max, SquaredEuclidean)
+    }
+
+    /// [`PointTree::nearest_iter`] under `metric`, up to distance `max` (`f64::INFINITY` for no
+    /// limit).
+    ///
+    /// Errors: a non-finite `p`; a negative or NaN `max`.
+    ///
+    /// ```
+    /// use orthtree::{query::Manhattan, Quadtree};
+    /// let t = Quadtree::new(&[([1.0, 1.0], 'a'), ([0.0, 1.5], 'b')]).unwrap();
+    /// let order: Vec<char> = t.nearest_iter_by(&[0.0, 0.0], 10.0, Manhattan).unwrap().map(|n| *n.item).collect();
+    /// assert_eq!(order, ['b', 'a']);
+    /// ```
+    pub fn nearest_iter_by<M: Metric<D>>(
+        &self,
+        p: &[S; D],
+        max: f64,
+        metric: M,
+    ) -> Result<NearestIter<'_, PointTree<S, T, D>, M, D>, QueryError> {
+        NearestIter::new(self, p.map(Scalar::to_f64), max, metric)
+    }
+}

@@ -1,0 +1,295 @@
+//! Range queries over a [`Region`]: the algorithm of exercise 14.13 of the chapter, on any
+//! [`SpatialIndex`], with an explicit stack.
+//!
+//! Start at the root. A node whose closed box is outside the region is skipped; one inside it
+//! reports its whole run of points without testing them; one crossing the region's boundary
+//! passes to its children, or, at a leaf, tests its points one by one.
+//!
+//! # Worst-case query time (exercise 14.13)
+//!
+//! Let the tree (bucket size 1, the chapter's) have depth `d` and `n` points, and let the answer
+//! have `k` points. Every node visited is a child of a crossing internal node (or the root), so the
+//! work is `O(2^D * C + k)` for `C` crossing internal nodes: inside cells cost O(1) plus their
+//! output, and a crossing leaf holds at most one point. Two facts bound `C` level by level:
+//!
+//! - internal nodes of one level hold disjoint sets of at least two points, so at most `n / 2` of
+//!   them exist per level;
+//! - a vertical line `x = c` meets the interior of (or the right-hand face of the cells right of)
+//!   at most one column of cells per level, `2^l` cells at level `l`; the boundary of a
+//!   rectangle meets at most `4 * 2^l + 4` of them.
+//!
+//! Summing `min(2^l, n / 2)` over the `d` levels with internal nodes gives, for a half-plane
+//! `x <= c` and for a rectangle alike,
+//!
+//! > `C = O(min(2^d, n + n (d - log2 n)))`, so the query takes `O(n (d - log2 n + 1) + k)` time in
+//! > the worst case, which is `O((d + 1) n + k)`, independent of how few points are reported.
+//!
+//! The bound is tight, even with an empty answer: put `n / 2` pairs of points just right of the
+//! line (pair `i` at height `(i + 1/2) / (n / 2)`, its two points `2^-d` apart in x). Below level
+//! `log2(n / 2)` every pair sits alone in a column of cells touching the line, and stays crossing
+//! until the pair separates near level `d`: `(n / 2) (d - log2 n)` crossing nodes, and nothing
+//! reported. `tests/queries.rs` builds this tree and counts the nodes visited through
+//! [`PointTree::query_stats`]. In contrast, a kd-tree answers the same query in
+//! `O(sqrt n + k)`; a quadtree's depth is bounded by the spread of the points (Lemma 14.1), not by
+//! their number.
+
+use super::index::SpatialIndex;
+use super::region::{Ball, HalfSpace, Region, Relation};
+use super::QueryError;
+use crate::geom::{Aabb, Scalar};
+use crate::points::PointTree;
+use core::ops::Range;
+use smallvec::SmallVec;
+
+/// Counts of the work a range query did, from [`PointTree::query_stats`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct QueryStats {
+    /// Nodes whose box was classified (the root included).
+    pub nodes_visited: usize,
+    /// Points tested one by one with [`Region::contains`].
+    pub points_tested: usize,
+    /// Points reported.
+    pub count: usize,
+}
+
+/// Pending work of a traversal: a node whose box is inside the region (report its run) or
+/// crossing it (look at its children, or test its points).
+type Stack<N> = SmallVec<[(N, bool); 48]>;
+
+/// Iterator returned by [`PointTree::query`] (and [`PointTree::in_box`], [`PointTree::in_ball`],
+/// [`PointTree::in_half_space`]): the points in a region with their items, lazily, in Morton
+/// order within each reported node.
+pub struct RegionIter<'a, I: SpatialIndex<D>, R, const D: usize> {
+    index: &'a I,
+    region: R,
+    stack: Stack<I::Node>,
+    run: Range<usize>,
+    test: bool,
+}
+
+impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> RegionIter<'a, I, R, D> {
+    /// A lazy query of `region` on `index`; the region is checked first.
+    pub fn new(index: &'a I, region: R) -> Result<Self, QueryError> {
+        region.validate()?;
+        let mut stack = Stack::new();
+        if let Some((root, b)) = index.root() {
+            match region.classify(&b) {
+                Relation::Outside => {}
+                Relation::Inside => stack.push((root, true)),
+                Relation::Crossing => stack.push((root, false)),
+            }
+        }
+        Ok(RegionIter {
+            index,
+            region,
+            stack,
+            run: 0..0,
+            test: false,
+        })
+    }
+}
+
+impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> Iterator for RegionIter<'a, I, R, D> {
+    type Item = (&'a [I::Scalar; D], &'a I::Item);
+
+    fn next(&mut self) -> Option<Self::Item> {
+        let points = self.index.points();
+        loop {
+            for i in self.run.by_ref() {
+                if !self.test || self.region.contains(&points[i].map(Scalar::to_f64)) {
+                    return Some((&points[i], &self.index.items()[i]));
+                }
+            }
+            let (node, inside) = self.stack.pop()?;
+            if inside {
+                self.run = self.index.run(node);
+                self.test = false;
+                continue;
+            }
+            let (stack, region) = (&mut self.stack, &self.region);
+            let internal = self.index.for_each_child(node, |child, b| {
+                push_child(stack, region, child, b);
+            });
+            if !internal {
+                self.run = self.index.run(node);
+                self.test = true;
+            }
+        }
+    }
+}
+
+#[inline]
+fn push_child<N, R: Region<D>, const D: usize>(
+    stack: &mut Stack<N>,
+    region: &R,
+    child: N,
+    b: &Aabb<f64, D>,
+) -> Relation {
+    let rel = region.classify(b);
+    match rel {
+        Relation::Outside => {}
+        Relation::Inside => stack.push((child, true)),
+        Relation::Crossing => stack.push((child, false)),
+    }
+    rel
+}
+
+/// Calls `report(i)` for every point index `i` in `region`; returns the work done. Allocates only
+/// when more than 48 nodes are pending (deeper than about 16 levels in 2D, 7 in 3D).
+pub(crate) fn for_each_in<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
+    index: &I,
+    region: &R,
+    mut report: impl FnMut(usize),
+) -> Result<QueryStats, QueryError> {
+    region.validate()?;
+    let mut stats = QueryStats::default();
+    let Some((root, b)) = index.root() else {
+        return Ok(stats);
+    };
+    let mut stack = Stack::new();
+    stats.nodes_visited = 1;
+    push_child(&mut stack, region, root, &b);
+    let points = index.points();
+    while let Some((node, inside)) = stack.pop() {
+        if inside {
+            let run = index.run(node);
+            stats.count += run.len();
+            run.for_each(&mut report);
+            continue;
+        }
+        let mut visited = 0;
+        let internal = index.for_each_child(node, |child, b| {
+            visited += 1;
+            push_child(&mut stack, region, child, b);
+        });
+        stats.nodes_visited += visited;
+        if !internal {
+            for i in index.run(node) {
+                stats.points_tested += 1;
+                if region.contains(&points[i].map(Scalar::to_f64)) {
+                    stats.count += 1;
+                    report(i);
+                }
+            }
+        }
+    }
+    Ok(stats)
+}
+
+impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
+    /// The points in `region` (any [`Region`], by value or by reference) with their items, as a
+    /// lazy iterator. A cell inside the region yields its run of points untested.
+    ///
+    /// Errors: the region's own check ([`Region::validate`]), e.g. a NaN box bound. Time:
+    /// `O((d + 1) n + k)` in the worst case (see [`range`](crate::query::range)), far less on
+    /// ordinary regions.
+    ///
+    /// ```
+    /// use orthtree::{Aabb, Quadtree};
+    /// let t = Quadtree::new(&[([0.0, 0.0], 'a'), ([1.0, 1.0], 'b'), ([2.0, 2.0], 'c')]).unwrap();
+    /// let b = Aabb::new([0.5, 0.5], [2.0, 2.0]).unwrap();
+    /// let mut found: Vec<char> = t.query(&b).unwrap().map(|(_, &c)| c).collect();
+    /// found.sort();
+    /// assert_eq!(found, ['b', 'c']); // closed: (2, 2) on the boundary is in
+    /// ```
+    pub fn query<R: Region<D>>(
+        &self,
+        region: R,
+    ) -> Result<RegionIter<'_, PointTree<S, T, D>, R, D>, QueryError> {
+        RegionIter::new(self, region)
+    }
+
+    /// The number of points in `region`, without allocating (unless more than 48 nodes are
+    /// pending at once). An inside cell counts its run in O(1).
+    ///
+    /// ```
+    /// use orthtree::{query::Ball, Quadtree};
+    /// let pts: Vec<([f64; 2], ())> = (0..100).map(|i| ([(i % 10) as f64, (i / 10) as f64], ())).collect();
+    /// let t = Quadtree::new(&pts).unwrap();
+    /// assert_eq!(t.query_count(Ball::new([0.0, 0.0], 1.0).unwrap()).unwrap(), 3);
+    /// ```
+    pub fn query_count<R: Region<D>>(&self, region: R) -> Result<usize, QueryError> {
+        for_each_in(self, &region, |_| {}).map(|s| s.count)
+    }
+
+    /// Calls `visit(point, item)` for every point in `region`, in the traversal's order.
+    ///
+    /// ```
+    /// use orthtree::{query::HalfSpace, Quadtree};
+    /// let t = Quadtree::new(&[([0.0, 0.0], 1), ([1.0, 0.0], 2), ([2.0, 0.0], 4)]).unwrap();
+    /// let mut sum = 0;
+    /// t.query_with(HalfSpace::new([1.0, 0.0], 1.0).unwrap(), |_, &v| sum += v).unwrap();
+    /// assert_eq!(sum, 3);
+    /// ```
+    pub fn query_with<R: Region<D>>(
+        &self,
+        region: R,
+        mut visit: impl FnMut(&[S; D], &T),
+    ) -> Result<(), QueryError> {
+        let (points, items) = (self.points(), self.items());
+        for_each_in(self, &region, |i| visit(&points[i], &items[i])).map(|_| ())
+    }
+
+    /// Counts the points in `region` and the work it took: nodes visited and points tested.
+    ///
+    /// ```
+    /// use orthtree::{Aabb, Quadtree};
+    /// let pts: Vec<([f64; 2], ())> = (0..64).map(|i| ([(i % 8) as f64, (i / 8) as f64], ())).collect();
+    /// let t = Quadtree::builder().bucket_size(1).build(&pts).unwrap();
+    /// let s = t.query_stats(Aabb::new([-1.0, -1.0], [8.0, 8.0]).unwrap()).unwrap();
+    /// assert_eq!((s.count, s.nodes_visited, s.points_tested), (64, 1, 0)); // the root is inside
+    /// ```
+    pub fn query_stats<R: Region<D>>(&self, region: R) -> Result<QueryStats, QueryError> {
+        for_each_in(self, &region, |_| {})
+    }
+
+    /// The points in the closed box `b` ([`PointTree::query`] with an [`Aabb`]).
+    ///
+    /// ```
+    /// use orthtree::{Aabb, PointTree};
+    /// let t = PointTree::new(&[([1i32, 1], 'a'), ([5, 5], 'b')]).unwrap();
+    /// assert_eq!(t.in_box(&Aabb::new([0, 0], [1, 1]).unwrap()).unwrap().count(), 1);
+    /// ```
+    pub fn in_box(
+        &self,
+        b: &Aabb<S, D>,
+    ) -> Result<RegionIter<'_, PointTree<S, T, D>, Aabb<f64, D>, D>, QueryError> {
+        self.query(b.to_f64())
+    }
+
+    /// The points at Euclidean distance at most `radius` from `center` ([`Ball`]).
+    ///
+    /// Errors: a non-finite centre, a negative or NaN radius.
+    ///
+    /// ```
+    /// use orthtree::Quadtree;
+    /// let t = Quadtree::new(&[([3.0, 4.0], 'a'), ([4.0, 4.0], 'b')]).unwrap();
+    /// let found: Vec<char> = t.in_ball(&[0.0, 0.0], 5.0).unwrap().map(|(_, &c)| c).collect();
+    /// assert_eq!(found, ['a']);
+    /// ```
+    pub fn in_ball(
+        &self,
+        center: &[S; D],
+        radius: f64,
+    ) -> Result<RegionIter<'_, PointTree<S, T, D>, Ball<D>, D>, QueryError> {
+        self.query(Ball::new(center.map(Scalar::to_f64), radius)?)
+    }
+
+    /// The points `x` with `normal . x <= offset` ([`HalfSpace`]).
+    ///
+    /// Errors: a non-finite normal, a NaN offset.
+    ///
+    /// ```
+    /// use orthtree::Quadtree;
+    /// let t = Quadtree::new(&[([0.0, 0.0], 'a'), ([1.0, 1.0], 'b')]).unwrap();
+    /// let found: Vec<char> = t.in_half_space([1.0, 1.0], 1.0).unwrap().map(|(_, &c)| c).collect();
+    /// assert_eq!(found, ['a']);
+    /// ```
+    pub fn in_half_space(
+        &self,
+        normal: [f64; D],
+        offset: f64,
+    ) -> Result<RegionIter<'_, PointTree<S, T, D>, HalfSpace<D>, D>, QueryError> {
+        self.query(HalfSpace::new(normal, offset)?)
+    }
+}

@@ -1,0 +1,473 @@
+//! Every query kind against a brute-force scan: box, ball, half-space and user regions (lazy,
+//! count, visitor), nearest, k-nearest and the nearest iterator under three metrics. Inputs on
+//! a dyadic grid put points on split lines, on box faces, on spheres at exactly representable
+//! distances and on half-space boundaries, with many duplicates; D = 1, 2, 3; f64, f32 and i32.
+//! Plus empty trees, k > n, bad input, the untested inside cells, and exercise 14.13's worst case.
+
+use orthtree::query::{Chebyshev, Manhattan, Metric, QueryError, SquaredEuclidean};
+use orthtree::{Aabb, Ball, HalfSpace, PointTree, Quadtree, Region, Relation, Scalar};
+use proptest::prelude::*;
+use proptest::test_runner::{Config, RngSeed};
+use std::cell::Cell as Counter;
+
+fn config(cases: u32, seed: u64) -> Config {
+    Config {
+        cases,
+        rng_seed: RngSeed::Fixed(seed),
+        failure_persistence: None,
+        ..Config::default()
+    }
+}
+
+fn f<S: Scalar, const D: usize>(p: &[S; D]) -> [f64; D] {
+    p.map(Scalar::to_f64)
+}
+
+/// Items of the points in `region`, by brute force, sorted.
+fn brute_region<S: Scalar, R: Region<D>, const D: usize>(
+    t: &PointTree<S, usize, D>,
+    region: &R,
+) -> Vec<usize> {
+    let mut v: Vec<usize> = t
+        .iter()
+        .filter(|(p, _)| region.contains(&f(p)))
+        .map(|(_, &i)| i)
+        .collect();
+    v.sort_unstable();
+    v
+}
+
+/// Checks every range-query form against brute force.
+fn check_region<S: Scalar, R: Region<D>, const D: usize>(t: &PointTree<S, usize, D>, region: &R) {
+    let want = brute_region(t, region);
+    let mut lazy: Vec<usize> = t.query(region).unwrap().map(|(_, &i)| i).collect();
+    lazy.sort_unstable();
+    assert_eq!(lazy, want);
+    assert_eq!(t.query_count(region).unwrap(), want.len());
+    let mut visited = Vec::new();
+    t.query_with(region, |p, &i| {
+        assert!(region.contains(&f(p)));
+        visited.push(i)
+    })
+    .unwrap();
+    visited.sort_unstable();
+    assert_eq!(visited, want);
+}
+
+/// All (distance, index) pairs within `max`, sorted: the oracle of every nearest query.
+fn brute_nearest<S: Scalar, M: Metric<D>, const D: usize>(
+    t: &PointTree<S, usize, D>,
+    q: &[S; D],
+    max: f64,
+    m: &M,
+) -> Vec<(f64, usize)> {
+    let mut v: Vec<(f64, usize)> = t
+        .points()
+        .iter()
+        .enumerate()
+        .map(|(i, p)| (m.distance(&f(q), &f(p)), i))
+        .filter(|&(d, _)| d <= max)
+        .collect();
+    v.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    v
+}
+
+fn check_nearest<S: Scalar, M: Metric<D> + Copy, const D: usize>(
+    t: &PointTree<S, usize, D>,
+    q: &[S; D],
+    k: usize,
+    max: f64,
+    m: M,
+) {
+    let all = brute_nearest(t, q, max, &m);
+    let got: Vec<(f64, usize)> = t
+        .k_nearest_by(q, k, max, &m)
+        .unwrap()
+        .iter()
+        .map(|n| (n.distance, n.index))
+        .collect();
+    assert_eq!(got, all[..k.min(all.len())]);
+    for n in t.k_nearest_by(q, k, max, &m).unwrap() {
+        assert_eq!(t.points()[n.index], *n.point);
+        assert_eq!(t.items()[n.index], *n.item);
+    }
+    let lazy: Vec<(f64, usize)> = t
+        .nearest_iter_by(q, max, m)
+        .unwrap()
+        .map(|n| (n.distance, n.index))
+        .collect();
+    assert_eq!(lazy, all);
+}
+
+fn check_default_nearest<S: Scalar, const D: usize>(t: &PointTree<S, usize, D>, q: &[S; D]) {
+    let all = brute_nearest(t, q, f64::INFINITY, &SquaredEuclidean);
+    let one = t.nearest(q).unwrap().map(|n| (n.distance, n.index));
+    assert_eq!(one, all.first().copied());
+    let ten: Vec<_> = t
+        .k_nearest(q, 10)
+        .unwrap()
+        .iter()
+        .map(|n| (n.distance, n.index))
+        .collect();
+    assert_eq!(ten, all[..10.min(all.len())]);
+    let it: Vec<_> = t
+        .nearest_iter(q)
+        .unwrap()
+        .take(5)
+        .map(|n| (n.distance, n.index))
+        .collect();
+    assert_eq!(it, all[..5.min(all.len())]);
+    if let Some(&(d, _)) = all.get(2) {
+        let within = t.k_nearest_within(q, 100, d).unwrap();
+        assert_eq!(within.len(), all.iter().filter(|x| x.0 <= d).count());
+        assert_eq!(
+            t.nearest_within(q, d).unwrap().map(|n| n.index),
+            Some(all[0].1)
+        );
+        assert_eq!(t.nearest_iter_within(q, d).unwrap().count(), within.len());
+    }
+}
+
+/// Builds the tree and runs every query on it.
+#[allow(clippy::too_many_arguments)]
+fn run_all<S: Scalar, const D: usize>(
+    points: &[[S; D]],
+    bucket: usize,
+    boxes: &[([f64; D], [f64; D])],
+    balls: &[([f64; D], f64)],
+    planes: &[([f64; D], f64)],
+    queries: &[[S; D]],
+    k: usize,
+) {
+    let entries: Vec<([S; D], usize)> = points.iter().enumerate().map(|(i, &p)| (p, i)).collect();
+    let t = PointTree::builder()
+        .bucket_size(bucket)
+        .build(&entries)
+        .unwrap();
+    t.validate().unwrap();
+    for &(a, b) in boxes {
+        let lo = core::array::from_fn(|i| a[i].min(b[i]));
+        let hi = core::array::from_fn(|i| a[i].max(b[i]));
+        check_region(&t, &Aabb { min: lo, max: hi });
+        check_region(&t, &Aabb { min: hi, max: lo }); // inverted: empty unless degenerate
+    }
+    for &(c, r) in balls {
+        check_region(&t, &Ball::new(c, r).unwrap());
+    }
+    for &(n, b) in planes {
+        check_region(&t, &HalfSpace::new(n, b).unwrap());
+    }
+    for q in queries {
+        check_default_nearest(&t, q);
+        for max in [f64::INFINITY, 0.0, 0.25, 1.0] {
+            check_nearest(&t, q, k, max, SquaredEuclidean);
+            check_nearest(&t, q, k, max, Manhattan);
+            check_nearest(&t, q, k, max, Chebyshev);
+        }
+    }
+}
+
+/// A coordinate on the grid of eighths in [0, 2]: split lines, duplicates, exact distances.
+fn grid() -> impl Strategy<Value = f64> {
+    (0u32..=16).prop_map(|j| j as f64 / 8.0)
+}
+
+fn grid_point<const D: usize>() -> impl Strategy<Value = [f64; D]> {
+    proptest::array::uniform(grid())
+}
+
+fn normal<const D: usize>() -> impl Strategy<Value = [f64; D]> {
+    proptest::array::uniform((-2i32..=2).prop_map(f64::from))
+}
+
+macro_rules! grid_case {
+    ($name:ident, $d:literal, $seed:literal) => {
+        proptest! {
+            #![proptest_config(config(48, $seed))]
+            #[test]
+            fn $name(
+                points in prop::collection::vec(grid_point::<$d>(), 0..80),
+                bucket in 1usize..4,
+                boxes in prop::collection::vec((grid_point::<$d>(), grid_point::<$d>()), 3),
+                balls in prop::collection::vec((grid_point::<$d>(), (0u32..12).prop_map(|r| r as f64 / 8.0)), 3),
+                planes in prop::collection::vec((normal::<$d>(), (-16i32..=32).prop_map(|b| b as f64 / 8.0)), 3),
+                queries in prop::collection::vec(grid_point::<$d>(), 3),
+                k in 0usize..12,
+            ) {
+                run_all(&points, bucket, &boxes, &balls, &planes, &queries, k);
+            }
+        }
+    };
+}
+
+grid_case!(grid_points_1d, 1, 101);
+grid_case!(grid_points_2d, 2, 102);
+grid_case!(grid_points_3d, 3, 103);
+
+proptest! {
+    #![proptest_config(config(32, 104))]
+    #[test]
+    fn random_points_2d(
+        points in prop::collection::vec(proptest::array::uniform2(-1.0f64..1.0), 1..300),
+        lo in proptest::array::uniform2(-1.0f64..1.0),
+        side in 0.0f64..1.0,
+        c in proptest::array::uniform2(-1.0f64..1.0),
+        r in 0.0f64..0.7,
+        n in proptest::array::uniform2(-1.0f64..1.0),
+        b in -1.0f64..1.0,
+        q in proptest::array::uniform2(-1.5f64..1.5),
+        k in 1usize..40,
+    ) {
+        let hi = [lo[0] + side, lo[1] + side];
+        // Query boxes and balls at point coordinates put points on their boundary.
+        let p0 = points[0];
+        run_all(&points, 4, &[(lo, hi), (p0, hi)], &[(c, r), (p0, 0.0)], &[(n, b)], &[q, p0], k);
+    }
+
+    #[test]
+    fn f32_and_i32_points(
+        raw in prop::collection::vec(proptest::array::uniform2(-20i32..20), 0..120),
+        lo in proptest::array::uniform2(-20i32..20),
+        side in 0i32..20,
+        r in 0u32..15,
+        q in proptest::array::uniform2(-25i32..25),
+        k in 0usize..20,
+    ) {
+        let fl = |p: [i32; 2]| p.map(|x| x as f64);
+        let boxes = [(fl(lo), fl([lo[0] + side, lo[1] + side]))];
+        let balls = [(fl(q), r as f64)];
+        let planes = [([1.0, 0.0], lo[0] as f64), ([1.0, -1.0], side as f64)];
+        run_all(&raw, 2, &boxes, &balls, &planes, &[q], k);
+        let halves: Vec<[f32; 2]> = raw.iter().map(|p| p.map(|x| x as f32 / 2.0)).collect();
+        let qh = q.map(|x| x as f32 / 2.0);
+        run_all(&halves, 3, &boxes, &balls, &planes, &[qh], k);
+    }
+}
+
+#[test]
+fn empty_trees_answer_nothing() {
+    let t: Quadtree<u8> = Quadtree::new(&[]).unwrap();
+    let b = Aabb::new([0.0; 2], [1.0; 2]).unwrap();
+    assert_eq!(t.query(b).unwrap().count(), 0);
+    assert_eq!(t.query_count(b).unwrap(), 0);
+    assert_eq!(t.query_stats(b).unwrap().nodes_visited, 0);
+    assert!(t.nearest(&[0.0, 0.0]).unwrap().is_none());
+    assert!(t.k_nearest(&[0.0, 0.0], 5).unwrap().is_empty());
+    assert_eq!(t.nearest_iter(&[0.0, 0.0]).unwrap().count(), 0);
+}
+
+#[test]
+fn k_larger_than_n_and_zero() {
+    let pts: Vec<([f64; 3], usize)> = (0..7).map(|i| ([i as f64, 0.0, 1.0], i)).collect();
+    let t = PointTree::new(&pts).unwrap();
+    assert_eq!(t.k_nearest(&[0.0; 3], 100).unwrap().len(), 7);
+    assert_eq!(t.k_nearest(&[0.0; 3], usize::MAX).unwrap().len(), 7);
+    assert!(t.k_nearest(&[0.0; 3], 0).unwrap().is_empty());
+}
+
+#[test]
+fn bad_input_is_a_typed_error() {
+    let t = Quadtree::new(&[([0.0, 0.0], ()), ([1.0, 1.0], ())]).unwrap();
+    let nan = f64::NAN;
+    assert!(matches!(
+        t.nearest(&[0.0, nan]),
+        Err(QueryError::NotFinite { axis: 1, .. })
+    ));
+    assert!(matches!(
+        t.k_nearest(&[f64::INFINITY, 0.0], 3),
+        Err(QueryError::NotFinite { axis: 0, .. })
+    ));
+    assert!(t.nearest_iter(&[nan, 0.0]).is_err());
+    assert!(matches!(
+        t.in_ball(&[0.0, 0.0], -0.5),
+        Err(QueryError::InvalidRadius { .. })
+    ));
+    assert!(matches!(
+        t.in_ball(&[0.0, 0.0], nan),
+        Err(QueryError::InvalidRadius { .. })
+    ));
+    assert!(matches!(
+        t.in_ball(&[nan, 0.0], 1.0),
+        Err(QueryError::NotFinite { .. })
+    ));
+    let raw = Ball {
+        center: [0.0, 0.0],
+        radius: -1.0,
+    };
+    assert!(t.query_count(raw).is_err());
+    assert!(t.query(raw).is_err());
+    assert!(matches!(
+        t.nearest_within(&[0.0, 0.0], -1.0),
+        Err(QueryError::InvalidMaxDistance { .. })
+    ));
+    assert!(t.nearest_iter_within(&[0.0, 0.0], nan).is_err());
+    assert!(matches!(
+        t.in_half_space([nan, 0.0], 0.0),
+        Err(QueryError::InvalidNormal { axis: 0 })
+    ));
+    assert!(matches!(
+        t.in_half_space([1.0, 0.0], nan),
+        Err(QueryError::NanOffset)
+    ));
+    let b = Aabb {
+        min: [0.0, nan],
+        max: [1.0, 1.0],
+    };
+    assert!(matches!(
+        t.query_count(b),
+        Err(QueryError::NanBound { axis: 1 })
+    ));
+    // infinite box bounds and radius are fine
+    let all = Aabb {
+        min: [f64::NEG_INFINITY; 2],
+        max: [f64::INFINITY; 2],
+    };
+    assert_eq!(t.query_count(all).unwrap(), 2);
+    assert_eq!(t.in_ball(&[0.0, 0.0], f64::INFINITY).unwrap().count(), 2);
+    assert!(!QueryError::NanOffset.to_string().is_empty());
+}
+
+/// A region that counts its point tests, and those that accept.
+struct Counting<R> {
+    inner: R,
+    tests: Counter<usize>,
+    accepted: Counter<usize>,
+    classified: Counter<usize>,
+}
+
+impl<R: Region<2>> Region<2> for Counting<R> {
+    fn classify(&self, cell: &Aabb<f64, 2>) -> Relation {
+        self.classified.set(self.classified.get() + 1);
+        self.inner.classify(cell)
+    }
+    fn contains(&self, p: &[f64; 2]) -> bool {
+        self.tests.set(self.tests.get() + 1);
+        let inside = self.inner.contains(p);
+        self.accepted.set(self.accepted.get() + usize::from(inside));
+        inside
+    }
+}
+
+#[test]
+fn inside_cells_are_reported_without_point_tests() {
+    // 64 x 64 lattice, the box [0, 31.5]^2 holds the quadrant of 32 x 32 points exactly: the
+    // level-1 cell [0, 31.5]^2 of the root cube [0, 63] is inside, none of its points is tested.
+    // (The closed boxes of the cells right of and above it touch the box, so their points are
+    // tested, and rejected.)
+    let pts: Vec<([f64; 2], usize)> = (0..4096)
+        .map(|i| ([(i % 64) as f64, (i / 64) as f64], i))
+        .collect();
+    let t = Quadtree::new(&pts).unwrap();
+    let region = Counting {
+        inner: Aabb::new([0.0, 0.0], [31.5, 31.5]).unwrap(),
+        tests: Counter::new(0),
+        accepted: Counter::new(0),
+        classified: Counter::new(0),
+    };
+    assert_eq!(t.query(&region).unwrap().count(), 1024);
+    assert_eq!(region.accepted.get(), 0);
+    let tested = region.tests.get();
+    assert!(tested < 4096 - 1024);
+    assert_eq!(t.query_count(&region).unwrap(), 1024);
+    assert_eq!(region.accepted.get(), 0);
+    assert_eq!(region.tests.get(), 2 * tested);
+    // An inside root: one classification, no test at all.
+    let everything = Counting {
+        inner: Aabb::new([0.0, 0.0], [63.0, 63.0]).unwrap(),
+        tests: Counter::new(0),
+        accepted: Counter::new(0),
+        classified: Counter::new(0),
+    };
+    assert_eq!(t.query_count(&everything).unwrap(), 4096);
+    assert_eq!(
+        (everything.classified.get(), everything.tests.get()),
+        (1, 0)
+    );
+    // A box through the middle of leaves does test, and only the points of crossing leaves.
+    region.tests.set(0);
+    let cut = Counting {
+        inner: Aabb::new([0.0, 0.0], [30.5, 30.5]).unwrap(),
+        ..region
+    };
+    let s = t.query_stats(&cut).unwrap();
+    assert_eq!(s.count, 31 * 31);
+    assert_eq!(s.points_tested, cut.tests.get());
+    assert!(s.points_tested < 4096 / 4);
+}
+
+/// Exercise 14.13's worst case: n / 2 pairs just right of the line x = 1/2, each pair's points
+/// 2^-d apart, so every pair stays crossing from level log2(n / 2) down to about level d.
+#[test]
+fn half_plane_worst_case_visits_order_n_times_depth() {
+    let pairs = 64usize; // n = 128
+    let e = 2f64.powi(-28);
+    let mut pts = Vec::new();
+    for i in 0..pairs {
+        let y = (i as f64 + 0.5) / pairs as f64;
+        pts.push(([0.5 + e, y], i));
+        pts.push(([0.5 + 2.0 * e, y], i));
+    }
+    pts.push(([0.0, 0.0], 0));
+    pts.push(([1.0, 1.0], 0)); // root cube [0, 1]^2
+    let t = Quadtree::builder().bucket_size(1).build(&pts).unwrap();
+    let d = t.depth() as usize;
+    let n = t.len();
+    let left = HalfSpace::new([1.0, 0.0], 0.5).unwrap();
+    let s = t.query_stats(left).unwrap();
+    assert_eq!(s.count, 1); // only (0, 0)
+                            // Lower bound: each pair is crossing alone at every level from log2(pairs) + 1 to d - 1.
+    let log = pairs.trailing_zeros() as usize;
+    assert!(d >= 28, "depth {d}");
+    assert!(
+        s.nodes_visited >= pairs * (d - log - 2),
+        "{} visited, d = {d}",
+        s.nodes_visited
+    );
+    // Upper bound of the analysis: 1 + 4 * sum over levels of min(2^l, n / 2) crossing nodes.
+    let bound: usize = 1 + 4
+        * (0..d)
+            .map(|l| (1usize << l.min(40)).min(n / 2))
+            .sum::<usize>();
+    assert!(s.nodes_visited <= bound);
+    // Ordinary query: the same tree and a half-plane far from the pairs is cheap.
+    let cheap = t
+        .query_stats(HalfSpace::new([1.0, 0.0], 0.25).unwrap())
+        .unwrap();
+    assert!(cheap.nodes_visited < 40, "{}", cheap.nodes_visited);
+    // The same bound for a rectangle whose right side is that line.
+    let rect = Aabb::new([0.0, 0.0], [0.5, 1.0]).unwrap();
+    let r = t.query_stats(rect).unwrap();
+    assert_eq!(r.count, 1);
+    assert!(r.nodes_visited >= pairs * (d - log - 2));
+}
+
+#[test]
+fn ball_surface_and_plane_boundary_are_closed() {
+    // Pythagorean points at distance exactly 5 (and 5^2 = 25 exactly).
+    let pts = [
+        ([3.0, 4.0], 0),
+        ([-4.0, 3.0], 1),
+        ([5.0, 0.0], 2),
+        ([5.0, 0.5], 3),
+        ([0.0, 0.0], 4),
+    ];
+    let t = Quadtree::builder().bucket_size(1).build(&pts).unwrap();
+    let mut got: Vec<i32> = t
+        .in_ball(&[0.0, 0.0], 5.0)
+        .unwrap()
+        .map(|(_, &i)| i)
+        .collect();
+    got.sort_unstable();
+    assert_eq!(got, [0, 1, 2, 4]);
+    assert_eq!(t.in_half_space([1.0, 1.0], 7.0).unwrap().count(), 5); // 3 + 4 = 7 is in
+    assert_eq!(t.in_half_space([1.0, 1.0], 5.0).unwrap().count(), 3); // (5, 0) on it is in
+    assert_eq!(t.in_ball(&[5.0, 0.0], 0.0).unwrap().count(), 1);
+    let near = t.k_nearest(&[0.0, 0.0], 4).unwrap();
+    assert_eq!(near[0].distance, 0.0);
+    assert!(near[1..].iter().all(|n| n.distance == 25.0));
+    let idx: Vec<usize> = near.iter().map(|n| n.index).collect();
+    assert!(
+        idx[1..].windows(2).all(|w| w[0] < w[1]),
+        "ties by index: {idx:?}"
+    );
+}
