@@ -1,6 +1,9 @@
 //! p4est's "timings" fractal, then 2:1 balance: the workload of p4est's balance benchmarks.
 //!
-//! `cargo run --release --example balance_fractal -- --dim 2|3|4 --level L --connect face|edge|corner [--weak]`
+//! `cargo run --release --example balance_fractal -- --dim 2|3|4 --level L --connect face|edge|corner [--weak] [--incremental]`
+//!
+//! `--incremental` also builds the same refinement with `Tree::split_balanced` (exercise 14.8:
+//! balanced construction without the unbalanced tree first) and compares time and result.
 //!
 //! The refinement is p4est's (see `benches/workloads/fractal.rs`). Prints the leaf counts before and after balance, the refine, balance and
 //! is_balanced times, peak memory, and a checksum of the sorted leaf cells.
@@ -15,6 +18,7 @@ struct Args {
     dim: usize,
     level: u8,
     options: BalanceOptions,
+    incremental: bool,
 }
 
 fn parse() -> Result<Args, String> {
@@ -22,6 +26,7 @@ fn parse() -> Result<Args, String> {
         dim: 2,
         level: 12,
         options: BalanceOptions::new(Connectivity::Face),
+        incremental: false,
     };
     let mut it = std::env::args().skip(1);
     while let Some(flag) = it.next() {
@@ -38,6 +43,7 @@ fn parse() -> Result<Args, String> {
                 }
             }
             "--weak" => args.options = args.options.weak(),
+            "--incremental" => args.incremental = true,
             other => return Err(format!("unknown argument {other:?}")),
         }
     }
@@ -94,13 +100,36 @@ fn run<const D: usize>(args: &Args) {
         eprintln!("error: the tree is not balanced after balance()");
         std::process::exit(1);
     }
+    if args.incremental {
+        // Exercise 14.8: the same refinement, each split made with split_balanced.
+        let refined = fractal::fractal::<D>(args.level);
+        let cells: Vec<_> = refined
+            .pre_order()
+            .filter(|&(id, _)| !refined.is_leaf(id))
+            .map(|(_, c)| c)
+            .collect();
+        let t = Instant::now();
+        let mut built = Tree::<D>::new();
+        for cell in &cells {
+            let id = built.locate_cell(cell);
+            if built.level(id) == cell.level() && built.is_leaf(id) {
+                built.split_balanced(id, args.options, |_, _| {});
+            }
+        }
+        let incremental_s = t.elapsed().as_secs_f64();
+        let same = checksum(&built) == checksum(&tree) && built.leaf_count() == tree.leaf_count();
+        println!("incremental (14.8):    {incremental_s:.4} s, vs refine + balance {:.4} s; same tree: {same}", refine_s + balance_s);
+        if !same {
+            std::process::exit(1);
+        }
+    }
 }
 
 fn main() {
     let args = match parse() {
         Ok(a) => a,
         Err(e) => {
-            eprintln!("error: {e}\nusage: balance_fractal --dim 2|3|4 --level L --connect face|edge|corner [--weak]");
+            eprintln!("error: {e}\nusage: balance_fractal --dim 2|3|4 --level L --connect face|edge|corner [--weak] [--incremental]");
             std::process::exit(2);
         }
     };

@@ -3,6 +3,7 @@
 
 mod arena;
 mod balance;
+mod incremental;
 mod neighbors;
 mod ripple;
 mod traverse;
