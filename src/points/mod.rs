@@ -8,6 +8,7 @@
 mod build;
 mod geometry;
 mod leaves;
+mod update;
 
 pub use build::{PointTreeBuilder, DEFAULT_BUCKET_SIZE};
 pub use geometry::RootGeometry;
@@ -104,7 +105,8 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         self.tree.depth()
     }
 
-    /// The number of nodes.
+    /// The number of node slots ([`Tree::node_count`]): the nodes, plus slots freed by removals
+    /// and not yet reused by later splits.
     pub fn node_count(&self) -> usize {
         self.tree.node_count()
     }

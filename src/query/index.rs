@@ -46,6 +46,20 @@ pub trait SpatialIndex<const D: usize> {
     /// Calls `f` with every child whose run is not empty, and its closed box; returns `false`
     /// (calling nothing) for a leaf.
     fn for_each_child(&self, node: Self::Node, f: impl FnMut(Self::Node, &Aabb<f64, D>)) -> bool;
+
+    /// [`SpatialIndex::for_each_child`] for a node whose closed box `bbox` the caller already
+    /// holds (from [`SpatialIndex::root`] or an earlier call), so that an index can build the
+    /// children's boxes from it. The default ignores `bbox`.
+    #[inline]
+    fn for_each_child_in(
+        &self,
+        node: Self::Node,
+        bbox: &Aabb<f64, D>,
+        f: impl FnMut(Self::Node, &Aabb<f64, D>),
+    ) -> bool {
+        let _ = bbox;
+        self.for_each_child(node, f)
+    }
 }
 
 /// A node of a [`PointTree`] as the query engines see it: its id and its cell.
@@ -127,6 +141,57 @@ impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointTree<S, T, D> {
             f(
                 PointNode {
                     id,
+                    cell: node.cell.child(i),
+                },
+                &b,
+            );
+        }
+        true
+    }
+
+    #[inline]
+    fn for_each_child_in(
+        &self,
+        node: PointNode<D>,
+        bbox: &Aabb<f64, D>,
+        mut f: impl FnMut(PointNode<D>, &Aabb<f64, D>),
+    ) -> bool {
+        let Some(first) = self.tree().child(node.id, 0) else {
+            return false;
+        };
+        // The parent's box gives the children's outer sides exactly (boundary(2c, l + 1) ==
+        // boundary(c, l)); only the middle boundary on each axis is computed.
+        let g = self.geometry();
+        let level = node.cell.level() + 1;
+        let c = node.cell.coords();
+        let mid: [f64; D] = core::array::from_fn(|a| g.boundary(a, 2 * c[a] as u64 + 1, level));
+        let start = first.index();
+        let Some(ranges) = self.ranges().get(start..start + Dim::<D>::CHILDREN) else {
+            return false;
+        };
+        for (i, &(s, e)) in ranges.iter().enumerate() {
+            if s == e {
+                continue;
+            }
+            let b = Aabb {
+                min: core::array::from_fn(|a| {
+                    if (i >> a) & 1 == 0 {
+                        bbox.min[a]
+                    } else {
+                        mid[a]
+                    }
+                }),
+                max: core::array::from_fn(|a| {
+                    if (i >> a) & 1 == 0 {
+                        mid[a]
+                    } else {
+                        bbox.max[a]
+                    }
+                }),
+            };
+            f(
+                PointNode {
+                    id: NodeId(first.0 + i as u32),
                     cell: node.cell.child(i),
                 },
                 &b,

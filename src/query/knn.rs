@@ -5,7 +5,10 @@
 //! Keep the best `k` (distance, index) pairs found so far, sorted. Pop a node from an explicit
 //! stack; skip it if its box's lower bound exceeds the `k`-th distance (or the maximum distance
 //! while fewer than `k` are known); scan a leaf's run; push an internal node's children farthest
-//! first, so the nearest box is searched first and tightens the bound soonest.
+//! first, so the nearest box is searched first and tightens the bound soonest. Before that, one
+//! walk down the nearest child at every level scans the node around the query and seeds the
+//! bound, so the search stacks only children that can still hold a neighbour; any node of at
+//! most `SCAN` points is scanned as a leaf (its run is contiguous), as kd-trees scan buckets.
 //!
 //! Ties are broken by index in [`PointTree::points`] (Morton order): the answer is exactly the
 //! first `k` of all points within the maximum distance sorted by `(distance, index)`. A box whose
@@ -14,7 +17,7 @@
 use super::index::SpatialIndex;
 use super::metric::{Metric, SquaredEuclidean};
 use super::{check_max, check_point, QueryError};
-use crate::geom::Scalar;
+use crate::geom::{Aabb, Scalar};
 use crate::points::PointTree;
 use smallvec::SmallVec;
 
@@ -84,6 +87,14 @@ impl Best {
     }
 }
 
+/// A node whose run holds at most this many points is scanned as if it were a leaf: its run is
+/// contiguous, and a tight loop over a few points costs less than bounding and ordering its
+/// children (kd-trees scan buckets of this size).
+const SCAN: usize = 48;
+
+/// Nodes still to search: (lower bound, node, closed box), nearest on top.
+type Pending<N, const D: usize> = SmallVec<[(f64, N, Aabb<f64, D>); 64]>;
+
 /// The `k` nearest points to `q` within distance `max` (inclusive) as (distance, index) pairs,
 /// sorted by distance then index. `q` finite, `max` not NaN.
 pub(crate) fn k_nearest<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
@@ -105,35 +116,66 @@ pub(crate) fn k_nearest<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
         return best.list;
     };
     let points = index.points();
-    let mut stack: SmallVec<[(f64, I::Node); 64]> = SmallVec::new();
-    stack.push((metric.box_distance(q, &b), root));
-    while let Some((lower, node)) = stack.pop() {
-        let bound = best.bound();
+    // Scans a run, offering every point; returns the new bound.
+    let scan_run = |best: &mut Best, run: core::ops::Range<usize>, mut bound: f64| {
+        let start = run.start;
+        for (j, p) in points[run].iter().enumerate() {
+            let d = metric.distance(q, &p.map(Scalar::to_f64));
+            if d <= bound {
+                best.offer(d, start + j);
+                bound = best.bound();
+            }
+        }
+        bound
+    };
+    // Seed the bound: walk down to the nearest child at every level (the one holding `q` when
+    // it lies in the root box) and scan the first node small enough, so that the search below
+    // stacks only the children that can still hold a neighbour.
+    let seeded = {
+        let (mut node, mut nb) = (root, b);
+        loop {
+            let run = index.run(node);
+            let mut next: Option<(f64, I::Node, Aabb<f64, D>)> = None;
+            let internal = run.len() > SCAN
+                && index.for_each_child_in(node, &nb, |child, cb| {
+                    let d = metric.box_distance(q, cb);
+                    if next.as_ref().is_none_or(|n| d < n.0) {
+                        next = Some((d, child, *cb));
+                    }
+                });
+            match next {
+                Some((_, child, cb)) if internal => (node, nb) = (child, cb),
+                _ => break run,
+            }
+        }
+    };
+    let first = best.bound();
+    let mut bound = scan_run(&mut best, seeded.clone(), first);
+    let mut stack: Pending<I::Node, D> = SmallVec::new();
+    stack.push((metric.box_distance(q, &b), root, b));
+    while let Some((lower, node, b)) = stack.pop() {
         if lower > bound {
             continue;
         }
-        let mut kids: SmallVec<[(f64, I::Node); 8]> = SmallVec::new();
-        let internal = index.for_each_child(node, |child, b| {
-            let d = metric.box_distance(q, b);
-            if d <= bound {
-                // Insertion sort, farthest first: the nearest child is popped next.
-                let mut at = kids.len();
-                kids.push((d, child));
-                while at > 0 && kids[at - 1].0 < d {
-                    kids.swap(at - 1, at);
-                    at -= 1;
+        let run = index.run(node);
+        let before = stack.len();
+        let internal = run.len() > SCAN
+            && index.for_each_child_in(node, &b, |child, b| {
+                let d = metric.box_distance(q, b);
+                if d <= bound {
+                    // Insertion sort, farthest first: the nearest child is popped next.
+                    let mut at = stack.len();
+                    stack.push((d, child, *b));
+                    while at > before && stack[at - 1].0 < d {
+                        stack.swap(at - 1, at);
+                        at -= 1;
+                    }
                 }
-            }
-        });
-        if internal {
-            stack.extend(kids);
-        } else {
-            for i in index.run(node) {
-                let d = metric.distance(q, &points[i].map(Scalar::to_f64));
-                if d <= best.bound() {
-                    best.offer(d, i);
-                }
-            }
+            });
+        // Nested runs that are equal belong to one node, and the walk above stops at the first
+        // node small enough on its path, as this search does: the seeded node is not rescanned.
+        if !internal && run != seeded {
+            bound = scan_run(&mut best, run, bound);
         }
     }
     best.list

@@ -12,7 +12,7 @@ use super::index::SpatialIndex;
 use super::knn::Neighbor;
 use super::metric::{Metric, SquaredEuclidean};
 use super::{check_max, check_point, QueryError};
-use crate::geom::Scalar;
+use crate::geom::{Aabb, Scalar};
 use crate::points::PointTree;
 use core::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -60,7 +60,7 @@ pub struct NearestIter<'a, I: SpatialIndex<D>, M, const D: usize> {
     metric: M,
     q: [f64; D],
     max: f64,
-    heap: BinaryHeap<Entry<I::Node>>,
+    heap: BinaryHeap<Entry<(I::Node, Aabb<f64, D>)>>,
 }
 
 impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> NearestIter<'a, I, M, D> {
@@ -76,7 +76,7 @@ impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> NearestIter<'a, I, M,
             if key <= max {
                 heap.push(Entry {
                     key,
-                    node: Some(root),
+                    node: Some((root, b)),
                     index: 0,
                 });
             }
@@ -97,16 +97,16 @@ impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> Iterator for NearestI
     fn next(&mut self) -> Option<Self::Item> {
         loop {
             let entry = self.heap.pop()?;
-            let Some(node) = entry.node else {
+            let Some((node, bbox)) = entry.node else {
                 return Some(Neighbor::at(self.index, entry.key, entry.index));
             };
             let (heap, metric, q, max) = (&mut self.heap, &self.metric, &self.q, self.max);
-            let internal = self.index.for_each_child(node, |child, b| {
+            let internal = self.index.for_each_child_in(node, &bbox, |child, b| {
                 let key = metric.box_distance(q, b);
                 if key <= max {
                     heap.push(Entry {
                         key,
-                        node: Some(child),
+                        node: Some((child, *b)),
                         index: 0,
                     });
                 }

@@ -52,9 +52,16 @@ pub struct QueryStats {
     pub count: usize,
 }
 
-/// Pending work of a traversal: a node whose box is inside the region (report its run) or
-/// crossing it (look at its children, or test its points).
-type Stack<N> = SmallVec<[(N, bool); 48]>;
+/// Pending work of a traversal: a node with its closed box, and whether the box is inside the
+/// region (report its run) or crossing it (look at its children, or test its points).
+type Stack<N, const D: usize> = SmallVec<[(N, Aabb<f64, D>, bool); 48]>;
+
+/// A crossing node whose run holds at most this many points has them tested one by one instead
+/// of its children classified: its run is contiguous, and testing a few points costs less than
+/// classifying and stacking up to 2^D children (kd-trees scan buckets of this size). Used by the
+/// iterator, the count and the visitor; [`PointTree::query_stats`] runs the chapter's algorithm
+/// as stated (descend to the leaves), so that its counts are the analysis's.
+const SCAN: usize = 48;
 
 /// Iterator returned by [`PointTree::query`] (and [`PointTree::in_box`], [`PointTree::in_ball`],
 /// [`PointTree::in_half_space`]): the points in a region with their items, lazily, in Morton
@@ -62,7 +69,7 @@ type Stack<N> = SmallVec<[(N, bool); 48]>;
 pub struct RegionIter<'a, I: SpatialIndex<D>, R, const D: usize> {
     index: &'a I,
     region: R,
-    stack: Stack<I::Node>,
+    stack: Stack<I::Node, D>,
     run: Range<usize>,
     test: bool,
 }
@@ -73,11 +80,7 @@ impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> RegionIter<'a, I, R, 
         region.validate()?;
         let mut stack = Stack::new();
         if let Some((root, b)) = index.root() {
-            match region.classify(&b) {
-                Relation::Outside => {}
-                Relation::Inside => stack.push((root, true)),
-                Relation::Crossing => stack.push((root, false)),
-            }
+            push_child(&mut stack, &region, root, &b);
         }
         Ok(RegionIter {
             index,
@@ -93,52 +96,64 @@ impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> Iterator for RegionIt
     type Item = (&'a [I::Scalar; D], &'a I::Item);
 
     fn next(&mut self) -> Option<Self::Item> {
-        let points = self.index.points();
+        let (points, items) = (self.index.points(), self.index.items());
         loop {
-            for i in self.run.by_ref() {
-                if !self.test || self.region.contains(&points[i].map(Scalar::to_f64)) {
-                    return Some((&points[i], &self.index.items()[i]));
+            if self.test {
+                for i in self.run.by_ref() {
+                    let p = &points[i];
+                    if self.region.contains(&p.map(Scalar::to_f64)) {
+                        return Some((p, &items[i]));
+                    }
                 }
+            } else if let Some(i) = self.run.next() {
+                return Some((&points[i], &items[i]));
             }
-            let (node, inside) = self.stack.pop()?;
+            let (node, b, inside) = self.stack.pop()?;
+            let run = self.index.run(node);
             if inside {
-                self.run = self.index.run(node);
+                self.run = run;
                 self.test = false;
                 continue;
             }
+            if run.len() <= SCAN {
+                self.run = run;
+                self.test = true;
+                continue;
+            }
             let (stack, region) = (&mut self.stack, &self.region);
-            let internal = self.index.for_each_child(node, |child, b| {
+            let internal = self.index.for_each_child_in(node, &b, |child, b| {
                 push_child(stack, region, child, b);
             });
             if !internal {
-                self.run = self.index.run(node);
+                self.run = run;
                 self.test = true;
             }
         }
     }
 }
 
-#[inline]
+#[inline(always)]
 fn push_child<N, R: Region<D>, const D: usize>(
-    stack: &mut Stack<N>,
+    stack: &mut Stack<N, D>,
     region: &R,
     child: N,
     b: &Aabb<f64, D>,
-) -> Relation {
-    let rel = region.classify(b);
-    match rel {
+) {
+    match region.classify(b) {
         Relation::Outside => {}
-        Relation::Inside => stack.push((child, true)),
-        Relation::Crossing => stack.push((child, false)),
+        Relation::Inside => stack.push((child, *b, true)),
+        Relation::Crossing => stack.push((child, *b, false)),
     }
-    rel
 }
 
-/// Calls `report(i)` for every point index `i` in `region`; returns the work done. Allocates only
-/// when more than 48 nodes are pending (deeper than about 16 levels in 2D, 7 in 3D).
+/// Calls `report(i)` for every point index `i` in `region`; returns the work done. A crossing
+/// node with at most `scan` points has them tested without descending (0: only leaves are).
+/// Allocates only when more than 48 nodes are pending (deeper than about 16 levels in 2D, 7 in
+/// 3D).
 pub(crate) fn for_each_in<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
     index: &I,
     region: &R,
+    scan: usize,
     mut report: impl FnMut(usize),
 ) -> Result<QueryStats, QueryError> {
     region.validate()?;
@@ -150,25 +165,27 @@ pub(crate) fn for_each_in<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
     stats.nodes_visited = 1;
     push_child(&mut stack, region, root, &b);
     let points = index.points();
-    while let Some((node, inside)) = stack.pop() {
+    while let Some((node, b, inside)) = stack.pop() {
+        let run = index.run(node);
         if inside {
-            let run = index.run(node);
             stats.count += run.len();
             run.for_each(&mut report);
             continue;
         }
         let mut visited = 0;
-        let internal = index.for_each_child(node, |child, b| {
-            visited += 1;
-            push_child(&mut stack, region, child, b);
-        });
+        let internal = run.len() > scan
+            && index.for_each_child_in(node, &b, |child, b| {
+                visited += 1;
+                push_child(&mut stack, region, child, b);
+            });
         stats.nodes_visited += visited;
         if !internal {
-            for i in index.run(node) {
-                stats.points_tested += 1;
-                if region.contains(&points[i].map(Scalar::to_f64)) {
+            let start = run.start;
+            stats.points_tested += run.len();
+            for (j, p) in points[run].iter().enumerate() {
+                if region.contains(&p.map(Scalar::to_f64)) {
                     stats.count += 1;
-                    report(i);
+                    report(start + j);
                 }
             }
         }
@@ -209,7 +226,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// assert_eq!(t.query_count(Ball::new([0.0, 0.0], 1.0).unwrap()).unwrap(), 3);
     /// ```
     pub fn query_count<R: Region<D>>(&self, region: R) -> Result<usize, QueryError> {
-        for_each_in(self, &region, |_| {}).map(|s| s.count)
+        for_each_in(self, &region, SCAN, |_| {}).map(|s| s.count)
     }
 
     /// Calls `visit(point, item)` for every point in `region`, in the traversal's order.
@@ -227,7 +244,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         mut visit: impl FnMut(&[S; D], &T),
     ) -> Result<(), QueryError> {
         let (points, items) = (self.points(), self.items());
-        for_each_in(self, &region, |i| visit(&points[i], &items[i])).map(|_| ())
+        for_each_in(self, &region, SCAN, |i| visit(&points[i], &items[i])).map(|_| ())
     }
 
     /// Counts the points in `region` and the work it took: nodes visited and points tested.
@@ -240,7 +257,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// assert_eq!((s.count, s.nodes_visited, s.points_tested), (64, 1, 0)); // the root is inside
     /// ```
     pub fn query_stats<R: Region<D>>(&self, region: R) -> Result<QueryStats, QueryError> {
-        for_each_in(self, &region, |_| {})
+        for_each_in(self, &region, 0, |_| {})
     }
 
     /// The points in the closed box `b` ([`PointTree::query`] with an [`Aabb`]).

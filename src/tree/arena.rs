@@ -4,10 +4,14 @@
 //! stored side by side, so a node keeps only the index of its first child, and a block keeps its
 //! parent (4 bytes per node plus 4 per block, plus one byte of level). Node ids never move:
 //! a consumer can keep its payload in a `Vec` indexed by [`NodeId`] and extend it after a split.
+//!
+//! [`Tree::merge`] (in `merge.rs`) turns a node whose children are all leaves back into a leaf and
+//! puts the child block on a free list; the next split reuses the most recently freed block, so
+//! ids below [`Tree::node_count`] may be free slots, never reachable from the root.
 
 use crate::geom::{Cell, Dim};
 
-const NONE: u32 = u32::MAX;
+pub(super) const NONE: u32 = u32::MAX;
 
 /// The index of a node in a [`Tree`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -37,10 +41,15 @@ impl NodeId {
 /// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Tree<const D: usize> {
-    first_child: Vec<u32>,
+    pub(super) first_child: Vec<u32>,
     level: Vec<u8>,
     block_parent: Vec<u32>,
-    depth: u8,
+    pub(super) depth: u8,
+    /// First child ids of freed blocks (see [`Tree::merge`]), reused by the next splits.
+    pub(super) free_blocks: Vec<u32>,
+    /// `live_blocks[l]`: the number of live child blocks at level `l`, so merge keeps `depth`
+    /// exact.
+    pub(super) live_blocks: Vec<u32>,
 }
 
 impl<const D: usize> Default for Tree<D> {
@@ -58,22 +67,26 @@ impl<const D: usize> Tree<D> {
             level: vec![0],
             block_parent: Vec::new(),
             depth: 0,
+            free_blocks: Vec::new(),
+            live_blocks: vec![0; Cell::<D>::MAX_LEVEL as usize + 1],
         }
     }
 
-    /// Number of nodes, internal and leaves.
+    /// Number of node slots: the nodes, internal and leaves, plus the slots of child blocks freed
+    /// by [`Tree::merge`] and not yet reused (none unless `merge` was called). Every node id is
+    /// below it, so payload vectors indexed by node have this length.
     #[inline]
     pub fn node_count(&self) -> usize {
         self.first_child.len()
     }
 
-    /// Number of leaves: one plus (2^D - 1) per split.
+    /// Number of leaves: one plus (2^D - 1) per live child block.
     #[inline]
     pub fn leaf_count(&self) -> usize {
-        1 + self.block_parent.len() * (Dim::<D>::CHILDREN - 1)
+        1 + (self.block_parent.len() - self.free_blocks.len()) * (Dim::<D>::CHILDREN - 1)
     }
 
-    /// The depth: the largest level of any node (0 for a single root).
+    /// The depth: the largest level of any node (0 for a single root); exact after merges too.
     #[inline]
     pub fn depth(&self) -> u8 {
         self.depth
@@ -168,14 +181,25 @@ impl<const D: usize> Tree<D> {
         if level >= Cell::<D>::MAX_LEVEL {
             return Err(SplitError::MaxLevel(id));
         }
-        let first = self.first_child.len();
-        if first + Dim::<D>::CHILDREN > NONE as usize {
-            return Err(SplitError::Full);
-        }
+        let n = Dim::<D>::CHILDREN;
+        let first = if let Some(first) = self.free_blocks.pop() {
+            // A freed block: its nodes are leaves (merge only frees blocks of leaves).
+            let f = first as usize;
+            self.level[f..f + n].fill(level + 1);
+            self.block_parent[(f - 1) >> D] = id.0;
+            f
+        } else {
+            let first = self.first_child.len();
+            if first + n > NONE as usize {
+                return Err(SplitError::Full);
+            }
+            self.first_child.resize(first + n, NONE);
+            self.level.resize(first + n, level + 1);
+            self.block_parent.push(id.0);
+            first
+        };
         self.first_child[id.index()] = first as u32;
-        self.first_child.resize(first + Dim::<D>::CHILDREN, NONE);
-        self.level.resize(first + Dim::<D>::CHILDREN, level + 1);
-        self.block_parent.push(id.0);
+        self.live_blocks[level as usize + 1] += 1;
         self.depth = self.depth.max(level + 1);
         Ok(NodeId(first as u32))
     }
@@ -203,7 +227,11 @@ impl<const D: usize> Tree<D> {
 
     /// Heap bytes used by the topology.
     pub fn heap_bytes(&self) -> usize {
-        self.first_child.capacity() * 4 + self.level.capacity() + self.block_parent.capacity() * 4
+        self.first_child.capacity() * 4
+            + self.level.capacity()
+            + self.block_parent.capacity() * 4
+            + self.free_blocks.capacity() * 4
+            + self.live_blocks.capacity() * 4
     }
 }
 

@@ -4,10 +4,12 @@
 mod arena;
 mod balance;
 mod incremental;
+mod merge;
 mod neighbors;
 mod ripple;
 mod traverse;
 
 pub use arena::{NodeId, SplitError, Tree};
 pub use balance::BalanceOptions;
+pub use merge::MergeError;
 pub use traverse::PreOrder;

@@ -1,0 +1,225 @@
+//! Insert and remove on `PointTree` (issue 4, item 2): after every update the tree validates, and
+//! it has exactly the leaves (cells) and the points per leaf (as multisets) of a tree freshly built
+//! from the same (point, item) pairs with the same root box, bucket size and maximum depth.
+
+use orthtree::{Aabb, Cell, Error, PointTree, PointTreeBuilder};
+use proptest::prelude::*;
+use proptest::test_runner::RngSeed;
+
+/// One update; coordinates are grid indices 0..=8 on [0, 1] (so many lie on split lines and
+/// many repeat), items are small so (point, item) pairs repeat too.
+#[derive(Clone, Debug)]
+enum Op<const D: usize> {
+    Insert([u8; D], u8),
+    Remove([u8; D], u8),
+    RemovePoint([u8; D]),
+    /// Remove the stored pair at this position of the model (modulo its length).
+    RemoveStored(usize),
+}
+
+fn coords<const D: usize>(g: [u8; D]) -> [f64; D] {
+    g.map(|x| f64::from(x) / 8.0)
+}
+
+type Leaves<const D: usize> = Vec<(Cell<D>, Vec<([u64; D], u8)>)>;
+
+/// Every leaf's cell and its sorted multiset of (point bits, item).
+fn leaf_structure<const D: usize>(t: &PointTree<f64, u8, D>) -> Leaves<D> {
+    t.leaves()
+        .map(|l| {
+            let mut pts: Vec<([u64; D], u8)> = l
+                .points
+                .iter()
+                .zip(l.items)
+                .map(|(p, &i)| (p.map(f64::to_bits), i))
+                .collect();
+            pts.sort_unstable();
+            (l.cell, pts)
+        })
+        .collect()
+}
+
+fn builder<const D: usize>(bucket: usize, max_depth: Option<u8>) -> PointTreeBuilder<f64, D> {
+    let b = PointTree::builder()
+        .root_box(Aabb::new([0.0; D], [1.0; D]).unwrap())
+        .bucket_size(bucket);
+    match max_depth {
+        Some(m) => b.max_depth(m),
+        None => b,
+    }
+}
+
+fn run<const D: usize>(
+    initial: Vec<([u8; D], u8)>,
+    ops: Vec<Op<D>>,
+    bucket: usize,
+    max_depth: Option<u8>,
+) -> Result<(), TestCaseError> {
+    let b = builder::<D>(bucket, max_depth);
+    let mut model: Vec<([f64; D], u8)> = initial.iter().map(|&(g, i)| (coords(g), i)).collect();
+    let mut t = b.build(&model).unwrap();
+    for op in ops {
+        match op {
+            Op::Insert(g, i) => {
+                t.insert(coords(g), i).unwrap();
+                model.push((coords(g), i));
+            }
+            Op::Remove(g, i) => {
+                let p = coords(g);
+                let at = model.iter().position(|&(q, j)| q == p && j == i);
+                prop_assert_eq!(t.remove(&p, &i), at.is_some());
+                if let Some(at) = at {
+                    model.swap_remove(at);
+                }
+            }
+            Op::RemovePoint(g) => {
+                let p = coords(g);
+                let got = t.remove_point(&p);
+                match got {
+                    Some(i) => {
+                        let at = model.iter().position(|&(q, j)| q == p && j == i);
+                        prop_assert!(at.is_some(), "removed an item not stored at the point");
+                        model.swap_remove(at.unwrap());
+                    }
+                    None => prop_assert!(model.iter().all(|&(q, _)| q != p)),
+                }
+            }
+            Op::RemoveStored(k) => {
+                if model.is_empty() {
+                    continue;
+                }
+                let (p, i) = model.swap_remove(k % model.len());
+                prop_assert!(t.remove(&p, &i));
+            }
+        }
+        if let Err(e) = t.validate() {
+            return Err(TestCaseError::fail(format!("validate: {e}")));
+        }
+        prop_assert_eq!(t.len(), model.len());
+        let fresh = b.build(&model).unwrap();
+        prop_assert_eq!(leaf_structure(&t), leaf_structure(&fresh));
+        prop_assert_eq!(t.leaf_count(), fresh.leaf_count());
+        prop_assert_eq!(t.depth(), fresh.depth());
+    }
+    Ok(())
+}
+
+fn op<const D: usize>() -> impl Strategy<Value = Op<D>> {
+    let g = || proptest::array::uniform::<_, D>(0u8..=8);
+    prop_oneof![
+        4 => (g(), 0u8..3).prop_map(|(g, i)| Op::Insert(g, i)),
+        1 => (g(), 0u8..3).prop_map(|(g, i)| Op::Remove(g, i)),
+        1 => g().prop_map(Op::RemovePoint),
+        2 => any::<usize>().prop_map(Op::RemoveStored),
+    ]
+}
+
+fn initial<const D: usize>() -> impl Strategy<Value = Vec<([u8; D], u8)>> {
+    proptest::collection::vec((proptest::array::uniform::<_, D>(0u8..=8), 0u8..3), 0..30)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 96,
+        rng_seed: RngSeed::Fixed(0x0b7_4e0d),
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    })]
+
+    #[test]
+    fn random_updates_2d_match_a_fresh_build(
+        init in initial::<2>(),
+        ops in proptest::collection::vec(op::<2>(), 0..80),
+        bucket in 1usize..5,
+        max_depth in prop_oneof![Just(None), (1u8..5).prop_map(Some)],
+    ) {
+        run(init, ops, bucket, max_depth)?;
+    }
+
+    #[test]
+    fn random_updates_3d_match_a_fresh_build(
+        init in initial::<3>(),
+        ops in proptest::collection::vec(op::<3>(), 0..80),
+        bucket in 1usize..5,
+        max_depth in prop_oneof![Just(None), (1u8..4).prop_map(Some)],
+    ) {
+        run(init, ops, bucket, max_depth)?;
+    }
+}
+
+#[test]
+fn insert_everything_then_remove_everything_returns_to_one_leaf() {
+    let b = builder::<2>(1, None);
+    let mut t = b.build::<u8>(&[]).unwrap();
+    let pts: Vec<([f64; 2], u8)> = (0..200u32)
+        .map(|i| {
+            let x = f64::from((i * 37) % 101) / 100.0;
+            let y = f64::from((i * 59) % 97) / 96.0;
+            ([x, y], (i % 7) as u8)
+        })
+        .collect();
+    for &(p, i) in &pts {
+        t.insert(p, i).unwrap();
+    }
+    t.validate().unwrap();
+    assert_eq!(leaf_structure(&t), leaf_structure(&b.build(&pts).unwrap()));
+    let slots = t.node_count();
+    for &(p, i) in pts.iter().rev() {
+        assert!(t.remove(&p, &i));
+        t.validate().unwrap();
+    }
+    assert!(t.is_empty());
+    assert_eq!((t.leaf_count(), t.depth()), (1, 0));
+    // inserting again reuses the freed node slots
+    for &(p, i) in &pts {
+        t.insert(p, i).unwrap();
+    }
+    assert_eq!(t.node_count(), slots);
+    assert_eq!(leaf_structure(&t), leaf_structure(&b.build(&pts).unwrap()));
+}
+
+#[test]
+fn duplicates_at_the_maximum_depth_are_kept_and_removed_one_at_a_time() {
+    let b = builder::<3>(2, Some(3));
+    let mut t = b.build::<u8>(&[]).unwrap();
+    for _ in 0..10 {
+        t.insert([0.5, 0.5, 0.5], 1).unwrap();
+    }
+    t.insert([0.5, 0.5, 0.5], 2).unwrap();
+    assert_eq!(t.depth(), 3);
+    assert_eq!(t.remove_point(&[0.5, 0.5, 0.5]), Some(1));
+    for _ in 0..9 {
+        assert!(t.remove(&[0.5, 0.5, 0.5], &1));
+        t.validate().unwrap();
+    }
+    assert!(!t.remove(&[0.5, 0.5, 0.5], &1));
+    assert_eq!(t.len(), 1);
+    assert_eq!(t.depth(), 0);
+    assert_eq!(t.remove_point(&[0.5, 0.5, 0.5]), Some(2));
+    assert_eq!(t.remove_point(&[0.5, 0.5, 0.5]), None);
+}
+
+#[test]
+fn bad_inserts_are_typed_errors_and_bad_removals_are_misses() {
+    let mut t = builder::<2>(1, None).build(&[([0.25, 0.25], 0u8)]).unwrap();
+    let e = t.insert([0.5, 1.5], 1).unwrap_err();
+    assert!(matches!(
+        e,
+        Error::OutsideRootBox { axis: 1, value, interval: (0.0, 1.0), .. } if value == 1.5
+    ));
+    let e = t.insert([f64::NAN, 0.5], 1).unwrap_err();
+    assert!(matches!(e, Error::NonFiniteCoordinate { axis: 0, .. }));
+    assert!(!t.remove(&[f64::INFINITY, 0.0], &0));
+    assert!(!t.remove(&[-1.0, 0.0], &0));
+    assert!(!t.remove(&[0.25, 0.25], &9));
+    assert_eq!(t.remove_point(&[0.75, 0.75]), None);
+    assert_eq!(t.len(), 1);
+    // a tree built without a root box keeps the enclosing cube of its first points
+    let mut u = PointTree::builder()
+        .bucket_size(1)
+        .build(&[([0.0, 0.0], 0u8), ([2.0, 1.0], 1)])
+        .unwrap();
+    assert!(u.insert([1.0, 2.0], 2).is_ok());
+    assert!(u.insert([3.0, 0.0], 3).is_err());
+    u.validate().unwrap();
+}
