@@ -144,7 +144,7 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
             max_depth,
             balanced: None,
         };
-        tree.subdivide(NodeId::ROOT, &keys);
+        tree.subdivide(NodeId::ROOT, |_, i| keys[i]);
         Ok(tree)
     }
 

@@ -210,17 +210,18 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     }
 
     /// Splits below `start` while a node holds more than the bucket size and is above the
-    /// maximum depth; `keys[i]` is the Morton key of point `i`.
-    fn subdivide(&mut self, start: NodeId, keys: &[u64]) {
+    /// maximum depth; `key(points, i)` is the Morton key of point `i`.
+    fn subdivide(&mut self, start: NodeId, key: impl Fn(&[[S; D]], usize) -> u64) {
+        let (tree, ranges, points) = (&mut self.tree, &mut self.ranges, &self.points);
         let mut stack = vec![start];
         while let Some(v) = stack.pop() {
-            let (s, e) = self.ranges[v.index()];
-            if (e - s) as usize <= self.bucket_size || self.tree.level(v) >= self.max_depth {
+            let (s, e) = ranges[v.index()];
+            if (e - s) as usize <= self.bucket_size || tree.level(v) >= self.max_depth {
                 continue;
             }
-            self.tree.split(v);
-            partition_children(&self.tree, &mut self.ranges, v, |i| keys[i]);
-            stack.extend(self.tree.children(v).rev());
+            tree.split(v);
+            partition_children(tree, ranges, v, |i| key(points, i));
+            stack.extend(tree.children(v).rev());
         }
     }
 

@@ -38,7 +38,7 @@
 //!   canonical tree from the stored points, O(n log n)): an updated tree is never balanced; call
 //!   `balance` again if needed.
 
-use super::{partition_children, PointTree};
+use super::PointTree;
 use crate::error::Error;
 use crate::geom::{Dim, Scalar};
 use crate::tree::{NodeId, Tree};
@@ -215,23 +215,12 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         }
     }
 
-    /// Splits below `start` while a node holds more than the bucket size and is above the
-    /// maximum depth.
+    /// Splits below `start` as a fresh build would, recomputing the points' keys.
     fn split_down(&mut self, start: NodeId) {
         let geometry = self.geometry;
-        let points = &self.points;
-        let mut stack = vec![start];
-        while let Some(v) = stack.pop() {
-            let (s, e) = self.ranges[v.index()];
-            if (e - s) as usize <= self.bucket_size || self.tree.level(v) >= self.max_depth {
-                continue;
-            }
-            self.tree.split(v);
-            partition_children(&self.tree, &mut self.ranges, v, |i| {
-                geometry.key(&points[i].map(Scalar::to_f64))
-            });
-            stack.extend(self.tree.children(v).rev());
-        }
+        self.subdivide(start, |points, i| {
+            geometry.key(&points[i].map(Scalar::to_f64))
+        });
     }
 
     /// Drops every split (balance's too) and splits again from the root: the tree a fresh build

@@ -108,45 +108,10 @@ impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointTree<S, T, D> {
     fn for_each_child(
         &self,
         node: PointNode<D>,
-        mut f: impl FnMut(PointNode<D>, &Aabb<f64, D>),
+        f: impl FnMut(PointNode<D>, &Aabb<f64, D>),
     ) -> bool {
-        let Some(first) = self.tree().child(node.id, 0) else {
-            return false;
-        };
-        // The children's boundaries are the parent's two and its middle one on every axis:
-        // boundary(2c, l + 1) == boundary(c, l) exactly, so no child box is recomputed.
-        let g = self.geometry();
-        let level = node.cell.level() + 1;
-        let c = node.cell.coords();
-        let mut lo = [0.0; D];
-        let mut mid = [0.0; D];
-        let mut hi = [0.0; D];
-        for a in 0..D {
-            let j = 2 * c[a] as u64;
-            lo[a] = g.boundary(a, j, level);
-            mid[a] = g.boundary(a, j + 1, level);
-            hi[a] = g.boundary(a, j + 2, level);
-        }
-        let ranges = self.ranges();
-        for i in 0..Dim::<D>::CHILDREN {
-            let id = NodeId(first.0 + i as u32);
-            let (s, e) = ranges[id.index()];
-            if s == e {
-                continue;
-            }
-            let b = Aabb {
-                min: core::array::from_fn(|a| if (i >> a) & 1 == 0 { lo[a] } else { mid[a] }),
-                max: core::array::from_fn(|a| if (i >> a) & 1 == 0 { mid[a] } else { hi[a] }),
-            };
-            f(
-                PointNode {
-                    id,
-                    cell: node.cell.child(i),
-                },
-                &b,
-            );
-        }
-        true
+        let bbox = self.geometry().cell_box(&node.cell);
+        self.for_each_child_in(node, &bbox, f)
     }
 
     #[inline]
