@@ -1,6 +1,7 @@
 //! 2:1 balance on p4est's fractal workload (criterion): `Tree::balance` for face and corner
 //! connectivity in 2D and 3D at several levels, beside `is_balanced` on the result and the
-//! chapter's BALANCEQUADTREE (`Tree::balance_chapter`) on the smaller trees.
+//! chapter's BALANCEQUADTREE (`Tree::balance_chapter`) on the smaller trees; with `--features
+//! rayon`, `par_balance` and `par_is_balanced` too.
 
 use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion, Throughput};
 use orthtree::{Connectivity, Tree};
@@ -23,6 +24,21 @@ fn bench_dim<const D: usize>(c: &mut Criterion, levels: &[u8]) {
             group.bench_with_input(BenchmarkId::new("is_balanced", level), &balanced, |b, t| {
                 b.iter(|| t.is_balanced(conn))
             });
+            #[cfg(feature = "rayon")]
+            {
+                group.bench_with_input(BenchmarkId::new("par_balance", level), &tree, |b, t| {
+                    b.iter_batched(
+                        || t.clone(),
+                        |mut t| t.par_balance(conn),
+                        BatchSize::LargeInput,
+                    )
+                });
+                group.bench_with_input(
+                    BenchmarkId::new("par_is_balanced", level),
+                    &balanced,
+                    |b, t| b.iter(|| t.par_is_balanced(conn)),
+                );
+            }
             if tree.leaf_count() <= 200_000 {
                 group.bench_with_input(
                     BenchmarkId::new("balance_chapter", level),

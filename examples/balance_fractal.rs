@@ -1,6 +1,6 @@
 //! p4est's "timings" fractal, then 2:1 balance: the workload of p4est's balance benchmarks.
 //!
-//! `cargo run --release --example balance_fractal -- --dim 2|3|4 --level L --connect face|edge|corner [--weak] [--incremental]`
+//! `cargo run --release --example balance_fractal -- --dim 2|3|4 --level L --connect face|edge|corner [--weak] [--incremental] [--reps N] [--parallel]`
 //!
 //! `--incremental` also builds the same refinement with `Tree::split_balanced` (exercise 14.8:
 //! balanced construction without the unbalanced tree first) and compares time and result.
@@ -19,6 +19,8 @@ struct Args {
     level: u8,
     options: BalanceOptions,
     incremental: bool,
+    reps: usize,
+    parallel: bool,
 }
 
 fn parse() -> Result<Args, String> {
@@ -27,6 +29,8 @@ fn parse() -> Result<Args, String> {
         level: 12,
         options: BalanceOptions::new(Connectivity::Face),
         incremental: false,
+        reps: 1,
+        parallel: false,
     };
     let mut it = std::env::args().skip(1);
     while let Some(flag) = it.next() {
@@ -44,6 +48,14 @@ fn parse() -> Result<Args, String> {
             }
             "--weak" => args.options = args.options.weak(),
             "--incremental" => args.incremental = true,
+            "--parallel" if cfg!(feature = "rayon") => args.parallel = true,
+            "--parallel" => return Err("--parallel needs --features rayon".into()),
+            "--reps" => {
+                args.reps = value()?.parse().map_err(|e| format!("--reps: {e}"))?;
+                if args.reps == 0 {
+                    return Err("--reps must be at least 1".into());
+                }
+            }
             other => return Err(format!("unknown argument {other:?}")),
         }
     }
@@ -63,6 +75,29 @@ fn checksum<const D: usize>(tree: &Tree<D>) -> u64 {
     h
 }
 
+/// The serial balance, or with `--parallel` the rayon one.
+fn balance<const D: usize>(tree: &mut Tree<D>, args: &Args) -> Vec<orthtree::NodeId> {
+    #[cfg(feature = "rayon")]
+    if args.parallel {
+        return tree.par_balance(args.options);
+    }
+    tree.balance(args.options)
+}
+
+/// The serial balance test, or with `--parallel` the rayon one.
+fn is_balanced<const D: usize>(tree: &Tree<D>, args: &Args) -> bool {
+    #[cfg(feature = "rayon")]
+    if args.parallel {
+        return tree.par_is_balanced(args.options);
+    }
+    tree.is_balanced(args.options)
+}
+
+fn median(times: &mut [f64]) -> f64 {
+    times.sort_by(f64::total_cmp);
+    times[times.len() / 2]
+}
+
 fn peak_memory_mib() -> Option<f64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
@@ -75,19 +110,43 @@ fn run<const D: usize>(args: &Args) {
     let mut tree = fractal::fractal::<D>(args.level);
     let refine_s = t.elapsed().as_secs_f64();
     let before = tree.leaf_count();
-    let t = Instant::now();
-    let split = tree.balance(args.options);
-    let balance_s = t.elapsed().as_secs_f64();
-    let t = Instant::now();
-    let balanced = tree.is_balanced(args.options);
-    let check_s = t.elapsed().as_secs_f64();
-    println!("dim {D}, level {}, {:?}", args.level, args.options);
+    let refined = tree.clone();
+    let mut balance_times = Vec::new();
+    let mut split = Vec::new();
+    for _ in 0..args.reps {
+        tree = refined.clone();
+        let t = Instant::now();
+        split = balance(&mut tree, args);
+        balance_times.push(t.elapsed().as_secs_f64());
+    }
+    drop(refined);
+    let balance_s = median(&mut balance_times);
+    let mut check_times = Vec::new();
+    let mut balanced = true;
+    for _ in 0..args.reps {
+        let t = Instant::now();
+        balanced &= is_balanced(&tree, args);
+        check_times.push(t.elapsed().as_secs_f64());
+    }
+    let check_s = median(&mut check_times);
+    println!(
+        "dim {D}, level {}, {:?}{}",
+        args.level,
+        args.options,
+        if args.parallel { ", parallel" } else { "" }
+    );
     println!("leaves before balance: {before}");
     println!("leaves after balance:  {}", tree.leaf_count());
     println!("splits:                {}", split.len());
     println!("refine time:           {refine_s:.4} s");
-    println!("balance time:          {balance_s:.4} s");
-    println!("is_balanced time:      {check_s:.4} s ({balanced})");
+    println!(
+        "balance time:          {balance_s:.4} s (median of {})",
+        args.reps
+    );
+    println!(
+        "is_balanced time:      {check_s:.4} s ({balanced}), balance / is_balanced {:.1}",
+        balance_s / check_s
+    );
     println!(
         "tree bytes per leaf:   {:.1}",
         tree.heap_bytes() as f64 / tree.leaf_count() as f64
@@ -129,7 +188,7 @@ fn main() {
     let args = match parse() {
         Ok(a) => a,
         Err(e) => {
-            eprintln!("error: {e}\nusage: balance_fractal --dim 2|3|4 --level L --connect face|edge|corner [--weak] [--incremental]");
+            eprintln!("error: {e}\nusage: balance_fractal --dim 2|3|4 --level L --connect face|edge|corner [--weak] [--incremental] [--reps N] [--parallel]");
             std::process::exit(2);
         }
     };

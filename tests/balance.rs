@@ -33,15 +33,23 @@ fn strength(c: Connectivity) -> u8 {
 enum Algo {
     Levels,
     Chapter,
+    /// `Tree::par_balance` and `Tree::par_is_balanced` (feature `rayon`).
+    #[cfg(feature = "rayon")]
+    Parallel,
 }
 
 impl Algo {
-    const ALL: [Algo; 2] = [Algo::Levels, Algo::Chapter];
+    #[cfg(not(feature = "rayon"))]
+    const ALL: &'static [Algo] = &[Algo::Levels, Algo::Chapter];
+    #[cfg(feature = "rayon")]
+    const ALL: &'static [Algo] = &[Algo::Levels, Algo::Chapter, Algo::Parallel];
 
     fn balance<const D: usize>(self, t: &mut Tree<D>, opts: BalanceOptions) -> Vec<NodeId> {
         match self {
             Algo::Levels => t.balance(opts),
             Algo::Chapter => t.balance_chapter(opts),
+            #[cfg(feature = "rayon")]
+            Algo::Parallel => t.par_balance(opts),
         }
     }
 
@@ -49,6 +57,8 @@ impl Algo {
         match self {
             Algo::Levels => t.is_balanced(opts),
             Algo::Chapter => t.is_balanced_chapter(opts),
+            #[cfg(feature = "rayon")]
+            Algo::Parallel => t.par_is_balanced(opts),
         }
     }
 }
@@ -72,7 +82,7 @@ fn check_balance<const D: usize>(original: &Tree<D>, opts: BalanceOptions) -> Ou
     }
 
     let mut splits = 0;
-    for algo in Algo::ALL {
+    for &algo in Algo::ALL {
         assert_eq!(
             algo.is_balanced(original, opts),
             balanced_before,
@@ -82,7 +92,7 @@ fn check_balance<const D: usize>(original: &Tree<D>, opts: BalanceOptions) -> Ou
         let split = algo.balance(&mut t, opts);
         let after = leaf_cells(&t);
         assert_cells_eq(&after, &expected, &format!("{algo:?} with {opts:?}"));
-        for a in Algo::ALL {
+        for &a in Algo::ALL {
             assert!(a.is_balanced(&t, opts), "{a:?} is_balanced after {algo:?}");
         }
         if brute_checked {
@@ -133,7 +143,7 @@ fn check_balance<const D: usize>(original: &Tree<D>, opts: BalanceOptions) -> Ou
         assert!(split.len() <= bound, "{} splits > {bound}", split.len());
 
         // Idempotent, and every weaker notion of balance holds too.
-        for a in Algo::ALL {
+        for &a in Algo::ALL {
             assert!(a.balance(&mut t.clone(), opts).is_empty());
         }
         for weaker in all_options() {
@@ -341,10 +351,48 @@ fn is_balanced_with_zero_difference_refuses_or_is_exact() {
         };
         let want = brute_is_balanced(&leaves, opts);
         assert!(!want, "level-1 and level-2 leaves are adjacent");
-        for algo in Algo::ALL {
+        for &algo in Algo::ALL {
             if let Ok(got) = std::panic::catch_unwind(|| algo.is_balanced(&t, opts)) {
                 assert_eq!(got, want, "{algo:?}.is_balanced with {opts:?}");
             }
         }
     }
+}
+
+/// The parallel balance and test on p4est's fractal, large enough that the top levels are
+/// expanded and the subtrees shared out: the same leaves as the serial balance, both tests agree
+/// before and after, and one extra split deep down is caught.
+#[cfg(feature = "rayon")]
+#[test]
+fn parallel_balance_equals_serial_on_the_fractal() {
+    #[path = "../benches/workloads/fractal.rs"]
+    mod fractal;
+    fn run<const D: usize>(level: u8) {
+        for connectivity in Connectivity::ALL {
+            let opts = BalanceOptions::new(connectivity);
+            let refined = fractal::fractal::<D>(level);
+            assert!(!refined.is_balanced(opts) && !refined.par_is_balanced(opts));
+            let (mut serial, mut parallel) = (refined.clone(), refined.clone());
+            let s = serial.balance(opts);
+            let p = parallel.par_balance(opts);
+            assert_eq!(s.len(), p.len());
+            assert!(serial
+                .leaves()
+                .map(|(_, c)| c)
+                .eq(parallel.leaves().map(|(_, c)| c)));
+            assert!(parallel.is_balanced(opts) && parallel.par_is_balanced(opts));
+            // split a deepest leaf off the root's lower sides twice more, at its lower corner:
+            // two levels deeper than the leaves below it
+            let depth = parallel.depth();
+            let (leaf, _) = parallel
+                .leaves()
+                .find(|(_, c)| c.level() == depth && c.coords().iter().all(|&x| x > 0))
+                .unwrap();
+            let first = parallel.split(leaf);
+            parallel.split(first);
+            assert!(!parallel.is_balanced(opts) && !parallel.par_is_balanced(opts));
+        }
+    }
+    run::<2>(9);
+    run::<3>(6);
 }

@@ -3,9 +3,12 @@
 
 mod arena;
 mod balance;
+mod balance_check;
 mod incremental;
 mod merge;
 mod neighbors;
+#[cfg(feature = "rayon")]
+mod parallel;
 mod ripple;
 mod traverse;
 

@@ -7,8 +7,9 @@
 //! ([`Tree::neighbor`]) ends at level l - (k - 1) or deeper. (Any leaf adjacent to a child of C is
 //! found in such a direction; directions that stay inside P lead to siblings, which exist; and
 //! directions that leave P on only some of their axes reach the same node as their restriction to
-//! those axes.) So [`Tree::is_balanced`] costs one neighbour search per internal node and outward
-//! direction: (2^D - 1) searches per internal node at most, D with face connectivity.
+//! those axes.) Testing this costs one neighbour search per internal node and outward direction
+//! ((2^D - 1) at most, D with face connectivity); [`Tree::is_balanced`] (`balance_check.rs`)
+//! tests the same condition without searches.
 //!
 //! The repair. Internal nodes are taken by level, deepest first. For each outward direction whose
 //! search ends too shallow, the search's path is followed down, splitting the leaf met at each
@@ -56,76 +57,22 @@ impl<const D: usize> Tree<D> {
     /// If `options.max_level_difference` is 0.
     pub fn balance(&mut self, options: impl Into<BalanceOptions>) -> Vec<NodeId> {
         let options = options.into();
-        assert!(
-            options.max_level_difference >= 1,
-            "max_level_difference must be at least 1"
-        );
-        let slack = options.max_level_difference - 1;
         let outward = outward_directions::<D>(options.connectivity);
-        let mut by_level: Vec<Vec<NodeId>> = vec![Vec::new(); Cell::<D>::MAX_LEVEL as usize + 1];
-        for i in 0..self.node_count() as u32 {
-            let id = NodeId(i);
-            if !self.is_leaf(id) {
-                by_level[self.level(id) as usize].push(id);
-            }
-        }
-        let mut split = Vec::new();
-        for level in (1..by_level.len()).rev() {
-            let Some(min_level) = (level as u8).checked_sub(slack) else {
-                continue;
-            };
-            let nodes = core::mem::take(&mut by_level[level]);
+        let mut levels = Levels::new(self, options);
+        while let Some((nodes, min_level)) = levels.next_level() {
             for &c in &nodes {
                 for &d in &outward[self.child_index(c)] {
-                    self.reach(c, d, min_level, |tree, leaf| {
-                        split.push(leaf);
-                        by_level[tree.level(leaf) as usize].push(leaf);
-                    });
+                    levels.reach(self, c, d, min_level);
                 }
             }
         }
-        split
-    }
-
-    /// `true` when no two adjacent leaves (under `options`' connectivity) differ by more than
-    /// `options.max_level_difference` levels: one neighbour search per internal node and outward
-    /// direction (see the module doc).
-    ///
-    /// # Panics
-    /// If `options.max_level_difference` is 0.
-    ///
-    /// ```
-    /// use orthtree::{BalanceOptions, Connectivity, NodeId, Tree};
-    /// let mut t = Tree::<3>::new();
-    /// let first = t.split(NodeId::ROOT);
-    /// let g = t.split(first);
-    /// t.split(g); // level-3 cells in the corner: still balanced (a corner chain)
-    /// assert!(t.is_balanced(BalanceOptions::new(Connectivity::Corner)));
-    /// ```
-    pub fn is_balanced(&self, options: impl Into<BalanceOptions>) -> bool {
-        let options = options.into();
-        assert!(
-            options.max_level_difference >= 1,
-            "max_level_difference must be at least 1"
-        );
-        let slack = options.max_level_difference - 1;
-        let outward = outward_directions::<D>(options.connectivity);
-        (1..self.node_count() as u32)
-            .map(NodeId)
-            .filter(|&c| !self.is_leaf(c))
-            .all(|c| {
-                let min_level = self.level(c).saturating_sub(slack);
-                outward[self.child_index(c)].iter().all(|&d| {
-                    self.neighbor(c, d)
-                        .is_none_or(|n| self.level(n) >= min_level)
-                })
-            })
+        levels.split
     }
 
     /// Follows the neighbour search from `id` in `direction`, splitting every leaf met above
     /// `min_level` on the way down (calling `on_split` after each split), until the path reaches
     /// `min_level` or its end.
-    fn reach(
+    pub(super) fn reach(
         &mut self,
         id: NodeId,
         direction: Direction,
@@ -148,9 +95,74 @@ impl<const D: usize> Tree<D> {
     }
 }
 
+/// The state of one level-by-level balance (see the module doc): the internal nodes still to
+/// examine, by level, and the splits made so far.
+pub(super) struct Levels {
+    slack: u8,
+    by_level: Vec<Vec<NodeId>>,
+    /// The next level to examine, plus one (0 when done).
+    level: usize,
+    /// The leaves split, each after its parent.
+    pub(super) split: Vec<NodeId>,
+}
+
+impl Levels {
+    /// Lists the internal nodes of `tree` by level.
+    ///
+    /// # Panics
+    /// If `options.max_level_difference` is 0.
+    pub(super) fn new<const D: usize>(tree: &Tree<D>, options: BalanceOptions) -> Levels {
+        assert!(
+            options.max_level_difference >= 1,
+            "max_level_difference must be at least 1"
+        );
+        let mut by_level: Vec<Vec<NodeId>> = vec![Vec::new(); Cell::<D>::MAX_LEVEL as usize + 1];
+        for i in 0..tree.node_count() as u32 {
+            let id = NodeId(i);
+            if !tree.is_leaf(id) {
+                by_level[tree.level(id) as usize].push(id);
+            }
+        }
+        Levels {
+            slack: options.max_level_difference - 1,
+            level: by_level.len(),
+            by_level,
+            split: Vec::new(),
+        }
+    }
+
+    /// The internal nodes of the next level to examine (deepest first, the root's level never)
+    /// and the level their neighbour searches must reach; `None` when every level is done.
+    pub(super) fn next_level(&mut self) -> Option<(Vec<NodeId>, u8)> {
+        while self.level > 1 {
+            self.level -= 1;
+            if let Some(min_level) = (self.level as u8).checked_sub(self.slack) {
+                return Some((core::mem::take(&mut self.by_level[self.level]), min_level));
+            }
+        }
+        None
+    }
+
+    /// [`Tree::reach`], recording each split and the new internal node's level.
+    pub(super) fn reach<const D: usize>(
+        &mut self,
+        tree: &mut Tree<D>,
+        id: NodeId,
+        direction: Direction,
+        min_level: u8,
+    ) {
+        tree.reach(id, direction, min_level, |tree, leaf| {
+            self.split.push(leaf);
+            self.by_level[tree.level(leaf) as usize].push(leaf);
+        });
+    }
+}
+
 /// For each child index c, the directions allowed by `connectivity` that move outward (away from
 /// the parent's centre) on every axis they use: one per non-empty subset of axes.
-fn outward_directions<const D: usize>(connectivity: Connectivity) -> Vec<SmallVec<[Direction; 8]>> {
+pub(super) fn outward_directions<const D: usize>(
+    connectivity: Connectivity,
+) -> Vec<SmallVec<[Direction; 8]>> {
     (0..1usize << D)
         .map(|c| {
             (1..1u8 << D)

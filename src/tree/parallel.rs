@@ -1,0 +1,70 @@
+//! Parallel 2:1 balance and balance test (feature `rayon`): the level-by-level balance of
+//! `ripple.rs` with each level's neighbour searches spread over threads, and the top-down test of
+//! `balance_check.rs` with its subtrees spread over threads.
+//!
+//! Balance. Within one level, the searches that decide which splits are forced only read the
+//! tree, and splits made for one node never undo another's finding: a search that ends deep
+//! enough still does after any split (splits only deepen the tree), and a split for a node at
+//! level l creates internal nodes above level l only (see `ripple.rs`). So each level runs in two
+//! phases: every (node, outward direction) pair is searched in parallel, keeping those that end
+//! too shallow, in node order; then those pairs are repaired one after another with the serial
+//! repair, which searches again and stops at once if an earlier repair already did the work. The
+//! result is the same tree as [`Tree::balance`] (the coarsest balanced refinement is unique);
+//! node ids may differ, since splits happen in another order.
+
+use super::ripple::{outward_directions, Levels};
+use super::{BalanceOptions, NodeId, Tree};
+use rayon::prelude::*;
+
+/// Nodes per parallel task in [`Tree::par_balance`].
+const CHUNK: usize = 4096;
+
+impl<const D: usize> Tree<D> {
+    /// [`Tree::balance`] with each level's neighbour searches spread over rayon's threads (see
+    /// the module doc); gives the same leaves. Returns the leaves split, each after its parent.
+    ///
+    /// ```
+    /// use orthtree::{Connectivity, NodeId, Tree};
+    /// let mut t = Tree::<2>::new();
+    /// let mut v = t.split(NodeId::ROOT);
+    /// for _ in 0..6 {
+    ///     t.split(v);
+    ///     v = t.child(v, 3).unwrap();
+    /// }
+    /// let mut serial = t.clone();
+    /// let split = t.par_balance(Connectivity::Face);
+    /// assert_eq!(split.len(), serial.balance(Connectivity::Face).len());
+    /// assert!(t.par_is_balanced(Connectivity::Face));
+    /// assert!(t.leaves().map(|(_, c)| c).eq(serial.leaves().map(|(_, c)| c)));
+    /// ```
+    ///
+    /// # Panics
+    /// If `options.max_level_difference` is 0.
+    pub fn par_balance(&mut self, options: impl Into<BalanceOptions>) -> Vec<NodeId> {
+        let options = options.into();
+        let outward = outward_directions::<D>(options.connectivity);
+        let mut levels = Levels::new(self, options);
+        while let Some((nodes, min_level)) = levels.next_level() {
+            let tree = &*self;
+            let forced: Vec<(NodeId, usize)> = nodes
+                .par_chunks(CHUNK)
+                .flat_map_iter(|chunk| {
+                    chunk.iter().flat_map(|&c| {
+                        let directions = &outward[tree.child_index(c)];
+                        (0..directions.len())
+                            .filter(move |&i| {
+                                tree.neighbor(c, directions[i])
+                                    .is_some_and(|n| tree.level(n) < min_level)
+                            })
+                            .map(move |i| (c, i))
+                    })
+                })
+                .collect();
+            for (c, i) in forced {
+                let d = outward[self.child_index(c)][i];
+                levels.reach(self, c, d, min_level);
+            }
+        }
+        levels.split
+    }
+}
