@@ -20,6 +20,7 @@
 #![deny(rustdoc::broken_intra_doc_links)]
 #![forbid(unsafe_code)]
 
+pub mod compressed;
 mod error;
 pub mod geom;
 mod hash;
@@ -30,6 +31,7 @@ pub mod points;
 pub mod query;
 pub mod tree;
 
+pub use compressed::{CompressedTree, CompressedTreeBuilder};
 pub use error::Error;
 pub use geom::{morton, validate_point, Aabb, AabbError, Cell, Connectivity, Direction, Scalar};
 pub use image::{ImageTree, RegionTree, VoxelTree};

@@ -158,6 +158,35 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         &self.ranges
     }
 
+    /// Geometry, domain, and the points and items in Morton order (the compressed tree's
+    /// conversion and build take them).
+    pub(crate) fn into_parts(self) -> (RootGeometry<D>, Aabb<f64, D>, Vec<[S; D]>, Vec<T>) {
+        (self.geometry, self.domain, self.points, self.items)
+    }
+
+    /// A tree over `geometry` and `domain` from points in Morton order (checked by the caller),
+    /// without sorting: the compressed tree's conversion back, so both trees share cells.
+    pub(crate) fn from_sorted_parts(
+        parts: (RootGeometry<D>, Aabb<f64, D>, Vec<[S; D]>, Vec<T>),
+        bucket_size: usize,
+        max_depth: u8,
+    ) -> Self {
+        let (geometry, domain, points, items) = parts;
+        let mut tree = PointTree {
+            tree: Tree::new(),
+            geometry,
+            domain,
+            ranges: vec![(0, points.len() as u32)],
+            points,
+            items,
+            bucket_size,
+            max_depth,
+            balanced: None,
+        };
+        tree.subdivide(NodeId::ROOT, |p, i| geometry.key(&p[i].map(Scalar::to_f64)));
+        tree
+    }
+
     /// Heap bytes used: points, items, node runs and topology.
     pub fn heap_bytes(&self) -> usize {
         self.points.capacity() * core::mem::size_of::<[S; D]>()

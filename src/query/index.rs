@@ -4,12 +4,28 @@
 //!
 //! The engines in this module ([`range`](super::range), nearest neighbours, the nearest iterator)
 //! are written against this trait only, so any hierarchy of boxes over a sorted point array (the
-//! point tree, a compressed quadtree) gets every query by implementing five methods.
+//! point tree, a compressed quadtree) gets every query by implementing five methods: the trait's
+//! provided methods ([`SpatialIndex::query`], [`SpatialIndex::k_nearest_by`], ...) are the
+//! engines' entry points, which [`crate::CompressedTree`] calls.
 
+use super::knn::{k_nearest, Neighbor};
+use super::metric::Metric;
+use super::nearest_iter::NearestIter;
+use super::range::{for_each_in, QueryStats, RegionIter};
+use super::region::Region;
+use super::{check_max, check_point, QueryError};
 use crate::geom::{Aabb, Cell, Dim, Scalar};
 use crate::points::PointTree;
 use crate::tree::NodeId;
 use core::ops::Range;
+
+/// The answer of [`SpatialIndex::k_nearest_by`].
+type Neighbors<'a, I, const D: usize> =
+    Vec<Neighbor<'a, <I as SpatialIndex<D>>::Scalar, <I as SpatialIndex<D>>::Item, D>>;
+
+/// A crossing node with at most this many points has them tested without descending (the range
+/// engine's bucket scan; the value [`PointTree`]'s own query methods use).
+const SCAN: usize = 48;
 
 /// A tree of closed boxes over one array of points, each node owning a contiguous run of it.
 ///
@@ -59,6 +75,81 @@ pub trait SpatialIndex<const D: usize> {
     ) -> bool {
         let _ = bbox;
         self.for_each_child(node, f)
+    }
+
+    /// The points in `region` with their items, lazily: the range engine
+    /// ([`PointTree::query`]'s) on this index.
+    fn query<R: Region<D>>(&self, region: R) -> Result<RegionIter<'_, Self, R, D>, QueryError>
+    where
+        Self: Sized,
+    {
+        RegionIter::new(self, region)
+    }
+
+    /// The number of points in `region` ([`PointTree::query_count`]'s engine).
+    fn query_count<R: Region<D>>(&self, region: R) -> Result<usize, QueryError>
+    where
+        Self: Sized,
+    {
+        for_each_in(self, &region, SCAN, |_| {}).map(|s| s.count)
+    }
+
+    /// Calls `visit(point, item)` for every point in `region` ([`PointTree::query_with`]'s
+    /// engine).
+    fn query_with<R: Region<D>>(
+        &self,
+        region: R,
+        mut visit: impl FnMut(&[Self::Scalar; D], &Self::Item),
+    ) -> Result<(), QueryError>
+    where
+        Self: Sized,
+    {
+        let (points, items) = (self.points(), self.items());
+        for_each_in(self, &region, SCAN, |i| visit(&points[i], &items[i])).map(|_| ())
+    }
+
+    /// The count of `region` with the work done, descending to the leaves
+    /// ([`PointTree::query_stats`]'s engine).
+    fn query_stats<R: Region<D>>(&self, region: R) -> Result<QueryStats, QueryError>
+    where
+        Self: Sized,
+    {
+        for_each_in(self, &region, 0, |_| {})
+    }
+
+    /// The `k` nearest points to `p` within distance `max` under `metric`, sorted by distance
+    /// then index ([`PointTree::k_nearest_by`]'s engine).
+    fn k_nearest_by<M: Metric<D>>(
+        &self,
+        p: &[Self::Scalar; D],
+        k: usize,
+        max: f64,
+        metric: &M,
+    ) -> Result<Neighbors<'_, Self, D>, QueryError>
+    where
+        Self: Sized,
+    {
+        let q = p.map(Scalar::to_f64);
+        check_point(&q)?;
+        check_max(max)?;
+        Ok(k_nearest(self, &q, k, max, metric)
+            .into_iter()
+            .map(|(d, i)| Neighbor::at(self, d, i))
+            .collect())
+    }
+
+    /// Every point within distance `max` of `p` under `metric`, nearest first, lazily
+    /// ([`PointTree::nearest_iter_by`]'s engine).
+    fn nearest_iter_by<M: Metric<D>>(
+        &self,
+        p: &[Self::Scalar; D],
+        max: f64,
+        metric: M,
+    ) -> Result<NearestIter<'_, Self, M, D>, QueryError>
+    where
+        Self: Sized,
+    {
+        NearestIter::new(self, p.map(Scalar::to_f64), max, metric)
     }
 }
 

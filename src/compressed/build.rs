@@ -1,0 +1,75 @@
+//! [`CompressedTreeBuilder`]: bulk construction of a [`CompressedTree`] in O(n log n) from the
+//! Morton-sorted points, without the uncompressed tree (exercise 14.5, second part).
+//!
+//! 1. Check the points and choose the root cube exactly as [`PointTreeBuilder`] does (the same
+//!    code: a point tree with one bucket holding everything, which is only the validation, the
+//!    root cube and the Morton sort), so both trees have the same cells.
+//! 2. Walk the sorted keys once with a stack holding the rightmost path of the tree built so far
+//!    ([`Topology::from_sorted`](super::topology::Topology::from_sorted)): consecutive keys part
+//!    at the level of their longest common prefix, and that cell is the only node the new key
+//!    can need besides its leaf. Every node is pushed and popped once: O(n).
+//!
+//! The plain tree's build costs O((d + 1) n) for depth d, which the spread of the points bounds
+//! but their number does not; this one costs O(n log n) whatever the spread.
+
+use super::CompressedTree;
+use crate::error::Error;
+use crate::geom::{Aabb, Scalar};
+use crate::points::PointTreeBuilder;
+
+/// Settings for building a [`CompressedTree`]: the root box (the smallest enclosing cube of the
+/// points unless given).
+///
+/// ```
+/// use orthtree::{Aabb, CompressedTreeBuilder};
+/// let root = Aabb::new([0.0, 0.0], [1.0, 1.0]).unwrap();
+/// let mut t = CompressedTreeBuilder::new().root_box(root).build(&[([0.5, 0.5], 'a')]).unwrap();
+/// t.insert([1.0, 1.0], 'b').unwrap();
+/// assert_eq!(t.node_count(), 3); // the root and two leaves
+/// assert!(t.insert([2.0, 0.0], 'c').is_err()); // outside the root box
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct CompressedTreeBuilder<S, const D: usize> {
+    points: PointTreeBuilder<S, D>,
+}
+
+impl<S: Scalar, const D: usize> Default for CompressedTreeBuilder<S, D> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<S: Scalar, const D: usize> CompressedTreeBuilder<S, D> {
+    /// The smallest enclosing cube of the points as root.
+    pub fn new() -> Self {
+        CompressedTreeBuilder {
+            points: PointTreeBuilder::new().bucket_size(usize::MAX),
+        }
+    }
+
+    /// Every point (built or inserted) must lie in this closed box; the tree subdivides the cube
+    /// with the same lower corner and the box's largest extent as side.
+    pub fn root_box(mut self, root: Aabb<S, D>) -> Self {
+        self.points = self.points.root_box(root);
+        self
+    }
+
+    /// Builds from (point, item) pairs, cloning the items.
+    ///
+    /// Errors: a NaN or infinite coordinate, a point outside the root box (naming the point,
+    /// axis and value), an invalid root box, too many points.
+    pub fn build<T: Clone>(
+        &self,
+        entries: &[([S; D], T)],
+    ) -> Result<CompressedTree<S, T, D>, Error> {
+        Ok(self.points.build(entries)?.into())
+    }
+
+    /// Builds from owned (point, item) pairs, moving the items.
+    pub fn build_from_vec<T>(
+        &self,
+        entries: Vec<([S; D], T)>,
+    ) -> Result<CompressedTree<S, T, D>, Error> {
+        Ok(self.points.build_from_vec(entries)?.into())
+    }
+}

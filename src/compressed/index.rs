@@ -1,0 +1,291 @@
+//! [`CompressedIndex`]: the points of a compressed quadtree with its nodes, and the
+//! [`SpatialIndex`] through which every query engine of [`crate::query`] runs on it.
+//!
+//! # Layout, and why
+//! Updates must cost O(depth), so the points cannot live in one array kept in Morton order (an
+//! insert would shift half of it). They live in *slots* instead: `points[s]`, `keys[s]` and the
+//! tree's `items[s]`, in no particular order; a new point takes the next slot and a removal moves
+//! the last slot into the hole (O(1)). Each leaf (one Morton key) links its slots in a doubly
+//! linked list, so duplicates are added and removed in O(1) too.
+//!
+//! The query engines want each node's points as one contiguous run of an array in Morton order.
+//! That array is a *view*, built lazily on the first query after a change by one pre-order walk
+//! (O(n), no sort: the tree's pre-order is Morton order) and dropped by the next update. The
+//! view holds the points in Morton order, the slot each came from (the index's items, so that
+//! [`super::CompressedTree`] maps them back to its items) and every node's run.
+
+use super::topology::{Topology, NIL};
+use crate::geom::{Aabb, Scalar};
+use crate::points::RootGeometry;
+use crate::query::SpatialIndex;
+use core::ops::Range;
+use std::sync::OnceLock;
+
+/// The nodes and points of a compressed quadtree, as a [`SpatialIndex`] whose items are slot
+/// numbers (positions in [`super::CompressedTree::items`]).
+///
+/// ```
+/// use orthtree::query::SpatialIndex;
+/// use orthtree::CompressedTree;
+/// let t = CompressedTree::new(&[([0.0, 0.0], 'a'), ([1.0, 1.0], 'b')]).unwrap();
+/// let index = t.index();
+/// let (root, _) = index.root().unwrap();
+/// assert_eq!(index.run(root), 0..2);
+/// let mut leaves = 0;
+/// assert!(index.for_each_child(root, |_, _| leaves += 1));
+/// assert_eq!(leaves, 2);
+/// ```
+#[derive(Debug)]
+pub struct CompressedIndex<S, const D: usize> {
+    pub(crate) geometry: RootGeometry<D>,
+    pub(crate) domain: Aabb<f64, D>,
+    pub(crate) topology: Topology<D>,
+    pub(crate) points: Vec<[S; D]>,
+    pub(crate) keys: Vec<u64>,
+    /// The leaf of each slot, and its neighbours in the leaf's list.
+    pub(crate) leaf: Vec<u32>,
+    pub(crate) prev: Vec<u32>,
+    pub(crate) next: Vec<u32>,
+    view: OnceLock<View<S, D>>,
+}
+
+impl<S: Clone, const D: usize> Clone for CompressedIndex<S, D> {
+    fn clone(&self) -> Self {
+        CompressedIndex {
+            geometry: self.geometry,
+            domain: self.domain,
+            topology: self.topology.clone(),
+            points: self.points.clone(),
+            keys: self.keys.clone(),
+            leaf: self.leaf.clone(),
+            prev: self.prev.clone(),
+            next: self.next.clone(),
+            view: OnceLock::new(),
+        }
+    }
+}
+
+/// The points in Morton order, their slots, and every node's run.
+#[derive(Debug)]
+struct View<S, const D: usize> {
+    points: Vec<[S; D]>,
+    slots: Vec<u32>,
+    runs: Vec<(u32, u32)>,
+}
+
+impl<S: Scalar, const D: usize> CompressedIndex<S, D> {
+    /// An index over `geometry` from points in Morton order with their keys; equal keys share a
+    /// leaf, in the order given.
+    pub(crate) fn from_sorted(
+        geometry: RootGeometry<D>,
+        domain: Aabb<f64, D>,
+        points: Vec<[S; D]>,
+        keys: Vec<u64>,
+    ) -> Self {
+        let n = keys.len();
+        let starts: Vec<usize> = (0..n)
+            .filter(|&i| i == 0 || keys[i] != keys[i - 1])
+            .collect();
+        let mut leaf = vec![NIL; n];
+        let mut prev = vec![NIL; n];
+        let mut next = vec![NIL; n];
+        let topology = Topology::from_sorted(starts.iter().map(|&s| keys[s]), |t, node, g| {
+            let (s, e) = (starts[g], starts.get(g + 1).copied().unwrap_or(n));
+            t.nodes[node as usize].head = s as u32;
+            t.nodes[node as usize].tail = (e - 1) as u32;
+            for i in s..e {
+                leaf[i] = node;
+                prev[i] = if i == s { NIL } else { (i - 1) as u32 };
+                next[i] = if i + 1 == e { NIL } else { (i + 1) as u32 };
+            }
+        });
+        CompressedIndex {
+            geometry,
+            domain,
+            topology,
+            points,
+            keys,
+            leaf,
+            prev,
+            next,
+            view: OnceLock::new(),
+        }
+    }
+
+    /// The number of points.
+    pub fn len(&self) -> usize {
+        self.points.len()
+    }
+
+    /// `true` when no point is stored.
+    pub fn is_empty(&self) -> bool {
+        self.points.is_empty()
+    }
+
+    /// Where the cells lie in space (the same map as [`crate::PointTree::geometry`]).
+    pub fn geometry(&self) -> &RootGeometry<D> {
+        &self.geometry
+    }
+
+    fn view(&self) -> &View<S, D> {
+        self.view.get_or_init(|| self.build_view())
+    }
+
+    /// Drops the view (after any change).
+    pub(crate) fn changed(&mut self) {
+        self.view.take();
+    }
+
+    /// The slots in Morton order, each node's run by one pre-order walk with an explicit stack.
+    fn build_view(&self) -> View<S, D> {
+        let t = &self.topology;
+        let mut runs = vec![(0u32, 0u32); t.nodes.len()];
+        let mut slots = Vec::with_capacity(self.len());
+        let mut stack: Vec<(u32, bool)> = Vec::with_capacity(64);
+        if !t.is_empty() {
+            stack.push((0, false));
+        }
+        while let Some((v, closing)) = stack.pop() {
+            let at = slots.len() as u32;
+            if closing {
+                runs[v as usize].1 = at;
+                continue;
+            }
+            runs[v as usize].0 = at;
+            stack.push((v, true));
+            if t.is_leaf(v) {
+                let mut s = t.node(v).head;
+                while s != NIL {
+                    slots.push(s);
+                    s = self.next[s as usize];
+                }
+            } else {
+                let first = stack.len();
+                stack.extend(t.children(v).map(|c| (c, false)));
+                stack[first..].reverse();
+            }
+        }
+        let points = slots.iter().map(|&s| self.points[s as usize]).collect();
+        View {
+            points,
+            slots,
+            runs,
+        }
+    }
+
+    /// Stores `point` with finest key `key` in a new slot at the end of `leaf`'s list.
+    pub(crate) fn push_slot(&mut self, point: [S; D], key: u64, leaf: u32) {
+        let s = self.points.len() as u32;
+        let tail = self.topology.node(leaf).tail;
+        self.points.push(point);
+        self.keys.push(key);
+        self.leaf.push(leaf);
+        self.prev.push(tail);
+        self.next.push(NIL);
+        if tail == NIL {
+            self.topology.nodes[leaf as usize].head = s;
+        } else {
+            self.next[tail as usize] = s;
+        }
+        self.topology.nodes[leaf as usize].tail = s;
+        self.changed();
+    }
+
+    /// Takes slot `s` out of its leaf's list (removing the leaf from the tree if it empties, and
+    /// returning it then, else NIL), then moves the last slot into `s`: call `swap_remove(s)` on
+    /// any array parallel to the slots.
+    pub(crate) fn remove_slot(&mut self, s: usize) -> u32 {
+        let leaf = self.leaf[s];
+        self.unlink(s);
+        let emptied = self.topology.node(leaf).head == NIL;
+        if emptied {
+            self.topology.remove_leaf(leaf);
+        }
+        let last = self.points.len() - 1;
+        if s != last {
+            // Whatever pointed at `last` points at `s` now.
+            let (lp, ln, ll) = (self.prev[last], self.next[last], self.leaf[last]);
+            match lp {
+                NIL => self.topology.nodes[ll as usize].head = s as u32,
+                p => self.next[p as usize] = s as u32,
+            }
+            match ln {
+                NIL => self.topology.nodes[ll as usize].tail = s as u32,
+                x => self.prev[x as usize] = s as u32,
+            }
+        }
+        self.points.swap_remove(s);
+        self.keys.swap_remove(s);
+        self.leaf.swap_remove(s);
+        self.prev.swap_remove(s);
+        self.next.swap_remove(s);
+        self.changed();
+        if emptied {
+            leaf
+        } else {
+            NIL
+        }
+    }
+
+    fn unlink(&mut self, s: usize) {
+        let (p, x, leaf) = (self.prev[s], self.next[s], self.leaf[s]);
+        match p {
+            NIL => self.topology.nodes[leaf as usize].head = x,
+            p => self.next[p as usize] = x,
+        }
+        match x {
+            NIL => self.topology.nodes[leaf as usize].tail = p,
+            x => self.prev[x as usize] = p,
+        }
+    }
+
+    /// The slots of `leaf`, in list order.
+    pub(crate) fn leaf_slots(&self, leaf: u32) -> impl Iterator<Item = usize> + '_ {
+        let mut s = self.topology.node(leaf).head;
+        core::iter::from_fn(move || {
+            (s != NIL).then(|| {
+                let here = s as usize;
+                s = self.next[here];
+                here
+            })
+        })
+    }
+}
+
+impl<S: Scalar, const D: usize> SpatialIndex<D> for CompressedIndex<S, D> {
+    type Scalar = S;
+    type Item = u32;
+    type Node = u32;
+
+    #[inline]
+    fn points(&self) -> &[[S; D]] {
+        &self.view().points
+    }
+
+    #[inline]
+    fn items(&self) -> &[u32] {
+        &self.view().slots
+    }
+
+    fn root(&self) -> Option<(u32, Aabb<f64, D>)> {
+        (!self.topology.is_empty()).then(|| (0, self.geometry.root_box()))
+    }
+
+    #[inline]
+    fn run(&self, node: u32) -> Range<usize> {
+        let (s, e) = self.view().runs[node as usize];
+        s as usize..e as usize
+    }
+
+    #[inline]
+    fn for_each_child(&self, node: u32, mut f: impl FnMut(u32, &Aabb<f64, D>)) -> bool {
+        let t = &self.topology;
+        if t.is_leaf(node) {
+            return false;
+        }
+        for c in t.children(node) {
+            f(c, &self.geometry.cell_box(&t.node(c).cell));
+        }
+        true
+    }
+}

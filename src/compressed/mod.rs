@@ -1,0 +1,329 @@
+//! Compressed quadtrees and the skip quadtree: linear size whatever the input, and O(log n)
+//! expected point location, insert and delete.
+//!
+//! - [`CompressedTree`]: the point quadtree of exercise 14.5 of de Berg, Cheong, van Kreveld and
+//!   Overmars, *Computational Geometry* (chapter 14, and its notes, after Aluru's survey): a node
+//!   only where the points branch. Its nodes are the root cell, every cell whose points fall into
+//!   at least two of its children, and one leaf per distinct point cell at the finest level
+//!   ([`Cell::MAX_LEVEL`]; equal points, or points closer than the finest cell, share a leaf).
+//!   Every node but the root has at least two children, so **a tree over `m` distinct finest
+//!   cells (`m <= n`) has at most `2m` nodes** (`m` leaves, at most `m - 1` branching nodes, and
+//!   the root): O(n) for any input, where the plain tree has O((d + 1) n) for depth d.
+//!   Built from the Morton-sorted points in O(n log n) without the uncompressed tree
+//!   (a stack over the sorted keys, [`CompressedTreeBuilder`]); insert and delete in O(depth).
+//! - Every query of [`crate::query`] runs on it through [`CompressedIndex`], the same engines as
+//!   [`PointTree`]'s.
+//! - `SkipQuadtree`: Eppstein, Goodrich and Sun, "The skip quadtree: a simple dynamic data
+//!   structure for multidimensional data" (SoCG 2005): compressed quadtrees over nested random
+//!   samples, for expected O(log n) point location, insert and delete, and (1 + eps)-approximate
+//!   nearest neighbours.
+//! - `Subdivision` and `PointLocator`: point location in a planar subdivision with a
+//!   quadtree, exercise 14.10.
+//!
+//! Cells are those of [`RootGeometry`]: the same root cube and the same exact Morton keys as
+//! [`PointTree`], so converting between the two trees moves no point to another cell.
+
+mod build;
+mod convert;
+mod index;
+mod query;
+pub(crate) mod topology;
+mod update;
+
+pub use build::CompressedTreeBuilder;
+pub use index::CompressedIndex;
+pub use query::{CompressedNearestIter, CompressedRegionIter};
+
+use crate::error::Error;
+use crate::geom::{Aabb, Cell, Scalar};
+use crate::points::{PointTree, RootGeometry, ValidationError};
+use topology::NIL;
+
+/// A compressed quadtree (D = 2), octree (D = 3) or 2^D-tree storing (point, item) pairs: the
+/// point quadtree with every node that has a single non-empty child removed (exercise 14.5).
+///
+/// ```
+/// use orthtree::{CompressedTree, Quadtree};
+/// // 100 points 2^-40 apart in the unit square: the plain tree is as deep as cells go
+/// let mut pts: Vec<([f64; 2], usize)> =
+///     (0..100).map(|i| ([0.3 + i as f64 * (-40f64).exp2(), 0.7], i)).collect();
+/// pts.extend([([0.0, 0.0], 100), ([1.0, 1.0], 101)]);
+/// let c = CompressedTree::new(&pts).unwrap();
+/// let plain = Quadtree::builder().bucket_size(1).build(&pts).unwrap();
+/// assert!(c.node_count() <= 2 * pts.len());
+/// assert!(plain.node_count() > 10 * c.node_count());
+/// assert_eq!(*c.nearest(&[0.3, 0.7]).unwrap().unwrap().item, 0);
+/// c.validate().unwrap();
+/// ```
+#[derive(Clone, Debug)]
+pub struct CompressedTree<S, T, const D: usize> {
+    index: CompressedIndex<S, D>,
+    items: Vec<T>,
+}
+
+/// Where a point lies in a [`CompressedTree`] or a skip quadtree: the deepest node whose cell
+/// holds it, and the work it took.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Location<const D: usize> {
+    /// The node (an id of [`CompressedIndex`]'s [`SpatialIndex`](crate::SpatialIndex) impl).
+    pub node: u32,
+    /// Its cell.
+    pub cell: Cell<D>,
+    /// `true` when the node is a leaf, i.e. points with the query's finest cell are stored.
+    pub leaf: bool,
+    /// The nodes visited on the way (the start node of every level included).
+    pub touched: usize,
+}
+
+impl<S: Scalar, const D: usize> CompressedTree<S, (), D> {
+    /// A builder for a root box; the item type comes from what it builds.
+    pub fn builder() -> CompressedTreeBuilder<S, D> {
+        CompressedTreeBuilder::new()
+    }
+}
+
+impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
+    /// Builds over the smallest enclosing cube of the points, cloning the items.
+    ///
+    /// Errors: a NaN or infinite coordinate (naming the point and axis); too many points.
+    pub fn new(entries: &[([S; D], T)]) -> Result<Self, Error>
+    where
+        T: Clone,
+    {
+        CompressedTreeBuilder::new().build(entries)
+    }
+
+    /// The tree over `geometry` from points and items in Morton order.
+    pub(crate) fn from_sorted(
+        geometry: RootGeometry<D>,
+        domain: Aabb<f64, D>,
+        points: Vec<[S; D]>,
+        items: Vec<T>,
+    ) -> Self {
+        let keys = points
+            .iter()
+            .map(|p| geometry.key(&p.map(Scalar::to_f64)))
+            .collect();
+        CompressedTree {
+            index: CompressedIndex::from_sorted(geometry, domain, points, keys),
+            items,
+        }
+    }
+
+    /// The number of points.
+    pub fn len(&self) -> usize {
+        self.items.len()
+    }
+
+    /// `true` when no point is stored.
+    pub fn is_empty(&self) -> bool {
+        self.items.is_empty()
+    }
+
+    /// The nodes, the root included; 0 for an empty tree. At most `2m` for `m` distinct finest
+    /// cells, so at most `2n`.
+    pub fn node_count(&self) -> usize {
+        if self.is_empty() {
+            0
+        } else {
+            self.index.topology.len()
+        }
+    }
+
+    /// The number of leaves: the distinct finest cells holding points.
+    pub fn leaf_count(&self) -> usize {
+        let t = &self.index.topology;
+        t.pre_order().filter(|&v| t.is_leaf(v)).count()
+    }
+
+    /// The number of edges on the longest root-to-leaf path (0 for an empty tree).
+    pub fn depth(&self) -> usize {
+        let t = &self.index.topology;
+        let mut deepest = 0;
+        let mut stack = Vec::new();
+        if !t.is_empty() {
+            stack.push((0u32, 0usize));
+        }
+        while let Some((v, d)) = stack.pop() {
+            deepest = deepest.max(d);
+            stack.extend(t.children(v).map(|c| (c, d + 1)));
+        }
+        deepest
+    }
+
+    /// The index the query engines run on: nodes, cells, and the points in Morton order.
+    pub fn index(&self) -> &CompressedIndex<S, D> {
+        &self.index
+    }
+
+    /// Where the cells lie in space.
+    pub fn geometry(&self) -> &RootGeometry<D> {
+        &self.index.geometry
+    }
+
+    /// The closed box every point lies in (given to the builder, or the root cube).
+    pub fn domain(&self) -> &Aabb<f64, D> {
+        &self.index.domain
+    }
+
+    /// The points, in storage (slot) order: build order at first, then changed by updates.
+    pub fn points(&self) -> &[[S; D]] {
+        &self.index.points
+    }
+
+    /// The items, in the order of [`CompressedTree::points`].
+    pub fn items(&self) -> &[T] {
+        &self.items
+    }
+
+    /// Every (point, item), in storage order.
+    pub fn iter(&self) -> impl Iterator<Item = (&[S; D], &T)> {
+        self.index.points.iter().zip(&self.items)
+    }
+
+    /// The cell of every node in pre-order (Morton order, ancestors first), with `true` for a
+    /// leaf.
+    pub fn cells(&self) -> impl Iterator<Item = (Cell<D>, bool)> + '_ {
+        let t = &self.index.topology;
+        t.pre_order().map(move |v| (t.node(v).cell, t.is_leaf(v)))
+    }
+
+    /// The deepest node whose cell holds `point`, walking down from the root: O(depth).
+    ///
+    /// Errors: a NaN or infinite coordinate, or one outside [`CompressedTree::domain`].
+    ///
+    /// ```
+    /// use orthtree::CompressedTree;
+    /// let t = CompressedTree::new(&[([0.0, 0.0], 'a'), ([1.0, 1.0], 'b')]).unwrap();
+    /// assert!(t.locate(&[1.0, 1.0]).unwrap().leaf);
+    /// let empty_spot = t.locate(&[0.9, 0.1]).unwrap();
+    /// assert_eq!((empty_spot.leaf, empty_spot.cell.level(), empty_spot.touched), (false, 0, 1));
+    /// ```
+    pub fn locate(&self, point: &[S; D]) -> Result<Location<D>, Error> {
+        let key = self.query_key(point)?;
+        let mut touched = 0;
+        let v = self.index.topology.descend(0, key, |_| touched += 1);
+        Ok(self.location(v, touched))
+    }
+
+    pub(crate) fn location(&self, v: u32, touched: usize) -> Location<D> {
+        let t = &self.index.topology;
+        Location {
+            node: v,
+            cell: t.node(v).cell,
+            leaf: t.is_leaf(v),
+            touched,
+        }
+    }
+
+    /// The finest key of a query point, checked finite and inside the domain.
+    pub(crate) fn query_key(&self, point: &[S; D]) -> Result<u64, Error> {
+        let p = point.map(Scalar::to_f64);
+        match check(&p, self.domain()) {
+            Err(Bad::NotFinite(axis)) => Err(Error::QueryNotFinite {
+                axis,
+                value: p[axis],
+            }),
+            Err(Bad::Outside(axis)) => Err(Error::QueryOutsideRootBox {
+                axis,
+                value: p[axis],
+                interval: (self.domain().min[axis], self.domain().max[axis]),
+            }),
+            Ok(()) => Ok(self.geometry().key(&p)),
+        }
+    }
+
+    /// The finest key of a point to insert as number `index`, checked like the build's input.
+    pub(crate) fn input_key(&self, point: &[S; D], index: usize) -> Result<u64, Error> {
+        let p = point.map(Scalar::to_f64);
+        match check(&p, self.domain()) {
+            Err(Bad::NotFinite(axis)) => Err(Error::NonFiniteCoordinate {
+                index,
+                axis,
+                value: p[axis],
+            }),
+            Err(Bad::Outside(axis)) => Err(Error::OutsideRootBox {
+                index,
+                axis,
+                value: p[axis],
+                interval: (self.domain().min[axis], self.domain().max[axis]),
+            }),
+            Ok(()) => Ok(self.geometry().key(&p)),
+        }
+    }
+
+    /// Checks every invariant and names the first one broken: the node arena
+    /// (canonical: every non-root internal node branches, leaves are finest cells), every
+    /// point's key and leaf, the leaves' lists, every leaf non-empty, every point in the domain.
+    pub fn validate(&self) -> Result<(), ValidationError> {
+        let fail = |msg: String| Err(ValidationError(msg));
+        let ix = &self.index;
+        let t = &ix.topology;
+        if let Err(e) = t.validate() {
+            return fail(e);
+        }
+        let n = self.len();
+        if [ix.points.len(), ix.keys.len(), ix.leaf.len(), ix.prev.len()] != [n; 4] {
+            return fail("slot arrays of different lengths".into());
+        }
+        let mut listed = 0;
+        for v in t.pre_order().filter(|&v| t.is_leaf(v)) {
+            let mut previous = NIL;
+            for s in ix.leaf_slots(v) {
+                listed += 1;
+                if listed > n || ix.leaf[s] != v || ix.prev[s] != previous {
+                    return fail(format!("slot {s} is badly linked in leaf {v}"));
+                }
+                previous = s as u32;
+            }
+            if previous == NIL || t.node(v).tail != previous {
+                return fail(format!("leaf {v} is empty or its tail is wrong"));
+            }
+        }
+        if listed != n {
+            return fail(format!("{listed} of {n} points are in leaves"));
+        }
+        for (s, p) in ix.points.iter().enumerate() {
+            let q = p.map(Scalar::to_f64);
+            if !self.domain().contains(&q) {
+                return fail(format!("point {s} lies outside the domain"));
+            }
+            let key = self.geometry().key(&q);
+            if key != ix.keys[s] || t.node(ix.leaf[s]).key != key {
+                return fail(format!("point {s} is not in its key's leaf"));
+            }
+        }
+        Ok(())
+    }
+
+    /// The equivalent [`PointTree`] with the same root cube and cells, with `bucket_size` and
+    /// `max_depth` (as [`crate::PointTreeBuilder`] takes them): the points in Morton order, no
+    /// sort. O(n + nodes).
+    ///
+    /// Errors: a zero bucket size; a maximum depth beyond [`Cell::MAX_LEVEL`].
+    pub fn to_point_tree(
+        &self,
+        bucket_size: usize,
+        max_depth: u8,
+    ) -> Result<PointTree<S, T, D>, Error>
+    where
+        T: Clone,
+    {
+        convert::to_point_tree(self, bucket_size, max_depth)
+    }
+}
+
+enum Bad {
+    NotFinite(usize),
+    Outside(usize),
+}
+
+fn check<const D: usize>(p: &[f64; D], domain: &Aabb<f64, D>) -> Result<(), Bad> {
+    if let Some(axis) = p.iter().position(|x| !x.is_finite()) {
+        return Err(Bad::NotFinite(axis));
+    }
+    match (0..D).find(|&a| !(domain.min[a] <= p[a] && p[a] <= domain.max[a])) {
+        Some(axis) => Err(Bad::Outside(axis)),
+        None => Ok(()),
+    }
+}

@@ -1,0 +1,128 @@
+//! Updates of a [`CompressedTree`]: [`CompressedTree::insert`], [`CompressedTree::remove`] and
+//! [`CompressedTree::remove_point`] in O(depth), keeping the tree canonical (equal to a fresh
+//! build over the same points and root box).
+//!
+//! - Insert: walk down from the root to the deepest node whose cell holds the point's finest
+//!   cell (O(depth) nodes, O(2^D) each); there, either the point's leaf exists (a duplicate: one
+//!   more slot in its list), or its quadrant is empty (one new leaf), or the quadrant holds a
+//!   node the point parts from (one new branching node at their common cell, and the leaf).
+//! - Remove: walk down to the point's leaf, unlink the slot; an emptied leaf is removed, and a
+//!   parent left with one child (other than the root) is spliced out. O(depth).
+//!
+//! The points live in slots ([`super::CompressedIndex`]'s module doc): a new point takes the
+//! last slot, a removal moves the last slot into the hole, so no array is shifted. Queries after
+//! an update rebuild the Morton-order view once, in O(n).
+//!
+//! Rules as in [`PointTree`](crate::PointTree)'s updates: the root box is fixed at build time;
+//! a point outside it, or not finite, is refused with an error naming the axis and value
+//! (`index` there is [`CompressedTree::len`] at the call); a removal of a point not stored
+//! changes nothing; among equal points the first stored (list order) is removed.
+
+use super::topology::NIL;
+use super::CompressedTree;
+use crate::error::Error;
+use crate::geom::Scalar;
+
+impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
+    /// Inserts `item` at `point`. O(depth).
+    ///
+    /// Errors: a NaN or infinite coordinate, or one outside [`CompressedTree::domain`]; more
+    /// points than a `u32` can index.
+    ///
+    /// ```
+    /// use orthtree::{Aabb, CompressedTree};
+    /// let root = Aabb::new([0.0, 0.0], [1.0, 1.0]).unwrap();
+    /// let mut t = CompressedTree::builder().root_box(root).build(&[]).unwrap();
+    /// t.insert([0.25, 0.25], 'a').unwrap();
+    /// t.insert([0.25 + 1e-9, 0.25], 'b').unwrap();
+    /// assert_eq!(t.node_count(), 4); // root, their common cell, two leaves
+    /// assert!(t.remove(&[0.25, 0.25], &'a'));
+    /// assert_eq!(t.node_count(), 2);
+    /// t.validate().unwrap();
+    /// ```
+    pub fn insert(&mut self, point: [S; D], item: T) -> Result<(), Error> {
+        let key = self.checked_insert_key(&point)?;
+        let at = self.index.topology.descend(0, key, |_| {});
+        self.insert_below(at, point, key, item);
+        Ok(())
+    }
+
+    /// The key of a point to insert, checked (finiteness, domain, room for one more).
+    pub(crate) fn checked_insert_key(&self, point: &[S; D]) -> Result<u64, Error> {
+        let n = self.len();
+        if n + 1 >= u32::MAX as usize {
+            return Err(Error::TooManyPoints { len: n + 1 });
+        }
+        self.input_key(point, n)
+    }
+
+    /// Stores the point below `at`, the deepest node holding `key`; returns what the tree did.
+    pub(crate) fn insert_below(
+        &mut self,
+        at: u32,
+        point: [S; D],
+        key: u64,
+        item: T,
+    ) -> super::topology::Inserted {
+        let done = self.index.topology.insert(at, key);
+        self.index.push_slot(point, key, done.leaf);
+        self.items.push(item);
+        done
+    }
+
+    /// Removes one stored copy of (`point`, `item`); `false` if there is none. O(depth + copies
+    /// of the point).
+    pub fn remove(&mut self, point: &[S; D], item: &T) -> bool
+    where
+        T: PartialEq,
+    {
+        self.remove_where(point, |t| t == item).is_some()
+    }
+
+    /// Removes one item stored at `point` and returns it; `None` if there is none. O(depth).
+    ///
+    /// ```
+    /// use orthtree::CompressedTree;
+    /// let mut t = CompressedTree::new(&[([0.0, 0.0], 'a'), ([0.0, 0.0], 'b'), ([1.0, 1.0], 'c')]).unwrap();
+    /// assert_eq!(t.remove_point(&[0.0, 0.0]), Some('a'));
+    /// assert_eq!(t.remove_point(&[0.5, 0.5]), None);
+    /// assert_eq!(t.len(), 2);
+    /// ```
+    pub fn remove_point(&mut self, point: &[S; D]) -> Option<T> {
+        self.remove_where(point, |_| true).map(|(item, _)| item)
+    }
+
+    /// Removes the first item at `point` accepted by `accept`; returns it with the leaf removed
+    /// from the tree (NIL if the leaf stays).
+    pub(crate) fn remove_where(
+        &mut self,
+        point: &[S; D],
+        accept: impl Fn(&T) -> bool,
+    ) -> Option<(T, u32)> {
+        let key = self.query_key(point).ok()?;
+        let leaf = self.index.topology.descend(0, key, |_| {});
+        self.remove_in_leaf(leaf, key, point, accept)
+    }
+
+    /// [`CompressedTree::remove_where`] once the deepest node holding `key` is known.
+    pub(crate) fn remove_in_leaf(
+        &mut self,
+        leaf: u32,
+        key: u64,
+        point: &[S; D],
+        accept: impl Fn(&T) -> bool,
+    ) -> Option<(T, u32)> {
+        let t = &self.index.topology;
+        if !t.is_leaf(leaf) || t.node(leaf).key != key {
+            return None;
+        }
+        let same = |a: &[S; D]| (0..D).all(|i| a[i].to_f64() == point[i].to_f64());
+        let s = self
+            .index
+            .leaf_slots(leaf)
+            .find(|&s| same(&self.index.points[s]) && accept(&self.items[s]))?;
+        let removed = self.index.remove_slot(s);
+        let item = self.items.swap_remove(s);
+        Some((item, if removed == NIL { NIL } else { leaf }))
+    }
+}
