@@ -13,7 +13,7 @@
 //!   (a stack over the sorted keys, [`CompressedTreeBuilder`]); insert and delete in O(depth).
 //! - Every query of [`crate::query`] runs on it through [`CompressedIndex`], the same engines as
 //!   [`PointTree`]'s.
-//! - `SkipQuadtree`: Eppstein, Goodrich and Sun, "The skip quadtree: a simple dynamic data
+//! - [`SkipQuadtree`]: Eppstein, Goodrich and Sun, "The skip quadtree: a simple dynamic data
 //!   structure for multidimensional data" (SoCG 2005): compressed quadtrees over nested random
 //!   samples, for expected O(log n) point location, insert and delete, and (1 + eps)-approximate
 //!   nearest neighbours.
@@ -27,12 +27,14 @@ mod build;
 mod convert;
 mod index;
 mod query;
+mod skip;
 pub(crate) mod topology;
 mod update;
 
 pub use build::CompressedTreeBuilder;
 pub use index::CompressedIndex;
 pub use query::{CompressedNearestIter, CompressedRegionIter};
+pub use skip::SkipQuadtree;
 
 use crate::error::Error;
 use crate::geom::{Aabb, Cell, Scalar};
@@ -61,7 +63,7 @@ pub struct CompressedTree<S, T, const D: usize> {
     items: Vec<T>,
 }
 
-/// Where a point lies in a [`CompressedTree`] or a skip quadtree: the deepest node whose cell
+/// Where a point lies in a [`CompressedTree`] or [`SkipQuadtree`]: the deepest node whose cell
 /// holds it, and the work it took.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Location<const D: usize> {

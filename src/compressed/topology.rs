@@ -36,7 +36,6 @@ pub(crate) struct Node<const D: usize> {
     pub next_sibling: u32,
     pub head: u32,
     pub tail: u32,
-    #[allow(dead_code)] // read by the skip quadtree
     pub down: u32,
 }
 

@@ -1,0 +1,386 @@
+//! [`SkipQuadtree`]: Eppstein, Goodrich and Sun, "The skip quadtree: a simple dynamic data
+//! structure for multidimensional data" (SoCG 2005), cited in the notes of chapter 14.
+//!
+//! Level 0 is a [`CompressedTree`] over all points. Level `i + 1` is a compressed quadtree over
+//! a random half of level `i`'s distinct finest cells (a key is in levels `0..=h`, with
+//! `P(h >= i) = 2^-i`, as in a skip list). A branching cell of a sample also branches in every
+//! larger sample, so every node of level `i + 1` has a node with the same cell in level `i`, and
+//! keeps a `down` link to it.
+//!
+//! - Point location: walk down the top level to the deepest node whose cell holds the query,
+//!   follow `down`, continue in the level below, and so on. Each level adds O(1) expected steps
+//!   (between two consecutive nodes of level `i + 1` on the query's path, the nodes of level `i`
+//!   form a geometric run), so a location costs expected O(log n) nodes, whatever the depth.
+//! - Insert: locate, recording the deepest node holding the key on every level; insert into
+//!   levels `0..=h` bottom-up (O(1) per level below the recorded node, [`Topology::insert`]),
+//!   linking each new node to its copy one level down (found by walking up from that level's
+//!   new leaf). Expected O(log n).
+//! - Delete: locate, remove the point from level 0; if its cell emptied, remove its leaf from
+//!   every level holding it (splicing out parents left with one child). Expected O(log n).
+//! - (1 + eps)-approximate nearest neighbour: best-first search (Arya and Mount's priority
+//!   search) on level 0, stopped once no box left can hold a point closer than the best found
+//!   divided by (1 + eps). The approximation is guaranteed; the running time is that of the
+//!   priority search, not the O(eps^(1-d) log n) of the paper's level-by-level search.
+//!
+//! The sample is drawn by hashing each key with a seed ([`SkipQuadtree::with_seed`]): a key's
+//! height is the number of trailing zero bits of the SplitMix64 hash of `key ^ seed`. The
+//! expectations hold for any input chosen without knowledge of the seed, and the structure is
+//! a function of the stored keys and the seed alone, so it equals a fresh build after updates.
+
+use super::topology::{Inserted, Topology, NIL};
+use super::{CompressedTree, Location};
+use crate::error::Error;
+use crate::geom::{Aabb, Scalar};
+use crate::points::ValidationError;
+use crate::query::{Metric, Neighbor, QueryError, SpatialIndex, SquaredEuclidean};
+use smallvec::SmallVec;
+use std::cmp::Ordering;
+use std::collections::{BinaryHeap, HashSet};
+
+/// The deepest node holding a key on every level, level 0 first.
+type Path = SmallVec<[u32; 48]>;
+
+/// The seed used unless one is given.
+const DEFAULT_SEED: u64 = 0x5851_f42d_4c95_7f2d;
+/// No key climbs above this many levels (probability 2^-48 per key).
+const MAX_HEIGHT: u32 = 48;
+
+/// A skip quadtree: a [`CompressedTree`] (level 0, which answers every query of
+/// [`crate::query`] through [`SkipQuadtree::base`]) and compressed quadtrees over nested random
+/// samples above it, for expected O(log n) point location, insert and delete.
+///
+/// ```
+/// use orthtree::compressed::SkipQuadtree;
+/// let pts: Vec<([f64; 2], usize)> = (0..1000).map(|i| ([(i % 37) as f64, (i / 37) as f64], i)).collect();
+/// let mut t = SkipQuadtree::new(&pts).unwrap();
+/// let at = t.locate(&[5.0, 3.0]).unwrap();
+/// assert!(at.leaf);
+/// t.insert([5.5, 3.0], 1000).unwrap();
+/// assert_eq!(t.remove_point(&[5.0, 3.0]), Some(5 + 3 * 37));
+/// let (near, _) = t.approx_nearest(&[5.4, 3.1], 0.5).unwrap();
+/// assert_eq!(*near.unwrap().item, 1000);
+/// t.validate().unwrap();
+/// ```
+#[derive(Clone, Debug)]
+pub struct SkipQuadtree<S, T, const D: usize> {
+    base: CompressedTree<S, T, D>,
+    /// `levels[i]` is level `i + 1`; its `down` links point into level `i`.
+    levels: Vec<Topology<D>>,
+    seed: u64,
+}
+
+impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
+    /// Builds over the smallest enclosing cube of the points, cloning the items.
+    ///
+    /// Errors: those of [`CompressedTree::new`].
+    pub fn new(entries: &[([S; D], T)]) -> Result<Self, Error>
+    where
+        T: Clone,
+    {
+        Ok(Self::with_seed(CompressedTree::new(entries)?, DEFAULT_SEED))
+    }
+
+    /// The skip quadtree over `base` (its level 0), sampling with `seed`. O(n) expected after
+    /// the base is built.
+    pub fn with_seed(base: CompressedTree<S, T, D>, seed: u64) -> Self {
+        let t = &base.index.topology;
+        let mut sample: Vec<u64> = t
+            .pre_order()
+            .filter(|&v| t.is_leaf(v))
+            .map(|v| t.node(v).key)
+            .collect();
+        let mut skip = SkipQuadtree {
+            base,
+            levels: Vec::new(),
+            seed,
+        };
+        for i in 1.. {
+            sample.retain(|&k| skip.height(k) >= i);
+            if sample.is_empty() {
+                break;
+            }
+            let mut level = Topology::from_sorted(sample.iter().copied(), |_, _, _| {});
+            let below = skip.level(i as usize - 1);
+            // Both pre-orders are Morton orders, and the upper cells are among the lower ones.
+            let mut lower = below.pre_order();
+            let ids: Vec<u32> = level.pre_order().collect();
+            for v in ids {
+                let cell = level.node(v).cell;
+                let copy = lower.find(|&w| below.node(w).cell == cell);
+                level.nodes[v as usize].down = copy.unwrap_or(NIL);
+            }
+            skip.levels.push(level);
+        }
+        skip
+    }
+
+    /// The height of a key: its levels are `0..=height`.
+    fn height(&self, key: u64) -> u32 {
+        splitmix64(key ^ self.seed).trailing_zeros().min(MAX_HEIGHT)
+    }
+
+    /// Level `i` (0 is the base's tree).
+    fn level(&self, i: usize) -> &Topology<D> {
+        match i {
+            0 => &self.base.index.topology,
+            _ => &self.levels[i - 1],
+        }
+    }
+
+    /// Level 0: every point, and every query of [`CompressedTree`].
+    pub fn base(&self) -> &CompressedTree<S, T, D> {
+        &self.base
+    }
+
+    /// The number of points.
+    pub fn len(&self) -> usize {
+        self.base.len()
+    }
+
+    /// `true` when no point is stored.
+    pub fn is_empty(&self) -> bool {
+        self.base.is_empty()
+    }
+
+    /// The number of levels, level 0 included (1 for an empty tree).
+    pub fn level_count(&self) -> usize {
+        self.levels.len() + 1
+    }
+
+    /// The nodes of every level (O(n) expected: about twice level 0's).
+    pub fn node_count(&self) -> usize {
+        self.base.node_count() + self.levels.iter().map(Topology::len).sum::<usize>()
+    }
+
+    /// The cell of every node of level `i` (0 is the base) in pre-order, with `true` for a
+    /// leaf; nothing for a level above the top.
+    pub fn level_cells(&self, i: usize) -> impl Iterator<Item = (crate::Cell<D>, bool)> + '_ {
+        let level = (i <= self.levels.len()).then(|| self.level(i));
+        let nodes = level
+            .into_iter()
+            .flat_map(|t| t.pre_order().map(move |v| (t, v)));
+        nodes.map(|(t, v)| (t.node(v).cell, t.is_leaf(v)))
+    }
+
+    /// The deepest node holding `key` on every level, counting the nodes visited.
+    fn search(&self, key: u64, touched: &mut usize) -> Path {
+        let mut path: Path = SmallVec::from_elem(0, self.levels.len() + 1);
+        let mut v = 0;
+        for i in (0..=self.levels.len()).rev() {
+            let level = self.level(i);
+            v = level.descend(v, key, |_| *touched += 1);
+            path[i] = v;
+            v = level.node(v).down;
+        }
+        path
+    }
+
+    /// The deepest node of level 0 whose cell holds `point`, found from the top level down:
+    /// expected O(log n) nodes visited ([`Location::touched`]).
+    ///
+    /// Errors: a NaN or infinite coordinate, or one outside the domain.
+    pub fn locate(&self, point: &[S; D]) -> Result<Location<D>, Error> {
+        let key = self.base.query_key(point)?;
+        let mut touched = 0;
+        let path = self.search(key, &mut touched);
+        Ok(self.base.location(path[0], touched))
+    }
+
+    /// Inserts `item` at `point`. Expected O(log n).
+    ///
+    /// Errors: those of [`CompressedTree::insert`].
+    pub fn insert(&mut self, point: [S; D], item: T) -> Result<(), Error> {
+        let key = self.base.checked_insert_key(&point)?;
+        let path = self.search(key, &mut 0);
+        let mut below = self.base.insert_below(path[0], point, key, item);
+        if !below.created {
+            return Ok(());
+        }
+        for i in 1..=self.height(key) as usize {
+            if self.levels.len() < i {
+                let mut fresh = Topology::new();
+                fresh.nodes[0].down = 0;
+                self.levels.push(fresh);
+            }
+            let start = path.get(i).copied().unwrap_or(0);
+            let done = self.levels[i - 1].insert(start, key);
+            self.link_down(i, done, below);
+            below = done;
+        }
+        Ok(())
+    }
+
+    /// Sets the `down` links of the nodes an insert created on level `i`, `below` being what
+    /// it did on level `i - 1`.
+    fn link_down(&mut self, i: usize, done: Inserted, below: Inserted) {
+        self.levels[i - 1].nodes[done.leaf as usize].down = below.leaf;
+        if done.branch == NIL {
+            return;
+        }
+        let cell = self.levels[i - 1].node(done.branch).cell;
+        let lower = self.level(i - 1);
+        let mut w = below.leaf;
+        while w != NIL && lower.node(w).cell != cell {
+            w = lower.node(w).parent;
+        }
+        self.levels[i - 1].nodes[done.branch as usize].down = w;
+    }
+
+    /// Removes one item stored at `point` and returns it; `None` if there is none. Expected
+    /// O(log n).
+    pub fn remove_point(&mut self, point: &[S; D]) -> Option<T> {
+        self.remove_where(point, |_| true)
+    }
+
+    /// Removes one stored copy of (`point`, `item`); `false` if there is none.
+    pub fn remove(&mut self, point: &[S; D], item: &T) -> bool
+    where
+        T: PartialEq,
+    {
+        self.remove_where(point, |t| t == item).is_some()
+    }
+
+    fn remove_where(&mut self, point: &[S; D], accept: impl Fn(&T) -> bool) -> Option<T> {
+        let key = self.base.query_key(point).ok()?;
+        let path = self.search(key, &mut 0);
+        let (item, removed) = self.base.remove_in_leaf(path[0], key, point, accept)?;
+        if removed != NIL {
+            for (level, &v) in self.levels.iter_mut().zip(&path[1..]) {
+                if level.is_leaf(v) && level.node(v).key == key {
+                    level.remove_leaf(v);
+                }
+            }
+            while self.levels.last().is_some_and(Topology::is_empty) {
+                self.levels.pop();
+            }
+        }
+        Some(item)
+    }
+
+    /// A point whose distance to `p` is at most `(1 + eps)` times the nearest's (Euclidean), and
+    /// the number of nodes the search visited; `None` for an empty tree. `eps = 0` gives the
+    /// exact nearest point.
+    ///
+    /// Errors: a non-finite `p`; `eps` negative or NaN (reported as
+    /// [`QueryError::InvalidMaxDistance`]).
+    pub fn approx_nearest(
+        &self,
+        p: &[S; D],
+        eps: f64,
+    ) -> Result<(Option<Neighbor<'_, S, T, D>>, usize), QueryError> {
+        let q = p.map(Scalar::to_f64);
+        if let Some(axis) = q.iter().position(|x| !x.is_finite()) {
+            return Err(QueryError::NotFinite {
+                axis,
+                value: q[axis].into(),
+            });
+        }
+        if eps.is_nan() || eps < 0.0 {
+            return Err(QueryError::InvalidMaxDistance { value: eps.into() });
+        }
+        let shrink = 1.0 / ((1.0 + eps) * (1.0 + eps));
+        let index = self.base.index();
+        let (points, slots) = (index.points(), index.items());
+        let m = SquaredEuclidean;
+        let mut best = (f64::INFINITY, usize::MAX);
+        let mut visited = 0;
+        let mut heap = BinaryHeap::new();
+        if let Some((root, b)) = index.root() {
+            heap.push(Pending(m.box_distance(&q, &b), root, b));
+        }
+        while let Some(Pending(d, v, b)) = heap.pop() {
+            if d > best.0 * shrink {
+                break;
+            }
+            visited += 1;
+            let leaf = !index.for_each_child_in(v, &b, |c, cb| {
+                let cd = m.box_distance(&q, cb);
+                if cd <= best.0 * shrink {
+                    heap.push(Pending(cd, c, *cb));
+                }
+            });
+            if leaf {
+                for i in index.run(v) {
+                    let di = m.distance(&q, &points[i].map(Scalar::to_f64));
+                    if (di, i) < best {
+                        best = (di, i);
+                    }
+                }
+            }
+        }
+        let found = (best.1 != usize::MAX).then(|| Neighbor {
+            point: &points[best.1],
+            item: &self.base.items()[slots[best.1] as usize],
+            distance: best.0,
+            index: best.1,
+        });
+        Ok((found, visited))
+    }
+
+    /// Checks level 0 ([`CompressedTree::validate`]) and every level above: a valid canonical
+    /// compressed quadtree over exactly the keys of the level below whose height reaches it,
+    /// each node linked down to the node with its cell; no empty level on top.
+    pub fn validate(&self) -> Result<(), ValidationError> {
+        self.base.validate()?;
+        let fail = |msg: String| Err(ValidationError(msg));
+        for i in 1..=self.levels.len() {
+            let (level, below) = (self.level(i), self.level(i - 1));
+            if let Err(e) = level.validate() {
+                return fail(format!("level {i}: {e}"));
+            }
+            let keys = |t: &Topology<D>| -> Vec<u64> {
+                let leaves = t.pre_order().filter(|&v| t.is_leaf(v));
+                leaves.map(|v| t.node(v).key).collect()
+            };
+            let mut want = keys(below);
+            want.retain(|&k| self.height(k) >= i as u32);
+            if keys(level) != want || want.is_empty() {
+                return fail(format!("level {i} does not hold its sample"));
+            }
+            let live: HashSet<u32> = below.pre_order().collect();
+            for v in level.pre_order() {
+                let w = level.node(v).down;
+                if !live.contains(&w) || below.node(w).cell != level.node(v).cell {
+                    return fail(format!("level {i}: node {v} is badly linked down"));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The closed box every point lies in.
+    pub fn domain(&self) -> &Aabb<f64, D> {
+        self.base.domain()
+    }
+}
+
+/// A node waiting in the best-first search, nearest box on top.
+struct Pending<const D: usize>(f64, u32, Aabb<f64, D>);
+
+impl<const D: usize> PartialEq for Pending<D> {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+
+impl<const D: usize> Eq for Pending<D> {}
+
+impl<const D: usize> PartialOrd for Pending<D> {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl<const D: usize> Ord for Pending<D> {
+    fn cmp(&self, other: &Self) -> Ordering {
+        other.0.total_cmp(&self.0).then(other.1.cmp(&self.1))
+    }
+}
+
+/// SplitMix64's output function: a fast hash whose bits are close to independent.
+fn splitmix64(x: u64) -> u64 {
+    let mut z = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
