@@ -84,6 +84,40 @@ impl Board {
         &self.components
     }
 
+    /// The grid unit: the largest power of two dividing U and every vertex coordinate (U itself
+    /// for a board without components). Meshing in this unit makes a board scaled by 2^k mesh
+    /// to the same triangles, scaled.
+    ///
+    /// ```
+    /// use orthtree::mesh::{Board, Component};
+    /// let b = Board::new(64, vec![Component::new(vec![[8, 8], [24, 8], [24, 12], [8, 12]])]).unwrap();
+    /// assert_eq!(b.grid_unit(), 4);
+    /// assert_eq!(Board::new(64, vec![]).unwrap().grid_unit(), 64);
+    /// ```
+    pub fn grid_unit(&self) -> i64 {
+        let coords = self
+            .components
+            .iter()
+            .flat_map(|c| c.outline.iter().flatten());
+        let zeros = coords
+            .filter(|&&c| c != 0)
+            .map(|c| c.trailing_zeros())
+            .fold(self.size.trailing_zeros(), u32::min);
+        1 << zeros
+    }
+
+    /// The same board with every coordinate divided by `unit`, which must divide them all.
+    pub(super) fn scaled_down(&self, unit: i64) -> Board {
+        let scale = |c: &Component| Component {
+            outline: c.outline.iter().map(|p| p.map(|x| x / unit)).collect(),
+            lines: c.lines.clone(),
+        };
+        Board {
+            size: self.size / unit,
+            components: self.components.iter().map(scale).collect(),
+        }
+    }
+
     /// p(S): the sum of the components' perimeters, in grid steps.
     pub fn perimeter_steps(&self) -> u64 {
         self.components.iter().map(Component::perimeter_steps).sum()

@@ -14,11 +14,38 @@
 //! Pass 1 gives each leaf its first id and a few flags; pass 2 ([`Numbering::leaf`]) finds the
 //! ids of a leaf's other corners and midpoints in the leaves east, north and north-east of it.
 //! Memory: 5 bytes per node plus the cells the caller already holds.
+//!
+//! Also [`Grid`], the balanced tree as the later steps read it: the square of a node and point
+//! location just beside a grid point.
 
 use super::Point;
 use crate::geom::Cell;
 use crate::tree::{NodeId, Tree};
 use crate::Direction;
+
+/// The balanced quadtree with the cell of every node, on a board of side `size` grid units.
+#[derive(Clone, Copy)]
+pub(super) struct Grid<'a> {
+    /// The tree.
+    pub tree: &'a Tree<2>,
+    /// The cell of each node, by node index.
+    pub cells: &'a [Cell<2>],
+    /// The board's side in grid units.
+    pub size: i64,
+}
+
+impl Grid<'_> {
+    /// The closed square of a node: (x0, y0, side).
+    pub fn square(&self, id: NodeId) -> (i64, i64, i64) {
+        super::refine::square(&self.cells[id.index()], self.size)
+    }
+
+    /// The leaf below `start` holding the points just beside `p` on the side given by `up`
+    /// (per axis: true for p + e, false for p - e). O(depth).
+    pub fn leaf_at(&self, start: NodeId, p: Point, up: [bool; 2]) -> NodeId {
+        super::refine::leaf_beside(self.tree, start, self.square(start), p, up).0
+    }
+}
 
 // Flags per leaf: bit k (0 S, 1 E, 2 N, 3 W) for a midpoint on side k, then the centre.
 const MID_S: u8 = 1;
@@ -37,9 +64,7 @@ pub(super) struct LeafVertices {
 
 /// Vertex ids and coordinates of the mesh of a balanced quadtree.
 pub(super) struct Numbering<'a> {
-    tree: &'a Tree<2>,
-    cells: &'a [Cell<2>],
-    size: i64,
+    grid: Grid<'a>,
     base: Vec<u32>,
     flags: Vec<u8>,
     /// Coordinates by id.
@@ -47,18 +72,13 @@ pub(super) struct Numbering<'a> {
 }
 
 impl<'a> Numbering<'a> {
-    /// Pass 1. `cut(leaf)` tells whether a leaf is a unit cell cut by a component diagonal
-    /// (which gets no Steiner point).
-    pub fn new(
-        tree: &'a Tree<2>,
-        cells: &'a [Cell<2>],
-        size: i64,
-        cut: impl Fn(NodeId) -> bool,
-    ) -> Self {
+    /// Pass 1. A leaf gets a midpoint on each side whose same-size neighbour is split, and a
+    /// Steiner point at its centre when it has a midpoint. (A unit cell never has one, since no
+    /// leaf is smaller, so a unit cell cut by a component diagonal stays two triangles.)
+    pub fn new(grid: Grid<'a>) -> Self {
+        let (tree, size) = (grid.tree, grid.size);
         let mut n = Numbering {
-            tree,
-            cells,
-            size,
+            grid,
             base: vec![0; tree.node_count()],
             flags: vec![0; tree.node_count()],
             coords: Vec::with_capacity(tree.leaf_count() * 3 / 2),
@@ -71,16 +91,14 @@ impl<'a> Numbering<'a> {
         ];
         for (leaf, cell) in tree.leaves() {
             let mut f = 0u8;
-            if !cut(leaf) {
-                for (k, &d) in sides.iter().enumerate() {
-                    let split = tree
-                        .neighbor(leaf, d)
-                        .is_some_and(|m| tree.level(m) == cell.level() && !tree.is_leaf(m));
-                    f |= (split as u8) << k;
-                }
-                if f != 0 {
-                    f |= CENTRE;
-                }
+            for (k, &d) in sides.iter().enumerate() {
+                let split = tree
+                    .neighbor(leaf, d)
+                    .is_some_and(|m| tree.level(m) == cell.level() && !tree.is_leaf(m));
+                f |= (split as u8) << k;
+            }
+            if f != 0 {
+                f |= CENTRE;
             }
             n.flags[leaf.index()] = f;
             n.base[leaf.index()] = n.coords.len() as u32;
@@ -111,10 +129,7 @@ impl<'a> Numbering<'a> {
     }
 
     fn square(&self, id: NodeId) -> (i64, i64, i64) {
-        let cell = &self.cells[id.index()];
-        let s = self.size >> cell.level();
-        let [x, y] = cell.coords();
-        (x as i64 * s, y as i64 * s, s)
+        self.grid.square(id)
     }
 
     /// The id of `p`, owned by the leaf `owner` (whose closure holds `p` where it owns it).
@@ -123,7 +138,7 @@ impl<'a> Numbering<'a> {
         let f = self.flags[owner.index()];
         let h = s / 2;
         let own = 1 + (f & MID_S != 0) as u32 + (f & MID_W != 0) as u32 + (f & CENTRE != 0) as u32;
-        let (right, top) = (x + s == self.size, y + s == self.size);
+        let (right, top) = (x + s == self.grid.size, y + s == self.grid.size);
         let offset = if p == [x, y] {
             0
         } else if p == [x + h, y] {
@@ -146,38 +161,20 @@ impl<'a> Numbering<'a> {
         self.base[owner.index()] + offset
     }
 
-    /// The leaf below `start` holding the points just beside `p` on the side given by `up`
-    /// (per axis: true for p + e, false for p - e).
-    fn leaf_at(&self, start: NodeId, p: Point, up: [bool; 2]) -> NodeId {
-        let mut v = start;
-        while let Some(first) = self.tree.child(v, 0) {
-            let (x, y, s) = self.square(v);
-            let mid = [x + s / 2, y + s / 2];
-            let bit = |a: usize| if up[a] { p[a] >= mid[a] } else { p[a] > mid[a] };
-            v = NodeId(first.0 + bit(0) as u32 + 2 * bit(1) as u32);
-        }
-        v
-    }
-
-    /// The id of the grid point `p`, which must be a mesh vertex, searched from the root: O(depth).
-    pub fn at(&self, p: Point) -> u32 {
-        let up = [p[0] < self.size, p[1] < self.size];
-        self.owned(self.leaf_at(NodeId::ROOT, p, up), p)
-    }
-
     /// The id of `p` found from `hint`, a node whose cell holds the owner of `p`.
     fn via(&self, hint: NodeId, p: Point) -> u32 {
-        let up = [p[0] < self.size, p[1] < self.size];
-        self.owned(self.leaf_at(hint, p, up), p)
+        let size = self.grid.size;
+        let up = [p[0] < size, p[1] < size];
+        self.owned(self.grid.leaf_at(hint, p, up), p)
     }
 
     /// Pass 2: the ids of a leaf's corners, midpoints and centre.
     pub fn leaf(&self, leaf: NodeId) -> LeafVertices {
         let (x, y, s) = self.square(leaf);
         let (h, f) = (s / 2, self.flags[leaf.index()]);
-        let (right, top) = (x + s == self.size, y + s == self.size);
+        let (right, top) = (x + s == self.grid.size, y + s == self.grid.size);
         let own = self.base[leaf.index()];
-        let neighbour = |d: Direction| self.tree.neighbor(leaf, d).expect("inside the board");
+        let neighbour = |d: Direction| self.grid.tree.neighbor(leaf, d).expect("inside the board");
         let east = (!right).then(|| neighbour(Direction::EAST));
         let north = (!top).then(|| neighbour(Direction::NORTH));
         let id = |p: Point| -> u32 {

@@ -33,9 +33,10 @@ pub(super) struct Validator<'m> {
     boundary_edges: Vec<(u32, u32)>,
     /// The input step on each half-edge, if any.
     input: Vec<Input>,
-    /// The lattice steps of the component edges that are mesh edges, in board order, with their
-    /// component (from 1).
+    /// The mesh edges along the component edges, in board order, with their component (from 1).
     input_steps: Vec<((u32, u32), u32)>,
+    /// One half-edge leaving each used vertex, [`NONE`] for the others.
+    leaving: Vec<u32>,
 }
 
 /// Sorts (edge key, half-edge) pairs as `sort_unstable` would: a counting sort on the edge's
@@ -80,6 +81,7 @@ impl<'m> Validator<'m> {
             boundary_edges: Vec::new(),
             input: Vec::new(),
             input_steps: Vec::new(),
+            leaving: Vec::new(),
         }
     }
 
@@ -359,6 +361,11 @@ impl<'m> Validator<'m> {
         let mut f = Finding::default();
         let mut input = vec![Input::None; self.twins.len()];
         let mut steps = Vec::new();
+        let mut leaving = vec![NONE; self.mesh.vertices.len()];
+        for (h, a, _) in self.half_edges() {
+            leaving[a as usize] = h;
+        }
+        self.leaving = leaving;
         for (ci, comp) in self.board.components().iter().enumerate() {
             let c = ci as u32 + 1;
             for (k, (p, q)) in comp.edges().enumerate() {
@@ -376,13 +383,12 @@ impl<'m> Validator<'m> {
                 };
                 let (mut at, mut from) = (p, first);
                 while at != q {
-                    let next = [at[0] + d[0], at[1] + d[1]];
-                    let to = self.vertex_at(next).filter(|&to| self.is_edge(from, to));
-                    let Some(to) = to else {
+                    let left = (q[0] - at[0]).abs().max((q[1] - at[1]).abs());
+                    let Some((to, next)) = self.step_along(from, at, d, left) else {
                         f.fail(|| {
                             format!(
-                                "component {c} edge {k} {p:?} -> {q:?}: the step {at:?} -> \
-                                 {next:?} is not a mesh edge"
+                                "component {c} edge {k} {p:?} -> {q:?}: no mesh edge leaves \
+                                 {at:?} along it"
                             )
                         });
                         break;
@@ -417,6 +423,51 @@ impl<'m> Validator<'m> {
                     .sum::<usize>(),
                 self.input_steps.len()
             )
+        })
+    }
+
+    /// The half-edges leaving `v`, found by turning around it through the triangles (both ways,
+    /// so that a vertex on the boundary is covered). At most 64 of them: a vertex of a valid mesh
+    /// has at most 8, and the bound keeps a malformed mesh from looping.
+    fn outgoing(&self, v: u32) -> impl Iterator<Item = u32> + '_ {
+        let first = self.leaving[v as usize];
+        let turn = move |back: bool| {
+            let mut h = Some(first).filter(|&h| h != NONE);
+            let mut count = 0;
+            core::iter::from_fn(move || {
+                let g = h?;
+                count += 1;
+                let (t, i) = (g / 3, g % 3);
+                h = if back {
+                    self.twin(g).map(|g| g / 3 * 3 + (g % 3 + 1) % 3)
+                } else {
+                    self.twin(3 * t + (i + 2) % 3)
+                }
+                .filter(|&n| n != first && count < 64);
+                Some(g)
+            })
+        };
+        turn(false).chain(turn(true).skip(1))
+    }
+
+    /// The mesh edge leaving vertex `from` at `at` along the unit lattice direction `d`, ending
+    /// at most `left` steps on: (its other vertex, that vertex's position). Found by turning
+    /// around `from`; where that fails (a malformed mesh, with a hole or a flipped triangle at
+    /// `from`), the unit step to `at + d` is tried as an undirected edge.
+    fn step_along(&self, from: u32, at: Point, d: Point, left: i64) -> Option<(u32, Point)> {
+        let along = self.outgoing(from).find_map(|h| {
+            let to = self.target(h);
+            let q = self.point(to);
+            let v = [q[0] - at[0], q[1] - at[1]];
+            let t = v[0] * d[0] + v[1] * d[1];
+            let t = if d[0] != 0 && d[1] != 0 { t / 2 } else { t };
+            let on_ray = t > 0 && t <= left && v == [t * d[0], t * d[1]];
+            on_ray.then_some((to, q))
+        });
+        along.or_else(|| {
+            let next = [at[0] + d[0], at[1] + d[1]];
+            let to = self.vertex_at(next).filter(|&to| self.is_edge(from, to))?;
+            Some((to, next))
         })
     }
 

@@ -77,9 +77,9 @@ impl Finding {
 ///   and run counter-clockwise around the board; these boundary edges cover each side of the
 ///   board exactly (no gap, no overlap); no two used vertices at the same point.
 /// - `area`: the triangles' total area is U^2.
-/// - `respects_input`: every component edge is a chain of mesh edges. All mesh vertices are
-///   integer points, so the edge is walked in unit lattice steps ((±1, 0), (0, ±1) or (±1, ±1))
-///   and each step must be a mesh edge.
+/// - `respects_input`: every component edge is a chain of mesh edges: walked from its start,
+///   some mesh edge leaves each vertex reached along the component edge's direction without
+///   passing its end (found by turning around the vertex), up to the end.
 /// - `angles`: every angle in [45, 90] degrees, exactly: for the angle between integer vectors
 ///   `u` and `v`, it is at most 90 degrees iff `u·v >= 0`, and at least 45 iff `u·v <= |u×v|`.
 /// - `regions`: across an interior edge that is not an input edge both triangles have the same
@@ -90,7 +90,7 @@ impl Finding {
 /// - `delaunay` (the chapter's exercise 14.3): across every interior edge, the opposite vertex of
 ///   one triangle is not strictly inside the circumcircle of the other (the incircle determinant).
 /// - `segments`: every segment is a mesh edge, none is repeated, and the marked segments are
-///   exactly the board-boundary edges (kind `Boundary`) and the lattice steps of the component
+///   exactly the board-boundary edges (kind `Boundary`) and the mesh edges along the component
 ///   edges (kind `Component(i)`); an outline along the board boundary is marked both ways.
 ///
 /// Why `orientation` and `conforming` together rule out T-junctions (a vertex inside another
@@ -112,8 +112,8 @@ impl Finding {
 ///
 /// Validation never panics on a malformed mesh: indices out of range, vertices outside the board,
 /// missing regions and degenerate triangles are reported, and the triangles concerned skipped.
-/// Time: O(n log n) for n triangles (edges are paired by sorting), plus O(log n) per lattice
-/// step of the component edges and O(1) expected per segment.
+/// Time: O(n log n) for n triangles (edges are paired by sorting), plus O(1) per mesh edge
+/// along the component edges and O(1) expected per segment.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ValidationReport {
     /// Vertex indices in range, one region per triangle, vertices inside the board.
