@@ -124,7 +124,7 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
         let mut keyed: Vec<u128> = (0..n)
             .map(|i| ((geometry.key(&point(i).map(Scalar::to_f64)) as u128) << 32) | i as u128)
             .collect();
-        keyed.sort_unstable();
+        super::radix::sort_keyed(&mut keyed);
         let mut points = Vec::with_capacity(n);
         let mut items = Vec::with_capacity(n);
         for &k in &keyed {
@@ -172,6 +172,15 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
         if n >= u32::MAX as usize {
             return Err(Error::TooManyPoints { len: n });
         }
+        // One pass: every coordinate finite, and inside the root box or folded into the bounds.
+        let root = match &self.root {
+            Some(root) => Some(Aabb::new(root.min, root.max)?.to_f64()),
+            None => None,
+        };
+        let mut bounds = Aabb {
+            min: [f64::INFINITY; D],
+            max: [f64::NEG_INFINITY; D],
+        };
         for index in 0..n {
             let p = point(index);
             if let Err(axis) = crate::geom::validate_point(p) {
@@ -181,12 +190,9 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
                     value: p[axis].to_f64(),
                 });
             }
-        }
-        match &self.root {
-            Some(root) => {
-                let root = Aabb::new(root.min, root.max)?.to_f64();
-                for index in 0..n {
-                    let p = point(index).map(Scalar::to_f64);
+            let p = p.map(Scalar::to_f64);
+            match &root {
+                Some(root) => {
                     if let Some(axis) =
                         (0..D).find(|&a| !(root.min[a] <= p[a] && p[a] <= root.max[a]))
                     {
@@ -199,20 +205,17 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
                         });
                     }
                 }
-                Ok((RootGeometry::enclosing(&root), root))
-            }
-            None => {
-                let mut bounds = Aabb {
-                    min: [f64::INFINITY; D],
-                    max: [f64::NEG_INFINITY; D],
-                };
-                for index in 0..n {
-                    for (a, x) in point(index).iter().enumerate() {
-                        let x = Scalar::to_f64(*x);
+                None => {
+                    for (a, x) in p.into_iter().enumerate() {
                         bounds.min[a] = bounds.min[a].min(x);
                         bounds.max[a] = bounds.max[a].max(x);
                     }
                 }
+            }
+        }
+        match root {
+            Some(root) => Ok((RootGeometry::enclosing(&root), root)),
+            None => {
                 if n == 0 {
                     bounds = Aabb {
                         min: [0.0; D],

@@ -8,6 +8,7 @@
 mod build;
 mod geometry;
 mod leaves;
+mod radix;
 mod update;
 
 pub use build::{PointTreeBuilder, DEFAULT_BUCKET_SIZE};
