@@ -1,8 +1,10 @@
 //! Insert and remove on `PointTree` (issue 4, item 2): after every update the tree validates, and
 //! it has exactly the leaves (cells) and the points per leaf (as multisets) of a tree freshly built
-//! from the same (point, item) pairs with the same root box, bucket size and maximum depth.
+//! from the same (point, item) pairs with the same root box, bucket size and maximum depth; and
+//! every query kind (box, ball, half-space, k-nearest) agrees with a brute-force scan of the
+//! stored pairs.
 
-use orthtree::{Aabb, Cell, Error, PointTree, PointTreeBuilder};
+use orthtree::{Aabb, Ball, Cell, Error, HalfSpace, PointTree, PointTreeBuilder};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 
@@ -37,6 +39,58 @@ fn leaf_structure<const D: usize>(t: &PointTree<f64, u8, D>) -> Leaves<D> {
             (l.cell, pts)
         })
         .collect()
+}
+
+type Pairs<const D: usize> = Vec<([u64; D], u8)>;
+
+/// Sorted (point bits, item) pairs.
+fn sorted_pairs<'a, const D: usize>(it: impl Iterator<Item = (&'a [f64; D], &'a u8)>) -> Pairs<D> {
+    let mut v: Pairs<D> = it.map(|(p, &i)| (p.map(f64::to_bits), i)).collect();
+    v.sort_unstable();
+    v
+}
+
+/// Box, ball and half-space queries whose boundaries pass through grid points, and k-nearest
+/// distances, against a scan of `model`.
+fn check_queries<const D: usize>(
+    t: &PointTree<f64, u8, D>,
+    model: &[([f64; D], u8)],
+) -> Result<(), TestCaseError> {
+    let all = || model.iter().map(|(p, i)| (p, i));
+    let (lo, hi) = ([0.25; D], [0.625; D]);
+    let in_box = |p: &[f64; D]| (0..D).all(|a| lo[a] <= p[a] && p[a] <= hi[a]);
+    prop_assert_eq!(
+        sorted_pairs(t.in_box(&Aabb::new(lo, hi).unwrap()).unwrap()),
+        sorted_pairs(all().filter(|(p, _)| in_box(p)))
+    );
+    let (c, r) = ([0.5; D], 0.375);
+    let d2 = |p: &[f64; D], q: &[f64; D]| (0..D).map(|a| (p[a] - q[a]).powi(2)).sum::<f64>();
+    prop_assert_eq!(
+        sorted_pairs(t.query(Ball::new(c, r).unwrap()).unwrap()),
+        sorted_pairs(all().filter(|(p, _)| d2(p, &c) <= r * r))
+    );
+    let mut normal = [0.0; D];
+    normal[0] = 1.0;
+    normal[D - 1] += 1.0;
+    let plane = HalfSpace::new(normal, 0.75).unwrap();
+    let below = |p: &[f64; D]| (0..D).map(|a| normal[a] * p[a]).sum::<f64>() <= 0.75;
+    prop_assert_eq!(
+        sorted_pairs(t.query(plane).unwrap()),
+        sorted_pairs(all().filter(|(p, _)| below(p)))
+    );
+    for q in [[0.5; D], [0.0; D], [0.9; D]] {
+        let got: Vec<f64> = t
+            .k_nearest(&q, 5)
+            .unwrap()
+            .iter()
+            .map(|n| n.distance)
+            .collect();
+        let mut want: Vec<f64> = model.iter().map(|(p, _)| d2(p, &q)).collect();
+        want.sort_by(f64::total_cmp);
+        want.truncate(5);
+        prop_assert_eq!(got, want);
+    }
+    Ok(())
 }
 
 fn builder<const D: usize>(bucket: usize, max_depth: Option<u8>) -> PointTreeBuilder<f64, D> {
@@ -100,6 +154,7 @@ fn run<const D: usize>(
         prop_assert_eq!(leaf_structure(&t), leaf_structure(&fresh));
         prop_assert_eq!(t.leaf_count(), fresh.leaf_count());
         prop_assert_eq!(t.depth(), fresh.depth());
+        check_queries(&t, &model)?;
     }
     Ok(())
 }

@@ -118,12 +118,10 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
     where
         S: 'p,
     {
-        let (geometry, domain) = self.settle(n, &point)?;
-        let max_depth = self.max_depth.unwrap_or(Cell::<D>::MAX_LEVEL);
-        // (key << 32 | index) sorts like (key, index) and faster.
-        let mut keyed: Vec<u128> = (0..n)
-            .map(|i| ((geometry.key(&point(i).map(Scalar::to_f64)) as u128) << 32) | i as u128)
-            .collect();
+        let root = self.check_settings(n)?;
+        let bounds = self.scan(root.as_ref(), 0..n, &point)?;
+        let (geometry, domain) = settle(root, bounds, n);
+        let mut keyed: Vec<u128> = (0..n).map(|i| key_pair(&geometry, point(i), i)).collect();
         super::radix::sort_keyed(&mut keyed);
         let mut points = Vec::with_capacity(n);
         let mut items = Vec::with_capacity(n);
@@ -132,7 +130,20 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
             points.push(p);
             items.push(item);
         }
-        let keys: Vec<u64> = keyed.into_iter().map(|k| (k >> 32) as u64).collect();
+        Ok(self.assemble(geometry, domain, &keyed, points, items))
+    }
+
+    /// The tree over points and items already in key order (`keyed`, sorted): the root holds
+    /// them all and is subdivided down to the buckets.
+    pub(super) fn assemble<T>(
+        &self,
+        geometry: RootGeometry<D>,
+        domain: Aabb<f64, D>,
+        keyed: &[u128],
+        points: Vec<[S; D]>,
+        items: Vec<T>,
+    ) -> PointTree<S, T, D> {
+        let n = points.len();
         let mut tree = PointTree {
             tree: Tree::new(),
             geometry,
@@ -141,23 +152,15 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
             items,
             ranges: vec![(0, n as u32)],
             bucket_size: self.bucket_size,
-            max_depth,
+            max_depth: self.max_depth.unwrap_or(Cell::<D>::MAX_LEVEL),
             balanced: None,
         };
-        tree.subdivide(NodeId::ROOT, |_, i| keys[i]);
-        Ok(tree)
+        tree.subdivide(NodeId::ROOT, |_, i| (keyed[i] >> 32) as u64);
+        tree
     }
 
-    /// Checks the settings and every point; returns the root geometry and the domain points must
-    /// lie in.
-    fn settle<'p>(
-        &self,
-        n: usize,
-        point: &impl Fn(usize) -> &'p [S; D],
-    ) -> Result<(RootGeometry<D>, Aabb<f64, D>), Error>
-    where
-        S: 'p,
-    {
+    /// Checks the settings for `n` points; returns the root box given, if any, as `f64`.
+    pub(super) fn check_settings(&self, n: usize) -> Result<Option<Aabb<f64, D>>, Error> {
         if self.bucket_size == 0 {
             return Err(Error::ZeroBucketSize);
         }
@@ -172,16 +175,28 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
         if n >= u32::MAX as usize {
             return Err(Error::TooManyPoints { len: n });
         }
-        // One pass: every coordinate finite, and inside the root box or folded into the bounds.
-        let root = match &self.root {
-            Some(root) => Some(Aabb::new(root.min, root.max)?.to_f64()),
-            None => None,
-        };
+        match &self.root {
+            Some(root) => Ok(Some(Aabb::new(root.min, root.max)?.to_f64())),
+            None => Ok(None),
+        }
+    }
+
+    /// Checks the points with indices in `range` (finite, inside `root` when given) and returns
+    /// their bounding box (min above max for an empty range).
+    pub(super) fn scan<'p>(
+        &self,
+        root: Option<&Aabb<f64, D>>,
+        range: core::ops::Range<usize>,
+        point: &impl Fn(usize) -> &'p [S; D],
+    ) -> Result<Aabb<f64, D>, Error>
+    where
+        S: 'p,
+    {
         let mut bounds = Aabb {
             min: [f64::INFINITY; D],
             max: [f64::NEG_INFINITY; D],
         };
-        for index in 0..n {
+        for index in range {
             let p = point(index);
             if let Err(axis) = crate::geom::validate_point(p) {
                 return Err(Error::NonFiniteCoordinate {
@@ -191,40 +206,59 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
                 });
             }
             let p = p.map(Scalar::to_f64);
-            match &root {
-                Some(root) => {
-                    if let Some(axis) =
-                        (0..D).find(|&a| !(root.min[a] <= p[a] && p[a] <= root.max[a]))
-                    {
-                        let interval = (root.min[axis], root.max[axis]);
-                        return Err(Error::OutsideRootBox {
-                            index,
-                            axis,
-                            value: p[axis],
-                            interval,
-                        });
-                    }
+            if let Some(root) = root {
+                if let Some(axis) = (0..D).find(|&a| !(root.min[a] <= p[a] && p[a] <= root.max[a]))
+                {
+                    let interval = (root.min[axis], root.max[axis]);
+                    return Err(Error::OutsideRootBox {
+                        index,
+                        axis,
+                        value: p[axis],
+                        interval,
+                    });
                 }
-                None => {
-                    for (a, x) in p.into_iter().enumerate() {
-                        bounds.min[a] = bounds.min[a].min(x);
-                        bounds.max[a] = bounds.max[a].max(x);
-                    }
-                }
+            }
+            for (a, x) in p.into_iter().enumerate() {
+                bounds.min[a] = bounds.min[a].min(x);
+                bounds.max[a] = bounds.max[a].max(x);
             }
         }
-        match root {
-            Some(root) => Ok((RootGeometry::enclosing(&root), root)),
-            None => {
-                if n == 0 {
-                    bounds = Aabb {
-                        min: [0.0; D],
-                        max: [1.0; D],
-                    };
+        Ok(bounds)
+    }
+}
+
+/// The pair `key << 32 | index` of point `p` with input index `index`: sorting the pairs sorts
+/// by (key, index), faster than sorting tuples.
+#[inline]
+pub(super) fn key_pair<S: Scalar, const D: usize>(
+    geometry: &RootGeometry<D>,
+    p: &[S; D],
+    index: usize,
+) -> u128 {
+    ((geometry.key(&p.map(Scalar::to_f64)) as u128) << 32) | index as u128
+}
+
+/// The root geometry and the domain points must lie in: the root box given, or the smallest
+/// enclosing cube of the points' `bounds` (the unit box when there are no points: the chapter's
+/// linear scan of the extreme points gives `bounds`).
+pub(super) fn settle<const D: usize>(
+    root: Option<Aabb<f64, D>>,
+    bounds: Aabb<f64, D>,
+    n: usize,
+) -> (RootGeometry<D>, Aabb<f64, D>) {
+    match root {
+        Some(root) => (RootGeometry::enclosing(&root), root),
+        None => {
+            let bounds = if n == 0 {
+                Aabb {
+                    min: [0.0; D],
+                    max: [1.0; D],
                 }
-                let geometry = RootGeometry::enclosing(&bounds);
-                Ok((geometry, geometry.root_box()))
-            }
+            } else {
+                bounds
+            };
+            let geometry = RootGeometry::enclosing(&bounds);
+            (geometry, geometry.root_box())
         }
     }
 }

@@ -8,6 +8,8 @@
 mod build;
 mod geometry;
 mod leaves;
+#[cfg(feature = "rayon")]
+mod parallel;
 mod radix;
 mod update;
 

@@ -23,59 +23,122 @@ pub(super) fn sort_keyed(pairs: &mut [u128]) {
         return;
     }
     let mut buffer = vec![0u128; pairs.len()];
-    // (start, end, bit shift of the next byte within the key, data in `pairs` rather than `buffer`)
-    let mut stack = vec![(0usize, pairs.len(), 56u32, true)];
+    sort_run(pairs, &mut buffer, 56, true);
+}
+
+/// [`sort_keyed`] with the runs after the first byte that differs sorted in parallel.
+#[cfg(feature = "rayon")]
+pub(super) fn par_sort_keyed(pairs: &mut [u128]) {
+    use rayon::prelude::*;
+    if pairs.len() <= SMALL {
+        pairs.sort_unstable();
+        return;
+    }
+    let mut shift = 56u32;
+    let counts = loop {
+        let counts = count_bytes(pairs, shift);
+        if counts.iter().all(|&c| c < pairs.len()) {
+            break counts;
+        }
+        match shift.checked_sub(8) {
+            Some(next) => shift = next,
+            None => return, // every key equal: already in input order
+        }
+    };
+    let mut buffer = vec![0u128; pairs.len()];
+    scatter(pairs, &mut buffer, shift, &counts);
+    let Some(next) = shift.checked_sub(8) else {
+        pairs.copy_from_slice(&buffer);
+        return;
+    };
+    // the 256 runs, as disjoint pieces of both arrays
+    let mut runs = Vec::with_capacity(256);
+    let (mut rest_pairs, mut rest_buffer) = (&mut *pairs, &mut buffer[..]);
+    for &count in &counts {
+        let (p, ps) = rest_pairs.split_at_mut(count);
+        let (b, bs) = rest_buffer.split_at_mut(count);
+        if count > 0 {
+            runs.push((p, b));
+        }
+        (rest_pairs, rest_buffer) = (ps, bs);
+    }
+    runs.into_par_iter()
+        .for_each(|(p, b)| sort_run(p, b, next, false));
+}
+
+/// The byte at `shift` (within the key) of every pair, counted.
+fn count_bytes(pairs: &[u128], shift: u32) -> [usize; 256] {
     let mut counts = [0usize; 256];
+    for &p in pairs {
+        counts[byte(p, shift)] += 1;
+    }
+    counts
+}
+
+#[inline]
+fn byte(pair: u128, shift: u32) -> usize {
+    ((pair >> (32 + shift)) & 0xFF) as usize
+}
+
+/// Moves `src` into `dst` ordered by the byte at `shift`, stably; `counts` from [`count_bytes`].
+fn scatter(src: &[u128], dst: &mut [u128], shift: u32, counts: &[usize; 256]) {
+    let mut offsets = [0usize; 256];
+    let mut at = 0;
+    for (offset, &count) in offsets.iter_mut().zip(counts) {
+        *offset = at;
+        at += count;
+    }
+    for &p in src {
+        let b = byte(p, shift);
+        dst[offsets[b]] = p;
+        offsets[b] += 1;
+    }
+}
+
+/// Sorts one run whose pairs agree on every key byte above `shift`: the run is in `pairs` when
+/// `in_pairs`, else in `buffer` (the same positions), and ends sorted in `pairs`.
+fn sort_run(pairs: &mut [u128], buffer: &mut [u128], shift: u32, in_pairs: bool) {
+    // (start, end, bit shift of the next byte within the key, data in `pairs` rather than `buffer`)
+    let mut stack = vec![(0usize, pairs.len(), shift, in_pairs)];
     while let Some((start, end, shift, in_pairs)) = stack.pop() {
         let (src, dst) = if in_pairs {
-            (&mut *pairs, &mut buffer[..])
+            (&mut *pairs, &mut *buffer)
         } else {
-            (&mut buffer[..], &mut *pairs)
+            (&mut *buffer, &mut *pairs)
         };
+        let (src, dst) = (&mut src[start..end], &mut dst[start..end]);
         if end - start <= SMALL {
-            src[start..end].sort_unstable();
+            src.sort_unstable();
             if !in_pairs {
-                dst[start..end].copy_from_slice(&src[start..end]);
+                dst.copy_from_slice(src);
             }
             continue;
         }
-        let byte = |p: u128| ((p >> (32 + shift)) & 0xFF) as usize;
-        counts.fill(0);
-        for &p in &src[start..end] {
-            counts[byte(p)] += 1;
-        }
+        let counts = count_bytes(src, shift);
         if counts.iter().any(|&c| c == end - start) {
             // one byte value over the whole run: nothing to move
             match shift.checked_sub(8) {
                 Some(next) => stack.push((start, end, next, in_pairs)),
                 // every key byte consumed: equal keys, in input order; bring them home
                 None if in_pairs => {}
-                None => dst[start..end].copy_from_slice(&src[start..end]),
+                None => dst.copy_from_slice(src),
             }
             continue;
         }
-        let mut offsets = [0usize; 256];
+        scatter(src, dst, shift, &counts);
         let mut at = start;
-        for (offset, &count) in offsets.iter_mut().zip(&counts) {
-            *offset = at;
-            at += count;
-        }
-        let bounds = offsets;
-        for &p in &src[start..end] {
-            let b = byte(p);
-            dst[offsets[b]] = p;
-            offsets[b] += 1;
-        }
-        for b in 0..256 {
-            let (s, e) = (bounds[b], offsets[b]);
+        for &count in &counts {
+            let (s, e) = (at, at + count);
+            at = e;
             if s == e {
                 continue;
             }
             match shift.checked_sub(8) {
                 Some(next) => stack.push((s, e, next, !in_pairs)),
-                // every key byte consumed: equal keys, already in input order (stable scatter)
-                // (the run now lives in `dst`; bring it home if that is the buffer)
-                None if in_pairs => src[s..e].copy_from_slice(&dst[s..e]),
+                // every key byte consumed: the run is sorted in `dst`; bring it home
+                None if in_pairs => {
+                    src[s - start..e - start].copy_from_slice(&dst[s - start..e - start])
+                }
                 None => {}
             }
         }
@@ -94,8 +157,15 @@ mod tests {
             .collect();
         let mut expected = pairs.clone();
         expected.sort_unstable();
+        let mut parallel = pairs.clone();
         sort_keyed(&mut pairs);
         assert_eq!(pairs, expected);
+        #[cfg(feature = "rayon")]
+        {
+            par_sort_keyed(&mut parallel);
+            assert_eq!(parallel, expected);
+        }
+        let _ = &mut parallel;
     }
 
     #[test]

@@ -19,6 +19,8 @@
 //! agrees with its point test: a query returns exactly the points its region's
 //! [`Region::contains`] accepts.
 
+#[cfg(feature = "rayon")]
+mod batch;
 mod index;
 mod knn;
 mod metric;
@@ -26,6 +28,8 @@ mod nearest_iter;
 pub mod range;
 mod region;
 
+#[cfg(feature = "rayon")]
+pub use batch::BatchError;
 pub use index::{PointNode, SpatialIndex};
 pub use knn::Neighbor;
 pub use metric::{Chebyshev, Manhattan, Metric, SquaredEuclidean};

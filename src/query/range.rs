@@ -61,7 +61,7 @@ type Stack<N, const D: usize> = SmallVec<[(N, Aabb<f64, D>, bool); 48]>;
 /// classifying and stacking up to 2^D children (kd-trees scan buckets of this size). Used by the
 /// iterator, the count and the visitor; [`PointTree::query_stats`] runs the chapter's algorithm
 /// as stated (descend to the leaves), so that its counts are the analysis's.
-const SCAN: usize = 48;
+pub(crate) const SCAN: usize = 48;
 
 /// Iterator returned by [`PointTree::query`] (and [`PointTree::in_box`], [`PointTree::in_ball`],
 /// [`PointTree::in_half_space`]): the points in a region with their items, lazily, in Morton

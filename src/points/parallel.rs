@@ -1,0 +1,67 @@
+//! Parallel bulk build (feature `rayon`): the Morton-sort build of [`PointTreeBuilder`] with its
+//! data-parallel stages spread over rayon's threads.
+//!
+//! The stages are the serial build's (see `build.rs`): checking the points and finding their
+//! bounds (in chunks, the first error in input order reported, as serially), computing the keys,
+//! the radix sort (after the first byte that differs, its 256 runs in parallel), and gathering
+//! points and items into key order. Cutting the sorted run into nodes stays serial: it is a small
+//! part of the time. The result is the same tree as [`PointTreeBuilder::build`] gives.
+
+use super::build::{key_pair, settle};
+use super::{PointTree, PointTreeBuilder};
+use crate::error::Error;
+use crate::geom::{Aabb, Scalar};
+use rayon::prelude::*;
+
+/// Points per parallel task when checking the input.
+const CHUNK: usize = 1 << 16;
+
+impl<S: Scalar + Send + Sync, const D: usize> PointTreeBuilder<S, D> {
+    /// [`PointTreeBuilder::build`] on rayon's threads: the same tree, the same errors.
+    ///
+    /// ```
+    /// use orthtree::Quadtree;
+    /// let pts: Vec<([f64; 2], usize)> = (0..10_000)
+    ///     .map(|i| ([(i % 100) as f64, (i / 100) as f64], i))
+    ///     .collect();
+    /// let serial = Quadtree::builder().build(&pts).unwrap();
+    /// let parallel = Quadtree::builder().par_build(&pts).unwrap();
+    /// assert_eq!(parallel.items(), serial.items());
+    /// assert_eq!(parallel.leaf_count(), serial.leaf_count());
+    /// ```
+    pub fn par_build<T: Clone + Send + Sync>(
+        &self,
+        entries: &[([S; D], T)],
+    ) -> Result<PointTree<S, T, D>, Error> {
+        let n = entries.len();
+        let root = self.check_settings(n)?;
+        let point = |i: usize| &entries[i].0;
+        let scans: Vec<Result<Aabb<f64, D>, Error>> = (0..n.div_ceil(CHUNK))
+            .into_par_iter()
+            .map(|c| self.scan(root.as_ref(), c * CHUNK..((c + 1) * CHUNK).min(n), &point))
+            .collect();
+        let mut bounds = Aabb {
+            min: [f64::INFINITY; D],
+            max: [f64::NEG_INFINITY; D],
+        };
+        for scan in scans {
+            let b = scan?;
+            for a in 0..D {
+                bounds.min[a] = bounds.min[a].min(b.min[a]);
+                bounds.max[a] = bounds.max[a].max(b.max[a]);
+            }
+        }
+        let (geometry, domain) = settle(root, bounds, n);
+        let mut keyed: Vec<u128> = entries
+            .par_iter()
+            .enumerate()
+            .map(|(i, (p, _))| key_pair(&geometry, p, i))
+            .collect();
+        super::radix::par_sort_keyed(&mut keyed);
+        let (points, items): (Vec<[S; D]>, Vec<T>) = keyed
+            .par_iter()
+            .map(|&k| entries[k as u32 as usize].clone())
+            .unzip();
+        Ok(self.assemble(geometry, domain, &keyed, points, items))
+    }
+}

@@ -1,0 +1,110 @@
+//! Batch queries on rayon's threads (feature `rayon`): many k-nearest or range queries against
+//! one [`PointTree`], each answered by the serial engine, the batch spread over threads.
+//!
+//! Results come back in the order of the queries. A bad query (a NaN coordinate, a negative
+//! radius) fails the batch with a [`BatchError`] naming the first bad query's position; queries
+//! are checked before any work starts.
+
+use super::range::{for_each_in, SCAN};
+use super::{Neighbor, QueryError, Region};
+use crate::geom::Scalar;
+use crate::points::PointTree;
+use rayon::prelude::*;
+
+/// A batch refused because of one query: its position in the batch and what is wrong with it.
+///
+/// ```
+/// use orthtree::{query::BatchError, Quadtree};
+/// let t = Quadtree::new(&[([0.0, 0.0], 'a')]).unwrap();
+/// let err = t.par_k_nearest(&[[0.0, 0.0], [f64::NAN, 1.0]], 1).unwrap_err();
+/// assert_eq!(err.index, 1);
+/// assert!(err.to_string().contains("query 1"));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BatchError {
+    /// The position of the first bad query in the batch.
+    pub index: usize,
+    /// What is wrong with it.
+    pub error: QueryError,
+}
+
+impl core::fmt::Display for BatchError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(f, "query {} of the batch: {}", self.index, self.error)
+    }
+}
+
+impl std::error::Error for BatchError {}
+
+/// Runs `answer` on every query in parallel; the first error in batch order wins.
+fn run_batch<Q: Sync, A: Send>(
+    queries: &[Q],
+    answer: impl Fn(&Q) -> Result<A, QueryError> + Sync + Send,
+) -> Result<Vec<A>, BatchError> {
+    let answers: Vec<Result<A, QueryError>> = queries.par_iter().map(answer).collect();
+    answers
+        .into_iter()
+        .enumerate()
+        .map(|(index, a)| a.map_err(|error| BatchError { index, error }))
+        .collect()
+}
+
+impl<S: Scalar + Sync, T: Sync, const D: usize> PointTree<S, T, D> {
+    /// [`PointTree::k_nearest`] for every query point, in parallel; answers in query order.
+    ///
+    /// ```
+    /// use orthtree::Quadtree;
+    /// let pts: Vec<([f64; 2], usize)> = (0..100).map(|i| ([i as f64, 0.0], i)).collect();
+    /// let t = Quadtree::new(&pts).unwrap();
+    /// let answers = t.par_k_nearest(&[[10.2, 0.0], [97.9, 0.0]], 2).unwrap();
+    /// let items: Vec<Vec<usize>> =
+    ///     answers.iter().map(|a| a.iter().map(|n| *n.item).collect()).collect();
+    /// assert_eq!(items, [vec![10, 11], vec![98, 97]]);
+    /// ```
+    pub fn par_k_nearest(
+        &self,
+        queries: &[[S; D]],
+        k: usize,
+    ) -> Result<Vec<Vec<Neighbor<'_, S, T, D>>>, BatchError> {
+        run_batch(queries, |q| self.k_nearest(q, k))
+    }
+
+    /// [`PointTree::query_count`] for every region, in parallel; counts in region order.
+    ///
+    /// ```
+    /// use orthtree::{query::Ball, Quadtree};
+    /// let pts: Vec<([f64; 2], ())> = (0..100).map(|i| ([(i % 10) as f64, (i / 10) as f64], ())).collect();
+    /// let t = Quadtree::new(&pts).unwrap();
+    /// let balls = [Ball::new([0.0, 0.0], 1.0).unwrap(), Ball::new([5.0, 5.0], 1.0).unwrap()];
+    /// assert_eq!(t.par_query_count(&balls).unwrap(), [3, 5]);
+    /// ```
+    pub fn par_query_count<R: Region<D> + Sync>(
+        &self,
+        regions: &[R],
+    ) -> Result<Vec<usize>, BatchError> {
+        run_batch(regions, |r| self.query_count(r))
+    }
+
+    /// The points in every region, in parallel: for each region, the indices into
+    /// [`PointTree::points`] of its points, ascending.
+    ///
+    /// ```
+    /// use orthtree::{Aabb, Quadtree};
+    /// let t = Quadtree::new(&[([0.0, 0.0], 'a'), ([1.0, 1.0], 'b'), ([2.0, 2.0], 'c')]).unwrap();
+    /// let boxes = [Aabb::new([0.5, 0.5], [2.0, 2.0]).unwrap(), Aabb::new([5.0, 5.0], [6.0, 6.0]).unwrap()];
+    /// let found = t.par_query_indices(&boxes).unwrap();
+    /// let items: Vec<char> = found[0].iter().map(|&i| t.items()[i]).collect();
+    /// assert_eq!((items, found[1].len()), (vec!['b', 'c'], 0));
+    /// ```
+    pub fn par_query_indices<R: Region<D> + Sync>(
+        &self,
+        regions: &[R],
+    ) -> Result<Vec<Vec<usize>>, BatchError> {
+        run_batch(regions, |r| {
+            let mut found = Vec::new();
+            for_each_in(self, r, SCAN, |i| found.push(i))?;
+            found.sort_unstable();
+            Ok(found)
+        })
+    }
+}
