@@ -1,8 +1,9 @@
-//! The board mesher (criterion): `generate_mesh` and `Mesh::validate` on random boards of growing
-//! size, with throughput in triangles so that near-linear growth shows as a flat rate.
+//! The board mesher (criterion): `generate_mesh` (the chapter's mode), the coarsest mode and
+//! `Mesh::validate` on random boards of growing size, with throughput in triangles so that
+//! near-linear growth shows as a flat rate.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use orthtree::mesh::{generate_mesh, random_board, sample_board};
+use orthtree::mesh::{generate_mesh, random_board, sample_board, MeshOptions, Mode};
 
 fn mesh(c: &mut Criterion) {
     let mut group = c.benchmark_group("mesh");
@@ -22,6 +23,12 @@ fn mesh(c: &mut Criterion) {
         });
         group.bench_with_input(BenchmarkId::new("validate", name), &out.mesh, |b, m| {
             b.iter(|| m.validate(board))
+        });
+        let coarsest = MeshOptions::new().mode(Mode::Coarsest);
+        let coarse = coarsest.generate(board).expect("valid");
+        group.throughput(Throughput::Elements(coarse.mesh.triangles.len() as u64));
+        group.bench_with_input(BenchmarkId::new("coarsest", name), board, |b, board| {
+            b.iter(|| coarsest.generate(board).expect("valid"))
         });
     }
     group.finish();

@@ -1,37 +1,58 @@
 //! The crate's main job: mesh a circuit board with the chapter's GENERATEMESH (section 14.3).
 //!
-//! `cargo run --release --example pcb_mesh -- [BOARD.poly|BOARD.txt] [--size U] [--out PREFIX] [--mode book]`
+//! `cargo run --release --example pcb_mesh -- [BOARD.poly|BOARD.txt] [--size U] [--out PREFIX]
+//! [--mode book|coarsest] [--unit G] [--near H] [--max H]`
 //!
-//! With no board it meshes the built-in sample board. Writes PREFIX.node, .ele, .edge (Triangle),
+//! With no board it meshes the built-in sample board. `--mode book` (the default) is the
+//! chapter's GENERATEMESH; `--mode coarsest` splits a cell only where it must. `--unit` fixes the
+//! grid unit (default: detected), `--near` caps the cells meeting component edges and `--max`
+//! every cell (in board coordinates; see `MeshOptions`). Writes PREFIX.node, .ele, .edge (Triangle),
 //! .msh (Gmsh 4.1), .vtk (legacy VTK) and .svg (default prefix `board`), validates the mesh and
 //! prints one summary. A bad board prints the error and exits with status 1.
 
 use orthtree::io::{board_text, gmsh, poly, triangle, vtk};
-use orthtree::mesh::{generate_mesh, sample_board, Board};
+use orthtree::mesh::{sample_board, Board, MeshOptions, Mode};
 use std::time::{Duration, Instant};
 
 struct Args {
     board: Option<String>,
     size: Option<i64>,
     out: String,
+    options: MeshOptions,
 }
+
+const USAGE: &str = "usage: pcb_mesh [BOARD.poly|BOARD.txt] [--size U] [--out PREFIX] \
+                     [--mode book|coarsest] [--unit G] [--near H] [--max H]";
 
 fn parse() -> Result<Args, String> {
     let mut args = Args {
         board: None,
         size: None,
         out: "board".into(),
+        options: MeshOptions::new(),
     };
     let mut it = std::env::args().skip(1);
     while let Some(arg) = it.next() {
         let mut value = || it.next().ok_or(format!("{arg} needs a value"));
+        let mut number = || -> Result<i64, String> {
+            let v = value()?;
+            v.parse().map_err(|e| format!("{arg} {v:?}: {e}"))
+        };
+        let options = args.options.clone();
         match arg.as_str() {
-            "--size" => args.size = Some(value()?.parse().map_err(|e| format!("--size: {e}"))?),
+            "--size" => args.size = Some(number()?),
+            "--unit" => args.options = options.grid_unit(number()?),
+            "--near" => args.options = options.near_size(number()?),
+            "--max" => args.options = options.max_size(number()?),
             "--out" => args.out = value()?,
-            "--mode" => match value()?.as_str() {
-                "book" => {}
-                other => return Err(format!("--mode {other:?}: only `book` is available")),
-            },
+            "--mode" => {
+                let mode = match value()?.as_str() {
+                    "book" => Mode::Book,
+                    "coarsest" => Mode::Coarsest,
+                    other => return Err(format!("--mode {other:?}: use `book` or `coarsest`")),
+                };
+                args.options = options.mode(mode);
+            }
             flag if flag.starts_with("--") => return Err(format!("unknown option {flag:?}")),
             path if args.board.is_none() => args.board = Some(path.to_string()),
             extra => return Err(format!("unexpected argument {extra:?}")),
@@ -71,14 +92,14 @@ fn ms(d: Duration) -> String {
 
 fn main() {
     let args = parse().unwrap_or_else(|e| {
-        eprintln!("error: {e}\nusage: pcb_mesh [BOARD.poly|BOARD.txt] [--size U] [--out PREFIX] [--mode book]");
+        eprintln!("error: {e}\n{USAGE}");
         std::process::exit(2);
     });
     let (board, name) = read_board(&args).unwrap_or_else(|e| {
         eprintln!("error: {e}");
         std::process::exit(1);
     });
-    let out = generate_mesh(&board).unwrap_or_else(|e| {
+    let out = args.options.generate(&board).unwrap_or_else(|e| {
         eprintln!("error: {e}");
         std::process::exit(1);
     });
@@ -99,7 +120,9 @@ fn main() {
         board.perimeter_steps()
     );
     println!(
-        "quadtree:    {} leaves, {} after 2:1 balance",
+        "quadtree:    {:?} mode, grid unit {}, {} leaves, {} after 2:1 balance",
+        args.options.current_mode(),
+        out.grid_unit,
         out.leaves_before_balance,
         out.tree.leaf_count()
     );
