@@ -5,7 +5,12 @@
 //! ```sh
 //! cargo run --release --example compare                       # N = 10^6, 10^5 queries
 //! cargo run --release --example compare -- --n 100000 --queries 10000 --reps 3
+//! cargo run --release --features rayon --example compare -- --parallel   # + rayon speed-ups
 //! ```
+//!
+//! With `--parallel` (feature `rayon`) it also prints the speed-up of `par_build` over `build`
+//! and of the batch `par_k_nearest` (k = 10) over one `k_nearest` call per query, on uniform
+//! points, with all of rayon's threads.
 //!
 //! Workloads: D = 2 and 3, f64; uniform in the unit cube, 64 Gaussian clusters (sigma 0.01),
 //! duplicate-heavy (N / 8 uniform points, each 8 times) and lattice (integer grid points). Rows:
@@ -35,6 +40,7 @@ struct Args {
     n: usize,
     queries: usize,
     reps: usize,
+    parallel: bool,
 }
 
 fn args() -> Args {
@@ -42,16 +48,23 @@ fn args() -> Args {
         n: 1_000_000,
         queries: 100_000,
         reps: 5,
+        parallel: false,
     };
     let mut it = std::env::args().skip(1);
     while let Some(flag) = it.next() {
+        if flag == "--parallel" && cfg!(feature = "rayon") {
+            a.parallel = true;
+            continue;
+        }
         let value = it.next().and_then(|v| v.parse().ok());
         match (flag.as_str(), value) {
             ("--n", Some(v)) => a.n = v,
             ("--queries", Some(v)) => a.queries = v,
             ("--reps", Some(v)) => a.reps = v,
             _ => {
-                eprintln!("usage: compare [--n N] [--queries Q] [--reps R]");
+                eprintln!(
+                    "usage: compare [--n N] [--queries Q] [--reps R] [--parallel (feature rayon)]"
+                );
                 std::process::exit(2);
             }
         }
@@ -376,4 +389,52 @@ fn main() {
             ratio(r)
         );
     }
+    #[cfg(feature = "rayon")]
+    if a.parallel {
+        println!(
+            "\nrayon, {} threads: median ms of {} runs\n",
+            rayon::current_num_threads(),
+            a.reps
+        );
+        println!("| workload | operation | serial | rayon | speed-up |");
+        println!("| --- | --- | ---: | ---: | ---: |");
+        parallel::<2>(&a);
+        parallel::<3>(&a);
+    }
+}
+
+/// `build` against `par_build` and per-query `k_nearest` against `par_k_nearest` (k = 10).
+#[cfg(feature = "rayon")]
+fn parallel<const D: usize>(a: &Args) {
+    let points = common::uniform::<D>(a.n, 1);
+    let queries = common::uniform::<D>(a.queries, 2);
+    let entries: Vec<([f64; D], u64)> = points
+        .iter()
+        .enumerate()
+        .map(|(i, &p)| (p, i as u64))
+        .collect();
+    let b = PointTree::builder();
+    let (serial, n) = time(a.reps, || b.build(&entries).unwrap().len());
+    let (par, m) = time(a.reps, || b.par_build(&entries).unwrap().len());
+    assert_eq!(n, m);
+    println!(
+        "| uniform {D}D | build | {serial:.1} | {par:.1} | {:.2} |",
+        serial / par
+    );
+    let tree = b.build(&entries).unwrap();
+    let sum = |answers: Vec<Vec<orthtree::query::Neighbor<'_, f64, u64, D>>>| -> u64 {
+        answers.iter().flatten().map(|n| *n.item).sum()
+    };
+    let (serial, s1) = time(a.reps, || {
+        sum(queries
+            .iter()
+            .map(|q| tree.k_nearest(q, 10).unwrap())
+            .collect())
+    });
+    let (par, s2) = time(a.reps, || sum(tree.par_k_nearest(&queries, 10).unwrap()));
+    assert_eq!(s1, s2);
+    println!(
+        "| uniform {D}D | 10-nearest | {serial:.1} | {par:.1} | {:.2} |",
+        serial / par
+    );
 }
