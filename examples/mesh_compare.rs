@@ -1,6 +1,9 @@
 //! Triangle counts of the mesher's modes beside a quality Delaunay mesher (issue 9).
 //!
-//! `cargo run --release --example mesh_compare -- [--seeds N] [--runs R]`
+//! `cargo run --release --example mesh_compare -- [--seeds N] [--runs R] [--target]`
+//!
+//! `--target` meshes only the mesher's target workload, `random_board(7, 65536, 640)`, in both
+//! modes, and prints the median time of each phase.
 //!
 //! For Figure 14.2's input, the sample board and seeded random boards, prints the triangle counts
 //! and times (median of R runs) of the chapter's mode (`book`) and the `coarsest` mode, each
@@ -86,20 +89,67 @@ fn ms(d: Duration) -> String {
     format!("{:.1} ms", d.as_secs_f64() * 1e3)
 }
 
+/// The target workload in both modes: triangles and median phase times.
+fn target(runs: usize) {
+    let board = random_board(7, 1 << 16, 640);
+    for mode in [Mode::Book, Mode::Coarsest] {
+        let options = MeshOptions::new().mode(mode);
+        let mut phases: [Vec<Duration>; 4] = Default::default();
+        let mut triangles = 0;
+        for _ in 0..runs.max(1) {
+            let start = Instant::now();
+            let out = options.generate(&board).expect("valid options");
+            let total = start.elapsed();
+            triangles = out.mesh.triangles.len();
+            for (k, t) in [
+                out.build_time,
+                out.balance_time,
+                out.triangulate_time,
+                total,
+            ]
+            .into_iter()
+            .enumerate()
+            {
+                phases[k].push(t);
+            }
+        }
+        let [build, balance, triangulate, total] = phases.map(|mut v| {
+            v.sort_unstable();
+            v[v.len() / 2]
+        });
+        println!(
+            "{mode:?}: {triangles} triangles; median of {runs}: build {}, balance {}, \
+             triangulate {}, total {}",
+            ms(build),
+            ms(balance),
+            ms(triangulate),
+            ms(total)
+        );
+    }
+}
+
 fn main() {
     let mut seeds = 5u64;
     let mut runs = 3usize;
+    let mut only_target = false;
     let mut args = std::env::args().skip(1);
     while let Some(arg) = args.next() {
+        if arg == "--target" {
+            only_target = true;
+            continue;
+        }
         let value = args.next().and_then(|v| v.parse::<u64>().ok());
         match (arg.as_str(), value) {
             ("--seeds", Some(v)) => seeds = v,
             ("--runs", Some(v)) => runs = v as usize,
             _ => {
-                eprintln!("usage: mesh_compare [--seeds N] [--runs R]");
+                eprintln!("usage: mesh_compare [--seeds N] [--runs R] [--target]");
                 std::process::exit(2);
             }
         }
+    }
+    if only_target {
+        return target(runs);
     }
     let u = 16;
     let figure = Board::new(
