@@ -5,6 +5,8 @@
 //! the compressed tree from its root.
 
 mod common;
+#[path = "../benches/workloads/deep.rs"]
+mod deep;
 
 use common::points::config;
 use orthtree::compressed::SkipQuadtree;
@@ -106,29 +108,12 @@ fn bad_input_and_empty_trees() {
     t.validate().unwrap();
 }
 
-/// `copies` caterpillars, each as deep as the finest cells allow: copy `c` sits in its own
-/// square of side `s` and holds the points at `1 - 2^-k` of it along x for every `k` whose
-/// offset is still a distinct finest cell (nested clusters down to the last bits of the cells).
-pub fn caterpillars(copies: usize) -> Vec<[f64; 2]> {
-    let side = (copies as f64).sqrt().ceil() as usize;
-    let s = 1.0 / side as f64;
-    let levels = 32 - (side as f64).log2().ceil() as i32 - 1;
-    let mut pts = vec![[0.0, 0.0], [1.0, 1.0]];
-    for c in 0..copies {
-        let (cx, cy) = ((c % side) as f64 * s, (c / side) as f64 * s);
-        for k in 1..=levels {
-            pts.push([cx + s * (1.0 - (-(k as f64)).exp2()), cy + 0.5 * s]);
-        }
-    }
-    pts
-}
-
 #[test]
 fn skip_location_touches_log_n_nodes_where_the_compressed_walk_touches_depth() {
     println!("n, compressed depth, mean nodes touched: compressed walk, skip quadtree, levels");
     let mut rows = Vec::new();
     for copies in [1usize, 4, 16, 64, 256, 1024, 4096] {
-        let pts = caterpillars(copies);
+        let pts = deep::caterpillars(copies);
         let e: Vec<([f64; 2], ())> = pts.iter().map(|&p| (p, ())).collect();
         let t = SkipQuadtree::new(&e).unwrap();
         t.validate().unwrap();

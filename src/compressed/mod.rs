@@ -17,7 +17,7 @@
 //!   structure for multidimensional data" (SoCG 2005): compressed quadtrees over nested random
 //!   samples, for expected O(log n) point location, insert and delete, and (1 + eps)-approximate
 //!   nearest neighbours.
-//! - `Subdivision` and `PointLocator`: point location in a planar subdivision with a
+//! - [`Subdivision`] and [`PointLocator`]: point location in a planar subdivision with a
 //!   quadtree, exercise 14.10.
 //!
 //! Cells are those of [`RootGeometry`]: the same root cube and the same exact Morton keys as
@@ -26,15 +26,19 @@
 mod build;
 mod convert;
 mod index;
+mod locate;
 mod query;
 mod skip;
+mod subdivision;
 pub(crate) mod topology;
 mod update;
 
 pub use build::CompressedTreeBuilder;
 pub use index::CompressedIndex;
+pub use locate::PointLocator;
 pub use query::{CompressedNearestIter, CompressedRegionIter};
 pub use skip::SkipQuadtree;
+pub use subdivision::{FaceId, Subdivision, SubdivisionError};
 
 use crate::error::Error;
 use crate::geom::{Aabb, Cell, Scalar};

@@ -1,0 +1,151 @@
+//! Point location, insert and delete on the compressed quadtree (walking down from its root)
+//! and on the skip quadtree, for 10^3 to 10^6 points, to show the growth per operation; and
+//! location on caterpillars as deep as the cells allow, with the nodes each location touches
+//! (printed once per size to stderr).
+//!
+//! Groups `compressed/{uniform,clustered}/{locate,update}` with functions `compressed/{n}` and
+//! `skip/{n}`, and `compressed/deep/locate`. One iteration of `locate` locates a batch of 1000
+//! points of the same distribution; one of `update` inserts 1000 new points and removes them
+//! again (so the tree is the same after every iteration): the time per element is one insert
+//! plus one delete.
+//!
+//! Run with `cargo bench --bench compressed` (a few minutes).
+
+mod common;
+#[path = "workloads/deep.rs"]
+mod deep;
+
+use std::hint::black_box;
+use std::time::Duration;
+
+use common::Distribution;
+use criterion::{criterion_group, criterion_main, BenchmarkGroup, Criterion, Throughput};
+use orthtree::compressed::SkipQuadtree;
+use orthtree::{Aabb, CompressedTree};
+
+const SIZES: [usize; 4] = [1_000, 10_000, 100_000, 1_000_000];
+const BATCH: usize = 1000;
+
+fn setup(g: &mut BenchmarkGroup<'_, criterion::measurement::WallTime>) {
+    g.sample_size(10)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2))
+        .throughput(Throughput::Elements(BATCH as u64));
+}
+
+/// A root box holding `points` with a margin of 1 (room for the inserted points).
+fn margin(points: &[[f64; 2]]) -> Aabb<f64, 2> {
+    let lo = points
+        .iter()
+        .fold([0.0f64; 2], |m, p| [m[0].min(p[0]), m[1].min(p[1])]);
+    let hi = points
+        .iter()
+        .fold([1.0f64; 2], |m, p| [m[0].max(p[0]), m[1].max(p[1])]);
+    Aabb::new([lo[0] - 1.0, lo[1] - 1.0], [hi[0] + 1.0, hi[1] + 1.0]).unwrap()
+}
+
+/// Builds both trees over `points` with `root` as root box.
+fn trees(
+    points: &[[f64; 2]],
+    root: Aabb<f64, 2>,
+) -> (CompressedTree<f64, u32, 2>, SkipQuadtree<f64, u32, 2>) {
+    let entries: Vec<([f64; 2], u32)> = points
+        .iter()
+        .enumerate()
+        .map(|(i, &p)| (p, i as u32))
+        .collect();
+    let c = CompressedTree::builder()
+        .root_box(root)
+        .build(&entries)
+        .unwrap();
+    let s = SkipQuadtree::with_seed(c.clone(), 7);
+    (c, s)
+}
+
+fn locate(
+    c: &mut Criterion,
+    group: &str,
+    n: usize,
+    queries: &[[f64; 2]],
+    t: &(CompressedTree<f64, u32, 2>, SkipQuadtree<f64, u32, 2>),
+) {
+    let (ct, st) = t;
+    let mut g = c.benchmark_group(group);
+    setup(&mut g);
+    g.bench_function(format!("compressed/{n}"), |b| {
+        b.iter(|| {
+            queries
+                .iter()
+                .map(|q| ct.locate(q).unwrap().node as usize)
+                .sum::<usize>()
+        })
+    });
+    g.bench_function(format!("skip/{n}"), |b| {
+        b.iter(|| {
+            queries
+                .iter()
+                .map(|q| st.locate(q).unwrap().node as usize)
+                .sum::<usize>()
+        })
+    });
+    g.finish();
+    let touched = |f: &dyn Fn(&[f64; 2]) -> usize| {
+        queries.iter().map(f).sum::<usize>() as f64 / queries.len() as f64
+    };
+    eprintln!(
+        "{group} n = {n}: depth {}, nodes touched per location: compressed walk {:.1}, skip {:.1} ({} levels)",
+        ct.depth(),
+        touched(&|q| ct.locate(q).unwrap().touched),
+        touched(&|q| st.locate(q).unwrap().touched),
+        st.level_count()
+    );
+}
+
+fn bench(c: &mut Criterion) {
+    for dist in Distribution::ALL {
+        for n in SIZES {
+            let points = dist.points::<2>(n, 21);
+            let queries = dist.points::<2>(BATCH, 22);
+            let mut t = trees(&points, margin(&points));
+            let name = dist.name();
+            locate(c, &format!("compressed/{name}/locate"), n, &queries, &t);
+            let mut g = c.benchmark_group(format!("compressed/{name}/update"));
+            setup(&mut g);
+            g.bench_function(format!("compressed/{n}"), |b| {
+                b.iter(|| {
+                    for (i, q) in queries.iter().enumerate() {
+                        t.0.insert(*q, i as u32).unwrap();
+                    }
+                    for q in &queries {
+                        black_box(t.0.remove_point(q));
+                    }
+                })
+            });
+            g.bench_function(format!("skip/{n}"), |b| {
+                b.iter(|| {
+                    for (i, q) in queries.iter().enumerate() {
+                        t.1.insert(*q, i as u32).unwrap();
+                    }
+                    for q in &queries {
+                        black_box(t.1.remove_point(q));
+                    }
+                })
+            });
+            g.finish();
+        }
+    }
+    // Caterpillars: copies of the points at 1 - 2^-k of a square, nested down to the finest cells.
+    for copies in [16usize, 256, 4096, 32768] {
+        let pts = deep::caterpillars(copies);
+        let t = trees(&pts, Aabb::new([0.0; 2], [1.0; 2]).unwrap());
+        let queries: Vec<[f64; 2]> = pts
+            .iter()
+            .step_by((pts.len() / BATCH).max(1))
+            .copied()
+            .collect();
+        locate(c, "compressed/deep/locate", pts.len(), &queries, &t);
+    }
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

@@ -1,0 +1,490 @@
+//! [`PointLocator`]: point location in a planar subdivision with a compressed quadtree, exercise
+//! 14.10 of de Berg, Cheong, van Kreveld and Overmars, *Computational Geometry* (chapter 14).
+//!
+//! # Structure
+//! The exercise's rule: split a square until it holds at most one vertex and only edges incident
+//! to it, or no vertex and at most one edge. Squares are closed cells of a [`RootGeometry`] over
+//! the vertices (the cells, keys and split convention of the point trees). As in the compressed
+//! quadtree of exercise 14.5, a child whose contents (its vertices, and its edges clipped to it)
+//! fit in the closed box of a smaller cell is replaced by the smallest such cell, so chains of
+//! squares with a single non-empty child are not stored. Every node keeps, per quadrant, the
+//! face of the points of the quadrant outside its child (that region meets no edge, so one face
+//! covers it). Leaves keep their edges; a leaf with a vertex answers by binary search over the
+//! vertex's edges sorted by angle (the "additional data structure" the exercise asks for,
+//! [`Subdivision`]'s half-edges around each vertex).
+//!
+//! [`PointLocator::new`] stops at a square without a vertex whatever its edges: those cross the
+//! square without meeting, and the nearest of them decides the face (the segment from the query
+//! to its nearest edge point stays in the convex square and crosses no edge). The exercise's
+//! rule as stated ([`PointLocator::with_exercise_rule`]) also splits such squares until one
+//! edge is left, which costs squares in proportion to the length of close edges over their
+//! distance (about 2^33 for two unit edges 2^-40 apart); the relaxed rule keeps the size
+//! O(V h) for V vertices and height h whatever the spacing. Leaves at the finest level
+//! ([`Cell::MAX_LEVEL`]) keep every edge they meet. Leaves holding several edges and no vertex
+//! (or stopped at the finest level) are checked for crossing edges, which always end up there.
+//!
+//! # Query
+//! Walk down by the point's Morton key: at each node take the child of the point's quadrant if
+//! its cell holds the point, else answer the quadrant's face. At a leaf: the wedge of its vertex
+//! containing the point (O(log degree)); the side of its single edge (O(1)); or the side of the
+//! nearest edge point within the cell (O(k) for k edges). Time O(h + log degree + k), h at most
+//! 33 nodes.
+//!
+//! # Construction and size
+//! Top-down with an explicit stack: a node distributes its vertices and edges to the four closed
+//! quadrants (an edge may go to several), then shrinks each non-empty quadrant to the smallest
+//! cell holding its contents. A square splits only while it holds a vertex and a feature not
+//! incident to it (or two vertices), so with `s` the smallest distance between a vertex and a
+//! feature not incident to it, the height is at most about log2(side of the root / s) + 2
+//! (capped by the finest level), and every level holds O(V) split squares: O(V h) nodes. Each
+//! node costs time proportional to the features it holds, O(F) for F feature copies over all
+//! nodes, at most O((V + E) h) in the worst case, plus O(E log E) for the faces.
+//! `tests/point_location.rs` and `benches/compressed.rs` measure both.
+
+use super::subdivision::{FaceId, Subdivision, SubdivisionError};
+use super::topology::{digit, holds, NIL};
+use crate::error::Error;
+use crate::geom::{Aabb, Cell};
+use crate::points::RootGeometry;
+
+/// A node of the locator's tree.
+#[derive(Clone, Debug)]
+struct Node {
+    cell: Cell<2>,
+    key: u64,
+    /// The child node in each quadrant, NIL if none (then the whole quadrant has `faces[q]`).
+    children: [u32; 4],
+    /// The face of the points of each quadrant outside its child.
+    faces: [u32; 4],
+    /// A leaf's vertex (NIL if none) and edges (`edges[list.0..list.1]`); `leaf` false for an
+    /// internal node.
+    vertex: u32,
+    list: (u32, u32),
+    leaf: bool,
+}
+
+/// Pending work of the construction: a cell and what meets it, and where its node goes.
+struct Task {
+    parent: u32,
+    quadrant: usize,
+    cell: Cell<2>,
+    vertices: Vec<u32>,
+    edges: Vec<u32>,
+}
+
+/// A planar subdivision stored in a compressed quadtree for point location (exercise 14.10).
+///
+/// ```
+/// use orthtree::compressed::{PointLocator, Subdivision};
+/// let v = vec![[0.0, 0.0], [4.0, 0.0], [4.0, 4.0], [0.0, 4.0]];
+/// let e = vec![[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]];
+/// let s = Subdivision::new(v, e).unwrap();
+/// let lower = s.left_face(0); // the triangle 0, 1, 2
+/// let locator = PointLocator::new(s).unwrap();
+/// assert_eq!(locator.locate(&[3.0, 1.0]).unwrap(), lower);
+/// assert_ne!(locator.locate(&[1.0, 3.0]).unwrap(), lower);
+/// assert_eq!(locator.locate(&[5.0, 1.0]).unwrap(), locator.subdivision().outer_face());
+/// ```
+#[derive(Clone, Debug)]
+pub struct PointLocator {
+    subdivision: Subdivision,
+    geometry: RootGeometry<2>,
+    nodes: Vec<Node>,
+    lists: Vec<u32>,
+}
+
+impl PointLocator {
+    /// Builds the tree (see the module doc for the time).
+    ///
+    /// Errors: [`SubdivisionError::Crossing`] for two edges found to meet other than at a shared
+    /// endpoint.
+    pub fn new(subdivision: Subdivision) -> Result<Self, SubdivisionError> {
+        Self::build_with(subdivision, false)
+    }
+
+    /// [`PointLocator::new`] with the exercise's rule as stated: a square without a vertex is
+    /// split until it holds at most one edge. Queries then scan at most one edge outside the
+    /// finest cells, but the size grows like the length of close edges over their distance
+    /// (two unit edges 2^-40 apart need about 2^33 squares): use it on well-spaced input.
+    pub fn with_exercise_rule(subdivision: Subdivision) -> Result<Self, SubdivisionError> {
+        Self::build_with(subdivision, true)
+    }
+
+    fn build_with(subdivision: Subdivision, split_edges: bool) -> Result<Self, SubdivisionError> {
+        let v = subdivision.vertices();
+        let mut bounds = Bounds::new();
+        v.iter().for_each(|&p| bounds.add(p));
+        let mut bounds = bounds.0;
+        if v.is_empty() {
+            bounds = Aabb::new([0.0; 2], [1.0; 2]).expect("a valid box");
+        }
+        let mut locator = PointLocator {
+            geometry: RootGeometry::enclosing(&bounds),
+            subdivision,
+            nodes: Vec::new(),
+            lists: Vec::new(),
+        };
+        locator.build(split_edges)?;
+        Ok(locator)
+    }
+
+    fn build(&mut self, split_edges: bool) -> Result<(), SubdivisionError> {
+        let s = &self.subdivision;
+        let mut stack = vec![Task {
+            parent: NIL,
+            quadrant: 0,
+            cell: Cell::root(),
+            vertices: (0..s.vertices().len() as u32).collect(),
+            edges: (0..s.edges().len() as u32).collect(),
+        }];
+        while let Some(task) = stack.pop() {
+            let cell = if task.parent == NIL {
+                task.cell
+            } else {
+                self.shrink(task.cell, &task.vertices, &task.edges)
+            };
+            let id = self.nodes.len() as u32;
+            if task.parent != NIL {
+                let parent = &mut self.nodes[task.parent as usize];
+                parent.children[task.quadrant] = id;
+                if cell != task.cell {
+                    // The quadrant outside the shrunk cell: sample a corner the cell misses.
+                    let qb = self.geometry.cell_box(&task.cell);
+                    let cb = self.geometry.cell_box(&cell);
+                    let corners = [0, 1, 2, 3].map(|c: usize| {
+                        let pick = |a: usize| {
+                            if (c >> a) & 1 == 0 {
+                                qb.min[a]
+                            } else {
+                                qb.max[a]
+                            }
+                        };
+                        [pick(0), pick(1)]
+                    });
+                    let sample = corners
+                        .into_iter()
+                        .find(|p| !cb.contains(p))
+                        .unwrap_or(qb.min);
+                    let face = self.face_near(&sample, &qb, &task.edges).0;
+                    self.nodes[task.parent as usize].faces[task.quadrant] = face;
+                }
+            }
+            let mut node = Node {
+                cell,
+                key: cell.aligned_key(),
+                children: [NIL; 4],
+                faces: [NIL; 4],
+                vertex: NIL,
+                list: (0, 0),
+                leaf: true,
+            };
+            let incident = |v: u32| {
+                task.edges
+                    .iter()
+                    .all(|&e| s.edges()[e as usize].contains(&v))
+            };
+            let simple = match task.vertices[..] {
+                [] => !split_edges || task.edges.len() <= 1,
+                [v] => incident(v),
+                _ => false,
+            };
+            if simple || cell.level() == Cell::<2>::MAX_LEVEL {
+                if !simple || (task.vertices.is_empty() && task.edges.len() > 1) {
+                    check_crossings(s, &task.edges)?;
+                } else if let [v] = task.vertices[..] {
+                    node.vertex = v;
+                }
+                node.list = (
+                    self.lists.len() as u32,
+                    (self.lists.len() + task.edges.len()) as u32,
+                );
+                self.lists.extend(&task.edges);
+                self.nodes.push(node);
+                continue;
+            }
+            node.leaf = false;
+            let bbox = self.geometry.cell_box(&cell);
+            for q in 0..4 {
+                let child = cell.child(q);
+                let cb = self.geometry.cell_box(&child);
+                let vertices: Vec<u32> = task
+                    .vertices
+                    .iter()
+                    .copied()
+                    .filter(|&v| cb.contains(&s.vertices()[v as usize]))
+                    .collect();
+                let edges: Vec<u32> = task
+                    .edges
+                    .iter()
+                    .copied()
+                    .filter(|&e| clip(s, e, &cb).is_some())
+                    .collect();
+                if vertices.is_empty() && edges.is_empty() {
+                    let centre = [0.5 * (cb.min[0] + cb.max[0]), 0.5 * (cb.min[1] + cb.max[1])];
+                    node.faces[q] = self.face_near(&centre, &bbox, &task.edges).0;
+                } else {
+                    stack.push(Task {
+                        parent: id,
+                        quadrant: q,
+                        cell: child,
+                        vertices,
+                        edges,
+                    });
+                }
+            }
+            self.nodes.push(node);
+        }
+        Ok(())
+    }
+
+    /// The smallest cell inside `cell` whose closed box holds the vertices and the parts of the
+    /// edges inside `cell`.
+    fn shrink(&self, cell: Cell<2>, vertices: &[u32], edges: &[u32]) -> Cell<2> {
+        let s = &self.subdivision;
+        let b = self.geometry.cell_box(&cell);
+        let mut bounds = Bounds::new();
+        vertices
+            .iter()
+            .for_each(|&v| bounds.add(s.vertices()[v as usize]));
+        for &e in edges {
+            if let Some((p, q)) = clip(s, e, &b) {
+                bounds.add(p);
+                bounds.add(q);
+            }
+        }
+        let content = bounds.0;
+        let mut at = cell;
+        while at.level() < Cell::<2>::MAX_LEVEL {
+            let inner = (0..4).map(|q| at.child(q)).find(|c| {
+                let cb = self.geometry.cell_box(c);
+                cb.contains(&content.min) && cb.contains(&content.max)
+            });
+            match inner {
+                Some(c) => at = c,
+                None => break,
+            }
+        }
+        at
+    }
+
+    /// The face of `q` (inside the closed box `b`) from the nearest point, within `b`, of the
+    /// edges `edges` (every edge meeting `b`): the wedge of a vertex, or the side of an edge.
+    fn face_near(&self, q: &[f64; 2], b: &Aabb<f64, 2>, edges: &[u32]) -> (u32, usize) {
+        let s = &self.subdivision;
+        let mut best: Option<(f64, u32, f64)> = None;
+        for &e in edges {
+            let [u, v] = s.edges()[e as usize].map(|i| s.vertices()[i as usize]);
+            let Some((t0, t1)) = clip_params(u, v, b) else {
+                continue;
+            };
+            let d = [v[0] - u[0], v[1] - u[1]];
+            let len = d[0] * d[0] + d[1] * d[1];
+            let t = (((q[0] - u[0]) * d[0] + (q[1] - u[1]) * d[1]) / len).clamp(t0, t1);
+            let x = [u[0] + t * d[0], u[1] + t * d[1]];
+            let dist = (x[0] - q[0]).powi(2) + (x[1] - q[1]).powi(2);
+            if best.is_none_or(|(bd, _, _)| dist < bd) {
+                best = Some((dist, e, t));
+            }
+        }
+        let Some((_, e, t)) = best else {
+            return (s.outer_face().0, 0);
+        };
+        let [a, b] = s.edges()[e as usize];
+        let face = if t == 0.0 {
+            s.face_around(a as usize, *q)
+        } else if t == 1.0 {
+            s.face_around(b as usize, *q)
+        } else {
+            side(s, e as usize, q)
+        };
+        (face.0, edges.len())
+    }
+
+    /// The face holding `point`; a point on an edge gets the face left of it (first vertex to
+    /// second), a point outside the root square the outer face. O(h + log degree).
+    ///
+    /// Errors: a NaN or infinite coordinate.
+    pub fn locate(&self, point: &[f64; 2]) -> Result<FaceId, Error> {
+        self.locate_counted(point).map(|(f, _)| f)
+    }
+
+    /// [`PointLocator::locate`], with the number of nodes visited plus edges examined.
+    pub fn locate_counted(&self, point: &[f64; 2]) -> Result<(FaceId, usize), Error> {
+        if let Some(axis) = point.iter().position(|x| !x.is_finite()) {
+            return Err(Error::QueryNotFinite {
+                axis,
+                value: point[axis],
+            });
+        }
+        let s = &self.subdivision;
+        let root = self.geometry.root_box();
+        if !root.contains(point) {
+            return Ok((s.outer_face(), 0));
+        }
+        let key = self.geometry.key(point);
+        let mut v = 0usize;
+        let mut touched = 1;
+        loop {
+            let node = &self.nodes[v];
+            if node.leaf {
+                let edges = &self.lists[node.list.0 as usize..node.list.1 as usize];
+                let (face, work) = match edges {
+                    _ if node.vertex != NIL => (s.face_around(node.vertex as usize, *point).0, 1),
+                    [] => (s.outer_face().0, 0),
+                    [e] => (side(s, *e as usize, point).0, 1),
+                    _ => self.face_near(point, &self.geometry.cell_box(&node.cell), edges),
+                };
+                return Ok((FaceId(face), touched + work));
+            }
+            let q = digit::<2>(key, node.cell.level());
+            let c = node.children[q];
+            if c == NIL
+                || !holds::<2>(
+                    self.nodes[c as usize].key,
+                    self.nodes[c as usize].cell.level(),
+                    key,
+                )
+            {
+                return Ok((FaceId(node.faces[q]), touched));
+            }
+            v = c as usize;
+            touched += 1;
+        }
+    }
+
+    /// The subdivision.
+    pub fn subdivision(&self) -> &Subdivision {
+        &self.subdivision
+    }
+
+    /// The number of nodes of the tree.
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// The number of nodes on the longest root-to-leaf path, the root included.
+    pub fn height(&self) -> usize {
+        let mut best = 0;
+        let mut stack = vec![(0usize, 1usize)];
+        while let Some((v, h)) = stack.pop() {
+            best = best.max(h);
+            stack.extend(
+                self.nodes[v]
+                    .children
+                    .iter()
+                    .filter(|&&c| c != NIL)
+                    .map(|&c| (c as usize, h + 1)),
+            );
+        }
+        best
+    }
+
+    /// Where the cells lie.
+    pub fn geometry(&self) -> &RootGeometry<2> {
+        &self.geometry
+    }
+
+    /// The cell of every node with `true` for a leaf (for pictures).
+    pub fn cells(&self) -> impl Iterator<Item = (Cell<2>, bool)> + '_ {
+        self.nodes.iter().map(|n| (n.cell, n.leaf))
+    }
+}
+
+/// A bounding box grown point by point (empty at first).
+struct Bounds(Aabb<f64, 2>);
+
+impl Bounds {
+    fn new() -> Self {
+        Bounds(Aabb {
+            min: [f64::INFINITY; 2],
+            max: [f64::NEG_INFINITY; 2],
+        })
+    }
+
+    fn add(&mut self, p: [f64; 2]) {
+        for (a, x) in p.into_iter().enumerate() {
+            self.0.min[a] = self.0.min[a].min(x);
+            self.0.max[a] = self.0.max[a].max(x);
+        }
+    }
+}
+
+/// The face on `q`'s side of edge `e` (left on the edge itself).
+fn side(s: &Subdivision, e: usize, q: &[f64; 2]) -> FaceId {
+    let [u, v] = s.edges()[e].map(|i| s.vertices()[i as usize]);
+    let cross = (v[0] - u[0]) * (q[1] - u[1]) - (v[1] - u[1]) * (q[0] - u[0]);
+    if cross >= 0.0 {
+        s.left_face(e)
+    } else {
+        s.right_face(e)
+    }
+}
+
+/// The parameter interval of segment `u v` inside the closed box `b` (Liang and Barsky).
+fn clip_params(u: [f64; 2], v: [f64; 2], b: &Aabb<f64, 2>) -> Option<(f64, f64)> {
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for a in 0..2 {
+        let d = v[a] - u[a];
+        if d == 0.0 {
+            if u[a] < b.min[a] || u[a] > b.max[a] {
+                return None;
+            }
+            continue;
+        }
+        let (mut lo, mut hi) = ((b.min[a] - u[a]) / d, (b.max[a] - u[a]) / d);
+        if lo > hi {
+            core::mem::swap(&mut lo, &mut hi);
+        }
+        t0 = t0.max(lo);
+        t1 = t1.min(hi);
+    }
+    (t0 <= t1).then_some((t0, t1))
+}
+
+/// The part of edge `e` inside the closed box `b`, as its two end points.
+fn clip(s: &Subdivision, e: u32, b: &Aabb<f64, 2>) -> Option<([f64; 2], [f64; 2])> {
+    let [u, v] = s.edges()[e as usize].map(|i| s.vertices()[i as usize]);
+    let at = |t: f64| match t {
+        0.0 => u,
+        1.0 => v,
+        _ => [u[0] + t * (v[0] - u[0]), u[1] + t * (v[1] - u[1])],
+    };
+    clip_params(u, v, b).map(|(t0, t1)| (at(t0), at(t1)))
+}
+
+/// `Err(Crossing)` for the first two of `edges` that meet other than at a shared endpoint.
+fn check_crossings(s: &Subdivision, edges: &[u32]) -> Result<(), SubdivisionError> {
+    let orient = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| {
+        let x = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        (x > 0.0) as i8 - (x < 0.0) as i8
+    };
+    let on = |a: [f64; 2], b: [f64; 2], p: [f64; 2]| {
+        orient(a, b, p) == 0 && (0..2).all(|i| a[i].min(b[i]) <= p[i] && p[i] <= a[i].max(b[i]))
+    };
+    for (i, &e) in edges.iter().enumerate() {
+        for &f in &edges[i + 1..] {
+            let (ev, fv) = (s.edges()[e as usize], s.edges()[f as usize]);
+            let [a, b] = ev.map(|x| s.vertices()[x as usize]);
+            let [c, d] = fv.map(|x| s.vertices()[x as usize]);
+            let shared = ev.iter().any(|x| fv.contains(x));
+            let meet = if shared {
+                // Only an overlap counts: the far end of one on the other.
+                (!ev.contains(&fv[0]) && on(a, b, c))
+                    || (!ev.contains(&fv[1]) && on(a, b, d))
+                    || (!fv.contains(&ev[0]) && on(c, d, a))
+                    || (!fv.contains(&ev[1]) && on(c, d, b))
+            } else {
+                let (o1, o2) = (orient(a, b, c), orient(a, b, d));
+                let (o3, o4) = (orient(c, d, a), orient(c, d, b));
+                (o1 != o2 && o3 != o4) || on(a, b, c) || on(a, b, d) || on(c, d, a) || on(c, d, b)
+            };
+            if meet {
+                return Err(SubdivisionError::Crossing {
+                    a: e as usize,
+                    b: f as usize,
+                });
+            }
+        }
+    }
+    Ok(())
+}
