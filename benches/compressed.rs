@@ -9,18 +9,22 @@
 //! again (so the tree is the same after every iteration): the time per element is one insert
 //! plus one delete.
 //!
+//! Group `compressed/point_location/{relaxed,exercise}` builds the point locator of exercise
+//! 14.10 on triangulated grids (`build/{edges}`, time per edge) and locates 1000 random points
+//! (`locate/{edges}`).
+//!
 //! Run with `cargo bench --bench compressed` (a few minutes).
 
 mod common;
-#[path = "workloads/deep.rs"]
-mod deep;
+#[path = "workloads/compressed.rs"]
+mod workload;
 
 use std::hint::black_box;
 use std::time::Duration;
 
 use common::Distribution;
 use criterion::{criterion_group, criterion_main, BenchmarkGroup, Criterion, Throughput};
-use orthtree::compressed::SkipQuadtree;
+use orthtree::compressed::{PointLocator, SkipQuadtree, Subdivision};
 use orthtree::{Aabb, CompressedTree};
 
 const SIZES: [usize; 4] = [1_000, 10_000, 100_000, 1_000_000];
@@ -136,7 +140,7 @@ fn bench(c: &mut Criterion) {
     }
     // Caterpillars: copies of the points at 1 - 2^-k of a square, nested down to the finest cells.
     for copies in [16usize, 256, 4096, 32768] {
-        let pts = deep::caterpillars(copies);
+        let pts = workload::caterpillars(copies);
         let t = trees(&pts, Aabb::new([0.0; 2], [1.0; 2]).unwrap());
         let queries: Vec<[f64; 2]> = pts
             .iter()
@@ -147,5 +151,52 @@ fn bench(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, bench);
+/// Point location (exercise 14.10) on jittered triangulated grids: building the locator, and a
+/// batch of 1000 random queries, for both leaf rules.
+fn point_location(c: &mut Criterion) {
+    use rand::{Rng, SeedableRng};
+    for k in [16usize, 64, 256] {
+        let (v, e, _) = workload::triangulated_grid(k, 5);
+        let s = Subdivision::new(v, e).unwrap();
+        let mut rng = rand::rngs::SmallRng::seed_from_u64(6);
+        let top = k as f64 - 1.0;
+        let queries: Vec<[f64; 2]> = (0..BATCH)
+            .map(|_| [rng.gen_range(0.0..top), rng.gen_range(0.0..top)])
+            .collect();
+        let edges = s.edges().len();
+        for (rule, exercise) in [("relaxed", false), ("exercise", true)] {
+            let build = |s: &Subdivision| {
+                let s = s.clone();
+                if exercise {
+                    PointLocator::with_exercise_rule(s)
+                } else {
+                    PointLocator::new(s)
+                }
+                .unwrap()
+            };
+            let locator = build(&s);
+            eprintln!(
+                "point location {rule}, {edges} edges: {} nodes, height {}",
+                locator.node_count(),
+                locator.height()
+            );
+            let mut g = c.benchmark_group(format!("compressed/point_location/{rule}"));
+            setup(&mut g);
+            g.throughput(Throughput::Elements(edges as u64));
+            g.bench_function(format!("build/{edges}"), |b| b.iter(|| build(&s)));
+            g.throughput(Throughput::Elements(BATCH as u64));
+            g.bench_function(format!("locate/{edges}"), |b| {
+                b.iter(|| {
+                    queries
+                        .iter()
+                        .map(|q| locator.locate(q).unwrap().0)
+                        .sum::<u32>()
+                })
+            });
+            g.finish();
+        }
+    }
+}
+
+criterion_group!(benches, bench, point_location);
 criterion_main!(benches);

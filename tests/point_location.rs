@@ -4,51 +4,13 @@
 //! closer than the finest cell, points outside, and refused input.
 
 mod common;
+#[path = "../benches/workloads/compressed.rs"]
+mod workload;
 
 use common::points::config;
 use orthtree::compressed::{FaceId, PointLocator, Subdivision, SubdivisionError};
 use proptest::prelude::*;
 use rand::Rng;
-
-/// A jittered `k` by `k` grid (each vertex moved at most 0.2 per axis, so every square stays
-/// convex) cut into triangles (a random diagonal per square): the vertices,
-/// the edges, and the triangles counter-clockwise.
-#[allow(clippy::type_complexity)]
-fn grid(k: usize, seed: u64) -> (Vec<[f64; 2]>, Vec<[u32; 2]>, Vec<[u32; 3]>) {
-    let mut rng = common::rng(seed);
-    let id = |i: usize, j: usize| (i * k + j) as u32;
-    let mut v = Vec::new();
-    for i in 0..k {
-        for j in 0..k {
-            v.push([
-                j as f64 + rng.gen_range(-0.2..0.2),
-                i as f64 + rng.gen_range(-0.2..0.2),
-            ]);
-        }
-    }
-    let (mut e, mut t) = (Vec::new(), Vec::new());
-    for i in 0..k {
-        for j in 0..k {
-            if j + 1 < k {
-                e.push([id(i, j), id(i, j + 1)]);
-            }
-            if i + 1 < k {
-                e.push([id(i + 1, j), id(i, j)]);
-            }
-            if i + 1 < k && j + 1 < k {
-                let (a, b, c, d) = (id(i, j), id(i, j + 1), id(i + 1, j + 1), id(i + 1, j));
-                if rng.gen::<bool>() {
-                    e.push([a, c]);
-                    t.extend([[a, b, c], [a, c, d]]);
-                } else {
-                    e.push([d, b]);
-                    t.extend([[a, b, d], [b, c, d]]);
-                }
-            }
-        }
-    }
-    (v, e, t)
-}
 
 fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
     (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
@@ -72,7 +34,7 @@ proptest! {
     #![proptest_config(config(24, 901))]
     #[test]
     fn triangulations_locate_like_brute_force(k in 2usize..12, seed in any::<u64>(), queries in prop::collection::vec(proptest::array::uniform2(-1.5f64..13.0), 60)) {
-        let (v, e, tri) = grid(k, seed);
+        let (v, e, tri) = workload::triangulated_grid(k, seed);
         let s = Subdivision::new(v.clone(), e).unwrap();
         prop_assert_eq!(s.face_count(), tri.len() + 1);
         let faces: Vec<FaceId> = tri.iter().map(|&[a, b, c]| {
@@ -195,7 +157,7 @@ fn bad_subdivisions_are_refused_by_name() {
 fn size_and_height_of_grid_triangulations() {
     println!("k, vertices, edges, nodes, height, mean nodes + edges per query; same with the exercise's rule");
     for k in [4usize, 16, 64, 256] {
-        let (v, e, _) = grid(k, 5);
+        let (v, e, _) = workload::triangulated_grid(k, 5);
         let (nv, ne) = (v.len(), e.len());
         let s = Subdivision::new(v, e).unwrap();
         let locator = PointLocator::new(s.clone()).unwrap();

@@ -5,8 +5,8 @@
 //! the compressed tree from its root.
 
 mod common;
-#[path = "../benches/workloads/deep.rs"]
-mod deep;
+#[path = "../benches/workloads/compressed.rs"]
+mod workload;
 
 use common::points::config;
 use orthtree::compressed::SkipQuadtree;
@@ -113,7 +113,7 @@ fn skip_location_touches_log_n_nodes_where_the_compressed_walk_touches_depth() {
     println!("n, compressed depth, mean nodes touched: compressed walk, skip quadtree, levels");
     let mut rows = Vec::new();
     for copies in [1usize, 4, 16, 64, 256, 1024, 4096] {
-        let pts = deep::caterpillars(copies);
+        let pts = workload::caterpillars(copies);
         let e: Vec<([f64; 2], ())> = pts.iter().map(|&p| (p, ())).collect();
         let t = SkipQuadtree::new(&e).unwrap();
         t.validate().unwrap();
