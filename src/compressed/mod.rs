@@ -24,7 +24,6 @@
 //! [`PointTree`], so converting between the two trees moves no point to another cell.
 
 mod build;
-mod convert;
 mod index;
 mod locate;
 mod query;
@@ -315,7 +314,7 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
     where
         T: Clone,
     {
-        convert::to_point_tree(self, bucket_size, max_depth)
+        build::to_point_tree(self, bucket_size, max_depth)
     }
 }
 
