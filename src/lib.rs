@@ -31,7 +31,7 @@ pub mod points;
 pub mod query;
 pub mod tree;
 
-pub use compressed::{CompressedTree, CompressedTreeBuilder};
+pub use compressed::{CompressedTree, CompressedTreeBuilder, SkipQuadtree};
 pub use error::Error;
 pub use geom::{morton, validate_point, Aabb, AabbError, Cell, Connectivity, Direction, Scalar};
 pub use image::{ImageTree, RegionTree, VoxelTree};

@@ -243,6 +243,35 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(config(32, 703))]
+    #[test]
+    fn updates_with_extreme_coordinates(
+        start in prop::collection::vec(proptest::array::uniform2(extreme()), 0..20),
+        ops in prop::collection::vec((any::<bool>(), proptest::array::uniform2(extreme()), 0usize..30), 1..60),
+    ) {
+        let root = Aabb::new([0.0, 0.0], [f64::MAX, f64::MAX]).unwrap();
+        let e = entries(&start);
+        let mut t = CompressedTree::builder().root_box(root).build(&e).unwrap();
+        let mut stored = e.clone();
+        for (i, (insert, p, pick)) in ops.into_iter().enumerate() {
+            if insert || stored.is_empty() {
+                t.insert(p, 1000 + i).unwrap();
+                stored.push((p, 1000 + i));
+            } else {
+                let (q, item) = stored.swap_remove(pick % stored.len());
+                prop_assert!(t.remove(&q, &item));
+            }
+            t.validate().unwrap();
+            let fresh = CompressedTree::builder().root_box(root).build(&stored).unwrap();
+            prop_assert_eq!(shape(&t), shape(&fresh));
+        }
+        let q = [1.0, 0.5];
+        let best = stored.iter().map(|(p, _)| SquaredEuclidean.distance(&q, p)).fold(f64::INFINITY, f64::min);
+        prop_assert_eq!(t.nearest(&q).unwrap().map(|n| n.distance), (!stored.is_empty()).then_some(best));
+    }
+}
+
 /// The pathological inputs of the issue, by name, each with the unit square's corners so that
 /// the root cube is the unit square and the clusters sit deep inside it.
 fn pathological() -> Vec<(&'static str, Vec<[f64; 2]>)> {
