@@ -13,6 +13,10 @@
 //! 14.10 on triangulated grids (`build/{edges}`, time per edge) and locates 1000 random points
 //! (`locate/{edges}`).
 //!
+//! Groups `compressed/queries/{box,knn10}` run the shared query engines on a `PointTree`
+//! (bucket 16) and on the `CompressedTree` of the same points: 1000 box counts of about 100
+//! points, and 1000 10-nearest searches.
+//!
 //! Run with `cargo bench --bench compressed` (a few minutes).
 
 mod common;
@@ -25,7 +29,7 @@ use std::time::Duration;
 use common::Distribution;
 use criterion::{criterion_group, criterion_main, BenchmarkGroup, Criterion, Throughput};
 use orthtree::compressed::{PointLocator, SkipQuadtree, Subdivision};
-use orthtree::{Aabb, CompressedTree};
+use orthtree::{Aabb, CompressedTree, PointTree};
 
 const SIZES: [usize; 4] = [1_000, 10_000, 100_000, 1_000_000];
 const BATCH: usize = 1000;
@@ -198,5 +202,64 @@ fn point_location(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, bench, point_location);
+/// The shared query engines on both trees: 1000 box counts (about 100 points each) and 1000
+/// 10-nearest searches, uniform points.
+fn queries(c: &mut Criterion) {
+    for n in SIZES {
+        let points = Distribution::Uniform.points::<2>(n, 31);
+        let queries = Distribution::Uniform.points::<2>(BATCH, 32);
+        let entries: Vec<([f64; 2], u32)> = points
+            .iter()
+            .enumerate()
+            .map(|(i, &p)| (p, i as u32))
+            .collect();
+        let plain = PointTree::new(&entries).unwrap();
+        let compressed = CompressedTree::from(&plain);
+        let half = 0.5 * (100.0 / n as f64).sqrt();
+        let square = |q: &[f64; 2]| Aabb {
+            min: [q[0] - half, q[1] - half],
+            max: [q[0] + half, q[1] + half],
+        };
+        let mut g = c.benchmark_group("compressed/queries/box");
+        setup(&mut g);
+        g.bench_function(format!("point_tree/{n}"), |b| {
+            b.iter(|| {
+                queries
+                    .iter()
+                    .map(|q| plain.query_count(square(q)).unwrap())
+                    .sum::<usize>()
+            })
+        });
+        g.bench_function(format!("compressed/{n}"), |b| {
+            b.iter(|| {
+                queries
+                    .iter()
+                    .map(|q| compressed.query_count(square(q)).unwrap())
+                    .sum::<usize>()
+            })
+        });
+        g.finish();
+        let mut g = c.benchmark_group("compressed/queries/knn10");
+        setup(&mut g);
+        g.bench_function(format!("point_tree/{n}"), |b| {
+            b.iter(|| {
+                queries
+                    .iter()
+                    .map(|q| plain.k_nearest(q, 10).unwrap().len())
+                    .sum::<usize>()
+            })
+        });
+        g.bench_function(format!("compressed/{n}"), |b| {
+            b.iter(|| {
+                queries
+                    .iter()
+                    .map(|q| compressed.k_nearest(q, 10).unwrap().len())
+                    .sum::<usize>()
+            })
+        });
+        g.finish();
+    }
+}
+
+criterion_group!(benches, bench, point_location, queries);
 criterion_main!(benches);

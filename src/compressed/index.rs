@@ -9,10 +9,13 @@
 //! linked list, so duplicates are added and removed in O(1) too.
 //!
 //! The query engines want each node's points as one contiguous run of an array in Morton order.
-//! That array is a *view*, built lazily on the first query after a change by one pre-order walk
-//! (O(n), no sort: the tree's pre-order is Morton order) and dropped by the next update. The
-//! view holds the points in Morton order, the slot each came from (the index's items, so that
-//! [`super::CompressedTree`] maps them back to its items) and every node's run.
+//! That array is part of a *view*, built lazily on the first query after a change by two passes
+//! over the pre-order (O(n), no sort: the tree's pre-order is Morton order) and dropped by the
+//! next update. The view is a frozen copy of the tree for reading: the nodes renumbered in
+//! pre-order (the [`SpatialIndex`] node handles), each with its run, its closed cell box and its
+//! children as one contiguous range, and the points in Morton order with the slot each came from
+//! (the index's items, so that [`super::CompressedTree`] maps them back to its items). Queries
+//! then walk arrays in the order they are stored, as on the point tree.
 
 use super::topology::{Topology, NIL};
 use crate::geom::{Aabb, Scalar};
@@ -65,12 +68,19 @@ impl<S: Clone, const D: usize> Clone for CompressedIndex<S, D> {
     }
 }
 
-/// The points in Morton order, their slots, and every node's run.
+/// The frozen form the queries read: the nodes renumbered in pre-order (Morton order) with
+/// their runs, closed cell boxes and children as contiguous ranges, and the points in Morton
+/// order with the slot each came from.
 #[derive(Debug)]
 struct View<S, const D: usize> {
     points: Vec<[S; D]>,
     slots: Vec<u32>,
+    /// Per pre-order node: its run, its box, and its children `children[kids.0..kids.1]`
+    /// (empty for a leaf).
     runs: Vec<(u32, u32)>,
+    boxes: Vec<Aabb<f64, D>>,
+    kids: Vec<(u32, u32)>,
+    children: Vec<u32>,
 }
 
 impl<S: Scalar, const D: usize> CompressedIndex<S, D> {
@@ -136,33 +146,36 @@ impl<S: Scalar, const D: usize> CompressedIndex<S, D> {
         self.view.take();
     }
 
-    /// The slots in Morton order, each node's run by one pre-order walk with an explicit stack.
+    /// The frozen form: two passes over the pre-order (runs, boxes and children forward, the
+    /// internal nodes' run ends backward). O(n).
     fn build_view(&self) -> View<S, D> {
         let t = &self.topology;
-        let mut runs = vec![(0u32, 0u32); t.nodes.len()];
-        let mut slots = Vec::with_capacity(self.len());
-        let mut stack: Vec<(u32, bool)> = Vec::with_capacity(64);
-        if !t.is_empty() {
-            stack.push((0, false));
+        let order: Vec<u32> = t.pre_order().collect();
+        let mut rank = vec![NIL; t.nodes.len()];
+        for (i, &v) in order.iter().enumerate() {
+            rank[v as usize] = i as u32;
         }
-        while let Some((v, closing)) = stack.pop() {
-            let at = slots.len() as u32;
-            if closing {
-                runs[v as usize].1 = at;
-                continue;
+        let m = order.len();
+        let (mut runs, mut boxes) = (Vec::with_capacity(m), Vec::with_capacity(m));
+        let (mut kids, mut children) = (Vec::with_capacity(m), Vec::with_capacity(m));
+        let mut slots = Vec::with_capacity(self.len());
+        for &v in &order {
+            let start = slots.len() as u32;
+            let mut s = t.node(v).head;
+            while s != NIL {
+                slots.push(s);
+                s = self.next[s as usize];
             }
-            runs[v as usize].0 = at;
-            stack.push((v, true));
-            if t.is_leaf(v) {
-                let mut s = t.node(v).head;
-                while s != NIL {
-                    slots.push(s);
-                    s = self.next[s as usize];
-                }
-            } else {
-                let first = stack.len();
-                stack.extend(t.children(v).map(|c| (c, false)));
-                stack[first..].reverse();
+            runs.push((start, slots.len() as u32));
+            boxes.push(self.geometry.cell_box(&t.node(v).cell));
+            let first = children.len() as u32;
+            children.extend(t.children(v).map(|c| rank[c as usize]));
+            kids.push((first, children.len() as u32));
+        }
+        for i in (0..m).rev() {
+            let (first, end) = kids[i];
+            if first < end {
+                runs[i].1 = runs[children[end as usize - 1] as usize].1;
             }
         }
         let points = slots.iter().map(|&s| self.points[s as usize]).collect();
@@ -170,6 +183,9 @@ impl<S: Scalar, const D: usize> CompressedIndex<S, D> {
             points,
             slots,
             runs,
+            boxes,
+            kids,
+            children,
         }
     }
 
@@ -268,7 +284,7 @@ impl<S: Scalar, const D: usize> SpatialIndex<D> for CompressedIndex<S, D> {
     }
 
     fn root(&self) -> Option<(u32, Aabb<f64, D>)> {
-        (!self.topology.is_empty()).then(|| (0, self.geometry.root_box()))
+        (!self.topology.is_empty()).then(|| (0, self.view().boxes[0]))
     }
 
     #[inline]
@@ -279,13 +295,11 @@ impl<S: Scalar, const D: usize> SpatialIndex<D> for CompressedIndex<S, D> {
 
     #[inline]
     fn for_each_child(&self, node: u32, mut f: impl FnMut(u32, &Aabb<f64, D>)) -> bool {
-        let t = &self.topology;
-        if t.is_leaf(node) {
-            return false;
+        let view = self.view();
+        let (first, end) = view.kids[node as usize];
+        for &c in &view.children[first as usize..end as usize] {
+            f(c, &view.boxes[c as usize]);
         }
-        for c in t.children(node) {
-            f(c, &self.geometry.cell_box(&t.node(c).cell));
-        }
-        true
+        first < end
     }
 }

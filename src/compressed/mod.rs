@@ -70,7 +70,7 @@ pub struct CompressedTree<S, T, const D: usize> {
 /// holds it, and the work it took.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Location<const D: usize> {
-    /// The node (an id of [`CompressedIndex`]'s [`SpatialIndex`](crate::SpatialIndex) impl).
+    /// The node's id in the tree's arena (valid until the next update).
     pub node: u32,
     /// Its cell.
     pub cell: Cell<D>,
