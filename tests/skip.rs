@@ -80,6 +80,37 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(config(32, 802))]
+    #[test]
+    fn updates_in_3d_equal_a_fresh_build(
+        ops in prop::collection::vec((any::<bool>(), proptest::array::uniform3(0u32..=8), 0usize..40), 1..80),
+        seed in any::<u64>(),
+    ) {
+        let root = Aabb::new([0.0; 3], [1.0; 3]).unwrap();
+        let build = |e: &[([f64; 3], usize)]| {
+            SkipQuadtree::with_seed(CompressedTree::builder().root_box(root).build(e).unwrap(), seed)
+        };
+        let levels = |t: &SkipQuadtree<f64, usize, 3>| -> Vec<Vec<_>> {
+            (0..t.level_count()).map(|i| t.level_cells(i).collect()).collect()
+        };
+        let mut t = build(&[]);
+        let mut stored = Vec::new();
+        for (i, (insert, p, pick)) in ops.into_iter().enumerate() {
+            let p = p.map(|x| x as f64 / 8.0);
+            if insert || stored.is_empty() {
+                t.insert(p, i).unwrap();
+                stored.push((p, i));
+            } else {
+                let (q, item) = stored.swap_remove(pick % stored.len());
+                prop_assert!(t.remove(&q, &item));
+            }
+            t.validate().unwrap();
+            prop_assert_eq!(levels(&t), levels(&build(&stored)));
+        }
+    }
+}
+
 #[test]
 fn bad_input_and_empty_trees() {
     let mut t: SkipQuadtree<f64, u8, 2> = SkipQuadtree::new(&[]).unwrap();
