@@ -18,7 +18,7 @@
 //! then walk arrays in the order they are stored, as on the point tree.
 
 use super::topology::{Topology, NIL};
-use crate::geom::{Aabb, Scalar};
+use crate::geom::{Aabb, Cell, Scalar};
 use crate::points::RootGeometry;
 use crate::query::SpatialIndex;
 use core::ops::Range;
@@ -84,14 +84,23 @@ struct View<S, const D: usize> {
 }
 
 impl<S: Scalar, const D: usize> CompressedIndex<S, D> {
-    /// An index over `geometry` from points in Morton order with their keys; equal keys share a
-    /// leaf, in the order given.
+    /// An index over `geometry` from points in Morton order; equal keys share a leaf, in the
+    /// order given.
     pub(crate) fn from_sorted(
         geometry: RootGeometry<D>,
         domain: Aabb<f64, D>,
         points: Vec<[S; D]>,
-        keys: Vec<u64>,
     ) -> Self {
+        // RootGeometry::key's two steps, keeping the coordinates: they are the leaf's cell.
+        let finest = Cell::<D>::MAX_LEVEL;
+        let coords: Vec<[u32; D]> = points
+            .iter()
+            .map(|p| core::array::from_fn(|a| geometry.coordinate(a, p[a].to_f64())))
+            .collect();
+        let keys: Vec<u64> = coords
+            .iter()
+            .map(|&c| crate::geom::morton::interleave(c, finest as u32))
+            .collect();
         let n = keys.len();
         let starts: Vec<usize> = (0..n)
             .filter(|&i| i == 0 || keys[i] != keys[i - 1])
@@ -99,7 +108,11 @@ impl<S: Scalar, const D: usize> CompressedIndex<S, D> {
         let mut leaf = vec![NIL; n];
         let mut prev = vec![NIL; n];
         let mut next = vec![NIL; n];
-        let topology = Topology::from_sorted(starts.iter().map(|&s| keys[s]), |t, node, g| {
+        let leaves = starts.iter().map(|&s| {
+            let cell = Cell::new(finest, coords[s]).expect("coordinates below 2^MAX_LEVEL");
+            (keys[s], cell)
+        });
+        let topology = Topology::from_sorted(leaves, |t, node, g| {
             let (s, e) = (starts[g], starts.get(g + 1).copied().unwrap_or(n));
             t.nodes[node as usize].head = s as u32;
             t.nodes[node as usize].tail = (e - 1) as u32;

@@ -105,12 +105,8 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
         points: Vec<[S; D]>,
         items: Vec<T>,
     ) -> Self {
-        let keys = points
-            .iter()
-            .map(|p| geometry.key(&p.map(Scalar::to_f64)))
-            .collect();
         CompressedTree {
-            index: CompressedIndex::from_sorted(geometry, domain, points, keys),
+            index: CompressedIndex::from_sorted(geometry, domain, points),
             items,
         }
     }

@@ -84,10 +84,10 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
     /// the base is built.
     pub fn with_seed(base: CompressedTree<S, T, D>, seed: u64) -> Self {
         let t = &base.index.topology;
-        let mut sample: Vec<u64> = t
+        let mut sample: Vec<(u64, crate::Cell<D>)> = t
             .pre_order()
             .filter(|&v| t.is_leaf(v))
-            .map(|v| t.node(v).key)
+            .map(|v| (t.node(v).key, t.node(v).cell))
             .collect();
         let mut skip = SkipQuadtree {
             base,
@@ -95,7 +95,7 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
             seed,
         };
         for i in 1.. {
-            sample.retain(|&k| skip.height(k) >= i);
+            sample.retain(|&(k, _)| skip.height(k) >= i);
             if sample.is_empty() {
                 break;
             }

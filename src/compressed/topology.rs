@@ -280,17 +280,17 @@ impl<const D: usize> Topology<D> {
         parent
     }
 
-    /// The tree over distinct `keys` in increasing order; `on_leaf(leaf, i)` is told the leaf of
-    /// the `i`-th key.
+    /// The tree over distinct `keys` in increasing order, each with its finest cell;
+    /// `on_leaf(leaf, i)` is told the leaf of the `i`-th key.
     pub fn from_sorted(
-        keys: impl IntoIterator<Item = u64>,
+        keys: impl IntoIterator<Item = (u64, Cell<D>)>,
         mut on_leaf: impl FnMut(&mut Self, u32, usize),
     ) -> Self {
         let mut t = Self::new();
         // The rightmost path: every node on it is the last child of the one below it.
         let mut stack: Vec<u32> = vec![0];
         let mut previous: Option<u64> = None;
-        for (i, key) in keys.into_iter().enumerate() {
+        for (i, (key, cell)) in keys.into_iter().enumerate() {
             if let Some(p) = previous {
                 debug_assert!(p < key, "keys must be distinct and increasing");
                 let l = common_level::<D>(p, key);
@@ -314,7 +314,6 @@ impl<const D: usize> Topology<D> {
                 }
             }
             let parent = *stack.last().unwrap_or(&0);
-            let cell = Cell::from_aligned_key(key, Cell::<D>::MAX_LEVEL);
             let leaf = t.alloc(Node::blank(cell, key, parent));
             t.append(parent, leaf);
             on_leaf(&mut t, leaf, i);
