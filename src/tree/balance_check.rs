@@ -105,17 +105,11 @@ impl<const D: usize> Tree<D> {
         if self.is_leaf(NodeId::ROOT) {
             return true;
         }
-        let mut pending = check.root();
-        while let Some(top) = pending.pop() {
-            if !check.expand(&top, &mut pending) {
-                return false;
-            }
-        }
-        true
+        check.below(check.root())
     }
 
     /// [`Tree::is_balanced`] with the subtrees spread over rayon's threads: the top levels are
-    /// expanded until there are enough subtrees, which are then tested in parallel.
+    /// expanded breadth-first until there are enough subtrees, which are then tested in parallel.
     ///
     /// ```
     /// use orthtree::{Connectivity, NodeId, Tree};
@@ -137,28 +131,23 @@ impl<const D: usize> Tree<D> {
         if self.is_leaf(NodeId::ROOT) {
             return true;
         }
-        let mut frontier = check.root();
+        let mut frontier = vec![check.root()];
         let wanted = 64 * rayon::current_num_threads();
         while !frontier.is_empty() && frontier.len() < wanted {
-            let mut next = Pending::new(check.rule.directions);
-            while let Some(top) = frontier.pop() {
-                if !check.expand(&top, &mut next) {
-                    return false;
+            let mut next = Vec::new();
+            for top in &frontier {
+                let mut row = check.empty_entry();
+                for c in 0..Dim::<D>::CHILDREN {
+                    match check.child(top, c, &mut row) {
+                        Child::Unbalanced => return false,
+                        Child::Enter => next.push(row.clone()),
+                        Child::Done => {}
+                    }
                 }
             }
             frontier = next;
         }
-        (0..frontier.len()).into_par_iter().all(|e| {
-            let mut pending = Pending::new(check.rule.directions);
-            let mut top = Some(frontier.entry(e));
-            while let Some(node) = top {
-                if !check.expand(&node, &mut pending) {
-                    return false;
-                }
-                top = pending.pop();
-            }
-            true
-        })
+        frontier.into_par_iter().all(|top| check.below(top))
     }
 }
 
@@ -170,6 +159,29 @@ struct Check<'a, const D: usize> {
     rule: Rule,
     internal: Vec<u64>,
     slack: u8,
+}
+
+/// An internal node with internal children, ready to have them tested: its first child, level,
+/// neighbour row (for each allowed direction the neighbour search's result, a node id or
+/// [`OUTSIDE`], and its level), and the first child of each neighbour at its own level (else
+/// `NONE`).
+#[derive(Clone)]
+struct Entry {
+    first: u32,
+    level: u8,
+    ids: SmallVec<[u32; 32]>,
+    levels: SmallVec<[u8; 32]>,
+    across: SmallVec<[u32; 32]>,
+}
+
+/// What [`Check::child`] found.
+enum Child {
+    /// The child is a leaf, or internal and fine with only leaves below it.
+    Done,
+    /// The child is internal, fine, and has internal children: its entry is filled.
+    Enter,
+    /// The child is internal and has a neighbour too coarse.
+    Unbalanced,
 }
 
 impl<'a, const D: usize> Check<'a, D> {
@@ -196,12 +208,22 @@ impl<'a, const D: usize> Check<'a, D> {
         }
     }
 
-    /// The stack holding the root (internal) with its neighbours, all outside.
-    fn root(&self) -> Pending {
-        let mut pending = Pending::new(self.rule.directions);
-        pending.push(self.tree.first_child[0], 0);
-        pending.row_mut().0.fill(OUTSIDE);
-        pending
+    fn empty_entry(&self) -> Entry {
+        let k = self.rule.directions;
+        Entry {
+            first: NONE,
+            level: 0,
+            ids: SmallVec::from_elem(OUTSIDE, k),
+            levels: SmallVec::from_elem(0, k),
+            across: SmallVec::from_elem(NONE, k),
+        }
+    }
+
+    /// The root (internal), its neighbours all outside.
+    fn root(&self) -> Entry {
+        let mut root = self.empty_entry();
+        root.first = self.tree.first_child[0];
+        root
     }
 
     #[inline]
@@ -225,131 +247,81 @@ impl<'a, const D: usize> Check<'a, D> {
         })
     }
 
-    /// Tests the internal children of the node `top` (internal, its row known): computes each
-    /// one's neighbour row from `top`'s (the rule of the module doc), returns `false` at the first
-    /// neighbour too coarse, and pushes onto `out` the children that have internal children.
-    fn expand(&self, top: &Entry, out: &mut Pending) -> bool {
-        let first_child = &self.tree.first_child;
+    /// Tests child `c` of `top` (the rule of the module doc) and, when it has internal children,
+    /// fills `out` with its entry.
+    #[inline]
+    fn child(&self, top: &Entry, c: usize, out: &mut Entry) -> Child {
+        let child = top.first + c as u32;
+        if !self.is_internal(child) {
+            return Child::Done;
+        }
         let k = self.rule.directions;
         let level = top.level;
-        // the first child of each neighbour at `top`'s own level (else NONE)
-        let mut across: SmallVec<[u32; 32]> = SmallVec::with_capacity(k);
-        across.extend(top.ids.iter().zip(&top.levels).map(|(&n, &nl)| {
-            if n != OUTSIDE && nl == level && self.is_internal(n) {
+        let sources = &self.rule.sources[c * k..(c + 1) * k];
+        for (j, &source) in sources.iter().enumerate() {
+            let (id, l) = match source {
+                Source::Sibling(i) => (top.first + i as u32, level + 1),
+                Source::Parent { direction, index } => {
+                    let d = direction as usize;
+                    match top.across[d] {
+                        NONE => (top.ids[d], top.levels[d]),
+                        nf => (nf + index as u32, level + 1),
+                    }
+                }
+            };
+            // the child is internal: its neighbour here must not be too coarse
+            if id != OUTSIDE && l + self.slack <= level {
+                return Child::Unbalanced;
+            }
+            out.ids[j] = id;
+            out.levels[j] = l;
+        }
+        let first_child = &self.tree.first_child;
+        let grandchildren = first_child[child as usize];
+        if !self.any_internal(grandchildren) {
+            return Child::Done;
+        }
+        out.first = grandchildren;
+        out.level = level + 1;
+        for j in 0..k {
+            let n = out.ids[j];
+            out.across[j] = if n != OUTSIDE && out.levels[j] == level + 1 && self.is_internal(n) {
                 first_child[n as usize]
             } else {
                 NONE
-            }
-        }));
-        let mut ids: SmallVec<[u32; 32]> = SmallVec::from_elem(0, k);
-        let mut levels: SmallVec<[u8; 32]> = SmallVec::from_elem(0, k);
-        for c in 0..Dim::<D>::CHILDREN {
-            let child = top.first + c as u32;
-            if !self.is_internal(child) {
+            };
+        }
+        Child::Enter
+    }
+
+    /// Tests every internal node below `top`, depth first, one entry per level of the current
+    /// path, each child's entry written in place (no recursion, no copies).
+    fn below(&self, top: Entry) -> bool {
+        let mut path = vec![top];
+        let mut next = vec![0usize];
+        let mut depth = 1;
+        while depth > 0 {
+            let r = depth - 1;
+            let c = next[r];
+            if c == Dim::<D>::CHILDREN {
+                depth -= 1;
                 continue;
             }
-            let sources = &self.rule.sources[c * k..(c + 1) * k];
-            for (j, &source) in sources.iter().enumerate() {
-                let (id, l) = match source {
-                    Source::Sibling(i) => (top.first + i as u32, level + 1),
-                    Source::Parent { direction, index } => {
-                        let d = direction as usize;
-                        match across[d] {
-                            NONE => (top.ids[d], top.levels[d]),
-                            nf => (nf + index as u32, level + 1),
-                        }
-                    }
-                };
-                // the child is internal: its neighbour here must not be too coarse
-                if id != OUTSIDE && l + self.slack <= level {
-                    return false;
-                }
-                ids[j] = id;
-                levels[j] = l;
+            next[r] += 1;
+            if path.len() == depth {
+                path.push(self.empty_entry());
+                next.push(0);
             }
-            let grandchildren = first_child[child as usize];
-            if self.any_internal(grandchildren) {
-                out.push(grandchildren, level + 1);
-                let (row_ids, row_levels) = out.row_mut();
-                row_ids.copy_from_slice(&ids);
-                row_levels.copy_from_slice(&levels);
+            let (upper, lower) = path.split_at_mut(depth);
+            match self.child(&upper[r], c, &mut lower[0]) {
+                Child::Unbalanced => return false,
+                Child::Enter => {
+                    next[depth] = 0;
+                    depth += 1;
+                }
+                Child::Done => {}
             }
         }
         true
-    }
-}
-
-/// An internal node taken off a [`Pending`] stack: its first child, level and neighbour row.
-struct Entry {
-    first: u32,
-    level: u8,
-    ids: SmallVec<[u32; 32]>,
-    levels: SmallVec<[u8; 32]>,
-}
-
-/// A stack of internal nodes still to expand: each node's first child, level, and neighbour row
-/// (for each allowed direction the neighbour search's result, a node id or [`OUTSIDE`], and its
-/// level).
-struct Pending {
-    directions: usize,
-    first: Vec<u32>,
-    level: Vec<u8>,
-    ids: Vec<u32>,
-    levels: Vec<u8>,
-}
-
-impl Pending {
-    fn new(directions: usize) -> Self {
-        Pending {
-            directions,
-            first: Vec::new(),
-            level: Vec::new(),
-            ids: Vec::new(),
-            levels: Vec::new(),
-        }
-    }
-
-    fn len(&self) -> usize {
-        self.first.len()
-    }
-
-    #[cfg(feature = "rayon")]
-    fn is_empty(&self) -> bool {
-        self.first.is_empty()
-    }
-
-    /// Pushes a node with a row to fill through [`Pending::row_mut`].
-    fn push(&mut self, first: u32, level: u8) {
-        self.first.push(first);
-        self.level.push(level);
-        self.ids.resize(self.ids.len() + self.directions, 0);
-        self.levels.resize(self.levels.len() + self.directions, 0);
-    }
-
-    /// The row of the last node pushed.
-    fn row_mut(&mut self) -> (&mut [u32], &mut [u8]) {
-        let start = self.ids.len() - self.directions;
-        (&mut self.ids[start..], &mut self.levels[start..])
-    }
-
-    /// A copy of entry `e`.
-    fn entry(&self, e: usize) -> Entry {
-        let r = e * self.directions..(e + 1) * self.directions;
-        Entry {
-            first: self.first[e],
-            level: self.level[e],
-            ids: SmallVec::from_slice(&self.ids[r.clone()]),
-            levels: SmallVec::from_slice(&self.levels[r]),
-        }
-    }
-
-    fn pop(&mut self) -> Option<Entry> {
-        let e = self.len().checked_sub(1)?;
-        let entry = self.entry(e);
-        self.first.truncate(e);
-        self.level.truncate(e);
-        self.ids.truncate(e * self.directions);
-        self.levels.truncate(e * self.directions);
-        Some(entry)
     }
 }
