@@ -59,12 +59,12 @@ impl Rule {
         for c in 0..Dim::<D>::CHILDREN as u8 {
             for &d in &directions {
                 let index = c ^ d.axes();
-                let leaving = Direction::from_masks(d.plus_mask() & c, d.minus_mask() & !c);
-                sources.push(if leaving.axes() == 0 {
+                let (plus, minus) = (d.plus_mask() & c, d.minus_mask() & !c);
+                sources.push(if plus | minus == 0 {
                     Source::Sibling(index)
                 } else {
                     Source::Parent {
-                        direction: number(leaving),
+                        direction: number(Direction::from_masks(plus, minus)),
                         index,
                     }
                 });
