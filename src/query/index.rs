@@ -11,7 +11,7 @@
 use super::knn::{k_nearest, Neighbor};
 use super::metric::Metric;
 use super::nearest_iter::NearestIter;
-use super::range::{for_each_in, QueryStats, RegionIter};
+use super::range::{for_each_in, QueryStats, RegionIter, SCAN};
 use super::region::Region;
 use super::{check_max, check_point, QueryError};
 use crate::geom::{Aabb, Cell, Dim, Scalar};
@@ -22,10 +22,6 @@ use core::ops::Range;
 /// The answer of [`SpatialIndex::k_nearest_by`].
 type Neighbors<'a, I, const D: usize> =
     Vec<Neighbor<'a, <I as SpatialIndex<D>>::Scalar, <I as SpatialIndex<D>>::Item, D>>;
-
-/// A crossing node with at most this many points has them tested without descending (the range
-/// engine's bucket scan; the value [`PointTree`]'s own query methods use).
-const SCAN: usize = 48;
 
 /// A tree of closed boxes over one array of points, each node owning a contiguous run of it.
 ///

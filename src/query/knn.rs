@@ -16,7 +16,7 @@
 
 use super::index::SpatialIndex;
 use super::metric::{Metric, SquaredEuclidean};
-use super::{check_max, check_point, QueryError};
+use super::QueryError;
 use crate::geom::{Aabb, Scalar};
 use crate::points::PointTree;
 use smallvec::SmallVec;
@@ -275,12 +275,6 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         max: f64,
         metric: &M,
     ) -> Result<Vec<Neighbor<'_, S, T, D>>, QueryError> {
-        let q = p.map(Scalar::to_f64);
-        check_point(&q)?;
-        check_max(max)?;
-        Ok(k_nearest(self, &q, k, max, metric)
-            .into_iter()
-            .map(|(d, i)| Neighbor::at(self, d, i))
-            .collect())
+        SpatialIndex::k_nearest_by(self, p, k, max, metric)
     }
 }

@@ -183,6 +183,6 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         max: f64,
         metric: M,
     ) -> Result<NearestIter<'_, PointTree<S, T, D>, M, D>, QueryError> {
-        NearestIter::new(self, p.map(Scalar::to_f64), max, metric)
+        SpatialIndex::nearest_iter_by(self, p, max, metric)
     }
 }

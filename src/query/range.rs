@@ -226,7 +226,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// assert_eq!(t.query_count(Ball::new([0.0, 0.0], 1.0).unwrap()).unwrap(), 3);
     /// ```
     pub fn query_count<R: Region<D>>(&self, region: R) -> Result<usize, QueryError> {
-        for_each_in(self, &region, SCAN, |_| {}).map(|s| s.count)
+        SpatialIndex::query_count(self, region)
     }
 
     /// Calls `visit(point, item)` for every point in `region`, in the traversal's order.
@@ -243,8 +243,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         region: R,
         mut visit: impl FnMut(&[S; D], &T),
     ) -> Result<(), QueryError> {
-        let (points, items) = (self.points(), self.items());
-        for_each_in(self, &region, SCAN, |i| visit(&points[i], &items[i])).map(|_| ())
+        SpatialIndex::query_with(self, region, |p, t| visit(p, t))
     }
 
     /// Counts the points in `region` and the work it took: nodes visited and points tested.
@@ -257,7 +256,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// assert_eq!((s.count, s.nodes_visited, s.points_tested), (64, 1, 0)); // the root is inside
     /// ```
     pub fn query_stats<R: Region<D>>(&self, region: R) -> Result<QueryStats, QueryError> {
-        for_each_in(self, &region, 0, |_| {})
+        SpatialIndex::query_stats(self, region)
     }
 
     /// The points in the closed box `b` ([`PointTree::query`] with an [`Aabb`]).
