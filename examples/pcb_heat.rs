@@ -20,7 +20,7 @@
 #[path = "pcb_heat/fem.rs"]
 mod fem;
 
-use orthtree::io::{board_text, poly, vtk};
+use orthtree::io::vtk;
 use orthtree::mesh::{generate_mesh, random_board, sample_board, Board, Mesh};
 use std::fmt::Write as _;
 use std::io::Write as _;
@@ -83,15 +83,9 @@ fn read_board(args: &Args) -> Result<(Board, String), String> {
     let Some(path) = &args.board else {
         return Ok((sample_board(), "built-in sample board".into()));
     };
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
-    let board = if path.ends_with(".poly") {
-        poly::read_poly(&text, args.size)
-    } else {
-        board_text::read_board_text(&text, args.size)
-    };
-    board
+    orthtree::io::read_board_file(path, args.size)
         .map(|b| (b, path.clone()))
-        .map_err(|e| format!("{path}: {e}"))
+        .map_err(|e| e.to_string())
 }
 
 /// An inferno-like colour map: `s` in [0, 1] to RGB.

@@ -10,7 +10,7 @@
 //! .msh (Gmsh 4.1), .vtk (legacy VTK) and .svg (default prefix `board`), validates the mesh and
 //! prints one summary. A bad board prints the error and exits with status 1.
 
-use orthtree::io::{board_text, gmsh, poly, triangle, vtk};
+use orthtree::io::{gmsh, triangle, vtk};
 use orthtree::mesh::{sample_board, Board, MeshOptions, Mode};
 use std::time::{Duration, Instant};
 
@@ -65,15 +65,9 @@ fn read_board(args: &Args) -> Result<(Board, String), String> {
     let Some(path) = &args.board else {
         return Ok((sample_board(), "built-in sample board".into()));
     };
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
-    let board = if path.ends_with(".poly") {
-        poly::read_poly(&text, args.size)
-    } else {
-        board_text::read_board_text(&text, args.size)
-    };
-    board
+    orthtree::io::read_board_file(path, args.size)
         .map(|b| (b, path.clone()))
-        .map_err(|e| format!("{path}: {e}"))
+        .map_err(|e| e.to_string())
 }
 
 fn write_all(mesh: &orthtree::mesh::Mesh, board: &Board, prefix: &str) -> std::io::Result<()> {

@@ -9,8 +9,9 @@
 //! - [`pbm`]: 2D region trees as PBM bitmaps (P1 and P4); `png` (behind the `png`
 //!   feature) the same as PNG; [`svg::image_tree_svg`] draws a region tree's leaves.
 //! - [`board_text`]: a board for the mesher as plain text, one component per line (read and
-//!   write).
+//!   write); [`read_board_file`] reads either format from a file.
 
+mod board_file;
 pub mod board_text;
 pub mod gmsh;
 pub mod pbm;
@@ -21,4 +22,5 @@ pub mod svg;
 pub mod triangle;
 pub mod vtk;
 
+pub use board_file::{read_board_file, BoardFileError};
 pub use svg::{mesh_svg, point_tree_svg, Style, Svg};
