@@ -6,13 +6,14 @@
 //! tree, and splits made for one node never undo another's finding: a search that ends deep
 //! enough still does after any split (splits only deepen the tree), and a split for a node at
 //! level l creates internal nodes above level l only (see `ripple.rs`). So each level runs in two
-//! phases: every (node, outward direction) pair is searched in parallel, keeping those that end
-//! too shallow, in node order; then those pairs are repaired one after another with the serial
-//! repair, which searches again and stops at once if an earlier repair already did the work. The
+//! phases: every (node, outward direction) pair is searched in parallel, keeping, in node order,
+//! the leaf where each search that ends too shallow stops and the steps still to take below it;
+//! then those descents are made one after another with the serial repair, splitting leaves (a
+//! leaf an earlier descent already split is simply walked through). The
 //! result is the same tree as [`Tree::balance`] (the coarsest balanced refinement is unique);
 //! node ids may differ, since splits happen in another order.
 
-use super::ripple::{outward_directions, Levels};
+use super::ripple::{outward_directions, Levels, Steps};
 use super::{BalanceOptions, NodeId, Tree};
 use rayon::prelude::*;
 
@@ -46,23 +47,18 @@ impl<const D: usize> Tree<D> {
         let mut levels = Levels::new(self, options);
         while let Some((nodes, min_level)) = levels.next_level() {
             let tree = &*self;
-            let forced: Vec<(NodeId, usize)> = nodes
+            let short: Vec<(NodeId, Steps)> = nodes
                 .par_chunks(CHUNK)
                 .flat_map_iter(|chunk| {
                     chunk.iter().flat_map(|&c| {
-                        let directions = &outward[tree.child_index(c)];
-                        (0..directions.len())
-                            .filter(move |&i| {
-                                tree.neighbor(c, directions[i])
-                                    .is_some_and(|n| tree.level(n) < min_level)
-                            })
-                            .map(move |i| (c, i))
+                        outward[tree.child_index(c)]
+                            .iter()
+                            .filter_map(move |&d| tree.shortfall(c, d, min_level))
                     })
                 })
                 .collect();
-            for (c, i) in forced {
-                let d = outward[self.child_index(c)][i];
-                levels.reach(self, c, d, min_level);
+            for (v, steps) in short {
+                levels.split_down(self, v, &steps, min_level);
             }
         }
         levels.split

@@ -69,6 +69,29 @@ impl<const D: usize> Tree<D> {
         levels.split
     }
 
+    /// Where the neighbour search from `id` in `direction` stops short: the leaf above
+    /// `min_level` it ends at, with the child indices still to take below it (innermost last), or
+    /// `None` when the search reaches `min_level` (nothing to split).
+    pub(super) fn shortfall(
+        &self,
+        id: NodeId,
+        direction: Direction,
+        min_level: u8,
+    ) -> Option<(NodeId, Steps)> {
+        let (mut v, mut path) = self.neighbor_path(id, direction)?;
+        while let Some(&c) = path.last() {
+            if self.level(v) >= min_level {
+                return None;
+            }
+            match self.child(v, c as usize) {
+                Some(child) => v = child,
+                None => return Some((v, Steps::from_slice(&path))),
+            }
+            path.pop();
+        }
+        None
+    }
+
     /// Follows the neighbour search from `id` in `direction`, splitting every leaf met above
     /// `min_level` on the way down (calling `on_split` after each split), until the path reaches
     /// `min_level` or its end.
@@ -77,12 +100,22 @@ impl<const D: usize> Tree<D> {
         id: NodeId,
         direction: Direction,
         min_level: u8,
+        on_split: impl FnMut(&Self, NodeId),
+    ) {
+        if let Some((v, path)) = self.neighbor_path(id, direction) {
+            self.split_down(v, &path, min_level, on_split);
+        }
+    }
+
+    /// The descent of [`Tree::reach`] from `v`, taking the child indices of `path` from its end.
+    pub(super) fn split_down(
+        &mut self,
+        mut v: NodeId,
+        path: &[u8],
+        min_level: u8,
         mut on_split: impl FnMut(&Self, NodeId),
     ) {
-        let Some((mut v, mut path)) = self.neighbor_path(id, direction) else {
-            return;
-        };
-        while let Some(c) = path.pop() {
+        for &c in path.iter().rev() {
             if self.level(v) >= min_level {
                 return;
             }
@@ -94,6 +127,9 @@ impl<const D: usize> Tree<D> {
         }
     }
 }
+
+/// The child indices a neighbour search still has to take below the leaf where it stopped.
+pub(super) type Steps = SmallVec<[u8; 8]>;
 
 /// The state of one level-by-level balance (see the module doc): the internal nodes still to
 /// examine, by level, and the splits made so far.
@@ -152,9 +188,24 @@ impl Levels {
         min_level: u8,
     ) {
         tree.reach(id, direction, min_level, |tree, leaf| {
-            self.split.push(leaf);
-            self.by_level[tree.level(leaf) as usize].push(leaf);
+            self.record(tree, leaf)
         });
+    }
+
+    /// [`Tree::split_down`], recording each split and the new internal node's level.
+    pub(super) fn split_down<const D: usize>(
+        &mut self,
+        tree: &mut Tree<D>,
+        v: NodeId,
+        path: &[u8],
+        min_level: u8,
+    ) {
+        tree.split_down(v, path, min_level, |tree, leaf| self.record(tree, leaf));
+    }
+
+    fn record<const D: usize>(&mut self, tree: &Tree<D>, leaf: NodeId) {
+        self.split.push(leaf);
+        self.by_level[tree.level(leaf) as usize].push(leaf);
     }
 }
 
