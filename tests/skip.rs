@@ -128,7 +128,10 @@ fn bad_input_and_empty_trees() {
         t.locate(&[f64::NAN, 0.0]),
         Err(Error::QueryNotFinite { axis: 0, .. })
     ));
-    assert!(t.approx_nearest(&[0.0, 0.0], -1.0).is_err());
+    assert!(matches!(
+        t.approx_nearest(&[0.0, 0.0], -1.0),
+        Err(orthtree::QueryError::InvalidEpsilon { .. })
+    ));
     assert!(t.approx_nearest(&[0.0, f64::INFINITY], 1.0).is_err());
     t.insert([0.5, 0.5], 1).unwrap();
     t.insert([0.5, 0.5], 2).unwrap();

@@ -261,8 +261,7 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
     /// the number of nodes the search visited; `None` for an empty tree. `eps = 0` gives the
     /// exact nearest point.
     ///
-    /// Errors: a non-finite `p`; `eps` negative or NaN (reported as
-    /// [`QueryError::InvalidMaxDistance`]).
+    /// Errors: a non-finite `p`; `eps` negative or NaN ([`QueryError::InvalidEpsilon`]).
     pub fn approx_nearest(
         &self,
         p: &[S; D],
@@ -276,7 +275,7 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
             });
         }
         if eps.is_nan() || eps < 0.0 {
-            return Err(QueryError::InvalidMaxDistance { value: eps.into() });
+            return Err(QueryError::InvalidEpsilon { value: eps.into() });
         }
         let shrink = 1.0 / ((1.0 + eps) * (1.0 + eps));
         let index = self.base.index();

@@ -80,6 +80,12 @@ pub enum QueryError {
     },
     /// A half-space offset that is NaN.
     NanOffset,
+    /// An approximation factor `eps` (for a (1 + eps)-approximate search) that is negative or
+    /// NaN.
+    InvalidEpsilon {
+        /// The `eps` given.
+        value: FloatBits,
+    },
 }
 
 /// An `f64` compared by its bits, so that errors holding NaN still compare equal to themselves.
@@ -124,6 +130,9 @@ impl core::fmt::Display for QueryError {
                 write!(f, "half-space normal on axis {axis} is not finite")
             }
             QueryError::NanOffset => f.write_str("half-space offset is NaN"),
+            QueryError::InvalidEpsilon { value } => {
+                write!(f, "approximation eps {} is negative or NaN", value.get())
+            }
         }
     }
 }
