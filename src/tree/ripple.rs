@@ -72,6 +72,7 @@ impl<const D: usize> Tree<D> {
     /// Where the neighbour search from `id` in `direction` stops short: the leaf above
     /// `min_level` it ends at, with the child indices still to take below it (innermost last), or
     /// `None` when the search reaches `min_level` (nothing to split).
+    #[cfg(feature = "rayon")]
     pub(super) fn shortfall(
         &self,
         id: NodeId,
@@ -129,6 +130,7 @@ impl<const D: usize> Tree<D> {
 }
 
 /// The child indices a neighbour search still has to take below the leaf where it stopped.
+#[cfg(feature = "rayon")]
 pub(super) type Steps = SmallVec<[u8; 8]>;
 
 /// The state of one level-by-level balance (see the module doc): the internal nodes still to
@@ -193,6 +195,7 @@ impl Levels {
     }
 
     /// [`Tree::split_down`], recording each split and the new internal node's level.
+    #[cfg(feature = "rayon")]
     pub(super) fn split_down<const D: usize>(
         &mut self,
         tree: &mut Tree<D>,
