@@ -3,11 +3,11 @@
 
 use super::*;
 
-const NONE: u32 = u32::MAX;
+pub(super) const NONE: u32 = u32::MAX;
 
 /// What an input step makes of a half-edge: the component on its left, or on its right.
 #[derive(Clone, Copy, PartialEq, Eq)]
-enum Input {
+pub(super) enum Input {
     None,
     Left(u32),
     Right(u32),
@@ -17,26 +17,26 @@ enum Input {
 /// `triangles[t][(i + 1) % 3]`; edges are found by sorting, not hashing, which keeps the
 /// validation of a mesh with a million triangles well under a second.
 pub(super) struct Validator<'m> {
-    mesh: &'m Mesh,
-    board: &'m Board,
+    pub(super) mesh: &'m Mesh,
+    pub(super) board: &'m Board,
     /// Triangles whose indices are in range and vertices inside the board.
-    good: Vec<bool>,
+    pub(super) good: Vec<bool>,
     /// Doubled signed area of each good triangle (0 for the others).
-    area2: Vec<i128>,
+    pub(super) area2: Vec<i128>,
     /// (undirected edge key, half-edge) of the good triangles' half-edges, sorted.
-    keys: Vec<(u64, u32)>,
+    pub(super) keys: Vec<(u64, u32)>,
     /// The opposite half-edge of each half-edge, [`NONE`] if there is none (or more than one).
-    twins: Vec<u32>,
+    pub(super) twins: Vec<u32>,
     /// Used vertices sorted by position.
-    points: Vec<(Point, u32)>,
+    pub(super) points: Vec<(Point, u32)>,
     /// Undirected board-boundary edges, in half-edge order.
-    boundary_edges: Vec<(u32, u32)>,
+    pub(super) boundary_edges: Vec<(u32, u32)>,
     /// The input step on each half-edge, if any.
-    input: Vec<Input>,
+    pub(super) input: Vec<Input>,
     /// The mesh edges along the component edges, in board order, with their component (from 1).
-    input_steps: Vec<((u32, u32), u32)>,
+    pub(super) input_steps: Vec<((u32, u32), u32)>,
     /// One half-edge leaving each used vertex, [`NONE`] for the others.
-    leaving: Vec<u32>,
+    pub(super) leaving: Vec<u32>,
 }
 
 /// Sorts (edge key, half-edge) pairs as `sort_unstable` would: a counting sort on the edge's
@@ -85,42 +85,42 @@ impl<'m> Validator<'m> {
         }
     }
 
-    fn point(&self, v: u32) -> Point {
+    pub(super) fn point(&self, v: u32) -> Point {
         self.mesh.vertices[v as usize]
     }
 
-    fn tri_points(&self, t: usize) -> [Point; 3] {
+    pub(super) fn tri_points(&self, t: usize) -> [Point; 3] {
         self.mesh.triangles[t].map(|v| self.point(v))
     }
 
-    fn origin(&self, h: u32) -> u32 {
+    pub(super) fn origin(&self, h: u32) -> u32 {
         self.mesh.triangles[h as usize / 3][h as usize % 3]
     }
 
-    fn target(&self, h: u32) -> u32 {
+    pub(super) fn target(&self, h: u32) -> u32 {
         self.mesh.triangles[h as usize / 3][(h as usize % 3 + 1) % 3]
     }
 
-    fn twin(&self, h: u32) -> Option<u32> {
+    pub(super) fn twin(&self, h: u32) -> Option<u32> {
         Some(self.twins[h as usize]).filter(|&g| g != NONE)
     }
 
     /// The good triangles with their indices.
-    fn good_triangles(&self) -> impl Iterator<Item = (usize, [u32; 3])> + '_ {
+    pub(super) fn good_triangles(&self) -> impl Iterator<Item = (usize, [u32; 3])> + '_ {
         (self.mesh.triangles.iter().enumerate())
             .filter(|(t, _)| self.good[*t])
             .map(|(t, &tri)| (t, tri))
     }
 
     /// The half-edges (3t + i, from, to) of the good triangles.
-    fn half_edges(&self) -> impl Iterator<Item = (u32, u32, u32)> + '_ {
+    pub(super) fn half_edges(&self) -> impl Iterator<Item = (u32, u32, u32)> + '_ {
         self.good_triangles().flat_map(|(t, tri)| {
             (0..3).map(move |i| ((3 * t + i) as u32, tri[i], tri[(i + 1) % 3]))
         })
     }
 
     /// A half-edge running from `a` to `b`, if any.
-    fn find(&self, a: u32, b: u32) -> Option<u32> {
+    pub(super) fn find(&self, a: u32, b: u32) -> Option<u32> {
         let key = edge_key(a, b);
         let start = self.keys.partition_point(|&(k, _)| k < key);
         (self.keys[start..].iter())
@@ -129,14 +129,14 @@ impl<'m> Validator<'m> {
             .find(|&h| self.origin(h) == a)
     }
 
-    fn is_edge(&self, a: u32, b: u32) -> bool {
+    pub(super) fn is_edge(&self, a: u32, b: u32) -> bool {
         let key = edge_key(a, b);
         let i = self.keys.partition_point(|&(k, _)| k < key);
         self.keys.get(i).is_some_and(|&(k, _)| k == key)
     }
 
     /// The used vertex at `p`, if any.
-    fn vertex_at(&self, p: Point) -> Option<u32> {
+    pub(super) fn vertex_at(&self, p: Point) -> Option<u32> {
         let i = self.points.partition_point(|&(q, _)| q < p);
         self.points
             .get(i)
@@ -144,7 +144,7 @@ impl<'m> Validator<'m> {
             .map(|&(_, v)| v)
     }
 
-    fn region(&self, t: usize) -> Option<u32> {
+    pub(super) fn region(&self, t: usize) -> Option<u32> {
         self.mesh.regions.get(t).copied()
     }
 
@@ -357,164 +357,6 @@ impl<'m> Validator<'m> {
         }
     }
 
-    fn respects_input(&mut self) -> Check {
-        let mut f = Finding::default();
-        let mut input = vec![Input::None; self.twins.len()];
-        let mut steps = Vec::new();
-        let mut leaving = vec![NONE; self.mesh.vertices.len()];
-        for (h, a, _) in self.half_edges() {
-            leaving[a as usize] = h;
-        }
-        self.leaving = leaving;
-        for (ci, comp) in self.board.components().iter().enumerate() {
-            let c = ci as u32 + 1;
-            for (k, (p, q)) in comp.edges().enumerate() {
-                let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
-                if (dx == 0 && dy == 0) || (dx != 0 && dy != 0 && dx.abs() != dy.abs()) {
-                    f.fail(|| {
-                        format!("component {c} edge {k} {p:?} -> {q:?} is not a lattice direction")
-                    });
-                    continue;
-                }
-                let d = [dx.signum(), dy.signum()];
-                let Some(first) = self.vertex_at(p) else {
-                    f.fail(|| format!("component {c} vertex {p:?} is not a mesh vertex"));
-                    continue;
-                };
-                let (mut at, mut from) = (p, first);
-                while at != q {
-                    let left = (q[0] - at[0]).abs().max((q[1] - at[1]).abs());
-                    let Some((to, next)) = self.step_along(from, at, d, left) else {
-                        f.fail(|| {
-                            format!(
-                                "component {c} edge {k} {p:?} -> {q:?}: no mesh edge leaves \
-                                 {at:?} along it"
-                            )
-                        });
-                        break;
-                    };
-                    let mut mark = |h: u32, side: Input| {
-                        if input[h as usize] == Input::None {
-                            input[h as usize] = side;
-                        }
-                    };
-                    if let Some(h) = self.find(from, to) {
-                        mark(h, Input::Left(c));
-                        if let Some(g) = self.twin(h) {
-                            mark(g, Input::Right(c));
-                        }
-                    } else if let Some(g) = self.find(to, from) {
-                        mark(g, Input::Right(c));
-                    }
-                    steps.push(((from, to), c));
-                    (at, from) = (next, to);
-                }
-            }
-        }
-        self.input = input;
-        self.input_steps = steps;
-        f.finish(|| {
-            format!(
-                "{} component edges are chains of {} mesh edges",
-                self.board
-                    .components()
-                    .iter()
-                    .map(|c| c.outline.len())
-                    .sum::<usize>(),
-                self.input_steps.len()
-            )
-        })
-    }
-
-    /// The half-edges leaving `v`, found by turning around it through the triangles (both ways,
-    /// so that a vertex on the boundary is covered). At most 64 of them: a vertex of a valid mesh
-    /// has at most 8, and the bound keeps a malformed mesh from looping.
-    fn outgoing(&self, v: u32) -> impl Iterator<Item = u32> + '_ {
-        let first = self.leaving[v as usize];
-        let turn = move |back: bool| {
-            let mut h = Some(first).filter(|&h| h != NONE);
-            let mut count = 0;
-            core::iter::from_fn(move || {
-                let g = h?;
-                count += 1;
-                let (t, i) = (g / 3, g % 3);
-                h = if back {
-                    self.twin(g).map(|g| g / 3 * 3 + (g % 3 + 1) % 3)
-                } else {
-                    self.twin(3 * t + (i + 2) % 3)
-                }
-                .filter(|&n| n != first && count < 64);
-                Some(g)
-            })
-        };
-        turn(false).chain(turn(true).skip(1))
-    }
-
-    /// The mesh edge leaving vertex `from` at `at` along the unit lattice direction `d`, ending
-    /// at most `left` steps on: (its other vertex, that vertex's position). Found by turning
-    /// around `from`; where that fails (a malformed mesh, with a hole or a flipped triangle at
-    /// `from`), the unit step to `at + d` is tried as an undirected edge.
-    fn step_along(&self, from: u32, at: Point, d: Point, left: i64) -> Option<(u32, Point)> {
-        let along = self.outgoing(from).find_map(|h| {
-            let to = self.target(h);
-            let q = self.point(to);
-            let v = [q[0] - at[0], q[1] - at[1]];
-            let t = v[0] * d[0] + v[1] * d[1];
-            let t = if d[0] != 0 && d[1] != 0 { t / 2 } else { t };
-            let on_ray = t > 0 && t <= left && v == [t * d[0], t * d[1]];
-            on_ray.then_some((to, q))
-        });
-        along.or_else(|| {
-            let next = [at[0] + d[0], at[1] + d[1]];
-            let to = self.vertex_at(next).filter(|&to| self.is_edge(from, to))?;
-            Some((to, next))
-        })
-    }
-
-    fn angles(&self) -> (Check, Option<[f64; 2]>) {
-        let mut f = Finding::default();
-        // The smallest and largest angle as (dot, |cross|): vectors in the closed upper half
-        // plane, compared exactly by their cross product; converted to degrees at the end.
-        let mut range: Option<[(i128, i128); 2]> = None;
-        let less = |(d1, c1): (i128, i128), (d2, c2): (i128, i128)| d1 * c2 - c1 * d2 > 0;
-        let degrees = |(dot, cr): (i128, i128)| (cr as f64).atan2(dot as f64).to_degrees();
-        for (t, tri) in self.good_triangles() {
-            let p = self.tri_points(t);
-            for i in 0..3 {
-                let (a, b, c) = (p[i], p[(i + 1) % 3], p[(i + 2) % 3]);
-                let u = [b[0] as i128 - a[0] as i128, b[1] as i128 - a[1] as i128];
-                let v = [c[0] as i128 - a[0] as i128, c[1] as i128 - a[1] as i128];
-                let dot = u[0] * v[0] + u[1] * v[1];
-                let cr = (u[0] * v[1] - u[1] * v[0]).abs();
-                let angle = (dot, cr);
-                range = Some(match range {
-                    None => [angle, angle],
-                    Some([lo, hi]) => [
-                        if less(angle, lo) { angle } else { lo },
-                        if less(hi, angle) { angle } else { hi },
-                    ],
-                });
-                if dot < 0 || dot > cr {
-                    let what = if dot < 0 { "above 90" } else { "below 45" };
-                    f.fail(|| {
-                        format!(
-                            "triangle {t} {tri:?}: the angle at vertex {} {a:?} is {:.2} \
-                             degrees, {what}",
-                            tri[i],
-                            degrees(angle)
-                        )
-                    });
-                }
-            }
-        }
-        let range = range.map(|r| r.map(degrees));
-        let check = f.finish(|| match range {
-            Some([lo, hi]) => format!("angles from {lo:.1} to {hi:.1} degrees"),
-            None => "no triangles".into(),
-        });
-        (check, range)
-    }
-
     fn regions(&self) -> Check {
         let mut f = Finding::default();
         let k = self.board.components().len() as u32;
@@ -583,32 +425,6 @@ impl<'m> Validator<'m> {
             }
         };
         (check, v, e)
-    }
-
-    fn delaunay(&self) -> Check {
-        let mut f = Finding::default();
-        let mut pairs = 0usize;
-        for (h, a, b) in self.half_edges() {
-            let Some(g) = self.twin(h) else { continue };
-            let (s, t) = (h as usize / 3, g as usize / 3);
-            if h > g || self.area2[s] <= 0 || self.area2[t] <= 0 {
-                continue;
-            }
-            pairs += 1;
-            let [p0, p1, p2] = self.tri_points(s);
-            let d_index = self.mesh.triangles[t][(g as usize % 3 + 2) % 3];
-            let d = self.point(d_index);
-            if incircle(p0, p1, p2, d) > 0 {
-                let c = self.mesh.triangles[s][(h as usize % 3 + 2) % 3];
-                f.fail(|| {
-                    format!(
-                        "across edge {a}-{b}: vertex {d_index} {d:?} of triangle {t} lies \
-                         strictly inside the circumcircle of triangle {s} (opposite vertex {c})"
-                    )
-                });
-            }
-        }
-        f.finish(|| format!("{pairs} interior edges locally Delaunay"))
     }
 
     fn segments(&self) -> Check {

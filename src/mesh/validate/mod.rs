@@ -337,6 +337,8 @@ impl Mesh {
 
 /// No half-edge.
 mod checks;
+mod geometry;
+mod input;
 #[cfg(test)]
 mod tests;
 
