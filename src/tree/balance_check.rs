@@ -18,9 +18,12 @@
 //! child c ^ axes(δ) of the parent's neighbour in the restriction of δ to the leaving axes (or
 //! that neighbour itself, when it is a leaf or shallower).
 //!
-//! Cost: one array read per internal node and direction that leaves the parent, no walk up the
-//! tree and no allocation beyond (max level + 1) rows of neighbours; leaves are never entered.
-//! Internal nodes are visited in pre-order with an explicit stack of one row per level.
+//! Cost: one bitmap lookup per child of an entered node, and rows only where they are needed: a
+//! node is entered only when it has internal children; a node whose row holds no neighbour too
+//! coarse for its children ("clean") lets those children pass without computing their rows; and
+//! a neighbour's children are read (one array read per direction) only when some child needs a
+//! row. Leaves are never entered, nothing recurses, and memory is one row per level of the
+//! current path.
 
 use super::arena::NONE;
 use super::{BalanceOptions, NodeId, Tree};
@@ -135,7 +138,7 @@ impl<const D: usize> Tree<D> {
         let wanted = 64 * rayon::current_num_threads();
         while !frontier.is_empty() && frontier.len() < wanted {
             let mut next = Vec::new();
-            for top in &frontier {
+            for top in &mut frontier {
                 let mut row = check.empty_entry();
                 for c in 0..Dim::<D>::CHILDREN {
                     match check.child(top, c, &mut row) {
@@ -172,6 +175,11 @@ struct Entry {
     ids: SmallVec<[u32; 32]>,
     levels: SmallVec<[u8; 32]>,
     across: SmallVec<[u32; 32]>,
+    /// `true` when no entry of the row is a leaf (or shallower node) too coarse for the node's
+    /// internal children: they then pass the test without looking.
+    clean: bool,
+    /// `true` once `across` is filled (it is read only for children that need a row).
+    across_ready: bool,
 }
 
 /// What [`Check::child`] found.
@@ -216,6 +224,8 @@ impl<'a, const D: usize> Check<'a, D> {
             ids: SmallVec::from_elem(OUTSIDE, k),
             levels: SmallVec::from_elem(0, k),
             across: SmallVec::from_elem(NONE, k),
+            clean: true,
+            across_ready: false,
         }
     }
 
@@ -248,12 +258,31 @@ impl<'a, const D: usize> Check<'a, D> {
     }
 
     /// Tests child `c` of `top` (the rule of the module doc) and, when it has internal children,
-    /// fills `out` with its entry.
+    /// fills `out` with its entry. Reads a neighbour's children (`top.across`) only for a child
+    /// that needs a row, the first time one does.
     #[inline]
-    fn child(&self, top: &Entry, c: usize, out: &mut Entry) -> Child {
+    fn child(&self, top: &mut Entry, c: usize, out: &mut Entry) -> Child {
         let child = top.first + c as u32;
         if !self.is_internal(child) {
             return Child::Done;
+        }
+        let first_child = &self.tree.first_child;
+        let grandchildren = first_child[child as usize];
+        let enter = self.any_internal(grandchildren);
+        if top.clean && !enter {
+            // no neighbour of `top` is too coarse for its children: nothing to test here
+            return Child::Done;
+        }
+        if enter && !top.across_ready {
+            for j in 0..self.rule.directions {
+                let n = top.ids[j];
+                top.across[j] = if self.internal_at(n, top.levels[j], top.level) {
+                    first_child[n as usize]
+                } else {
+                    NONE
+                };
+            }
+            top.across_ready = true;
         }
         let k = self.rule.directions;
         let level = top.level;
@@ -263,9 +292,13 @@ impl<'a, const D: usize> Check<'a, D> {
                 Source::Sibling(i) => (top.first + i as u32, level + 1),
                 Source::Parent { direction, index } => {
                     let d = direction as usize;
-                    match top.across[d] {
-                        NONE => (top.ids[d], top.levels[d]),
-                        nf => (nf + index as u32, level + 1),
+                    let (n, nl) = (top.ids[d], top.levels[d]);
+                    if !self.internal_at(n, nl, level) {
+                        (n, nl)
+                    } else if enter {
+                        (top.across[d] + index as u32, level + 1)
+                    } else {
+                        continue; // a same-level internal neighbour: fine, and no row needed
                     }
                 }
             };
@@ -276,22 +309,24 @@ impl<'a, const D: usize> Check<'a, D> {
             out.ids[j] = id;
             out.levels[j] = l;
         }
-        let first_child = &self.tree.first_child;
-        let grandchildren = first_child[child as usize];
-        if !self.any_internal(grandchildren) {
+        if !enter {
             return Child::Done;
         }
         out.first = grandchildren;
         out.level = level + 1;
-        for j in 0..k {
-            let n = out.ids[j];
-            out.across[j] = if n != OUTSIDE && out.levels[j] == level + 1 && self.is_internal(n) {
-                first_child[n as usize]
-            } else {
-                NONE
-            };
-        }
+        out.across_ready = false;
+        // clean: no neighbour that its children would see as too coarse
+        out.clean = (0..k).all(|j| {
+            let (n, l) = (out.ids[j], out.levels[j]);
+            n == OUTSIDE || self.internal_at(n, l, level + 1) || l + self.slack > level + 1
+        });
         Child::Enter
+    }
+
+    /// `true` when `n` (a neighbour row entry at level `l`) is an internal node at `level`.
+    #[inline]
+    fn internal_at(&self, n: u32, l: u8, level: u8) -> bool {
+        n != OUTSIDE && l == level && self.is_internal(n)
     }
 
     /// Tests every internal node below `top`, depth first, one entry per level of the current
@@ -313,7 +348,7 @@ impl<'a, const D: usize> Check<'a, D> {
                 next.push(0);
             }
             let (upper, lower) = path.split_at_mut(depth);
-            match self.child(&upper[r], c, &mut lower[0]) {
+            match self.child(&mut upper[r], c, &mut lower[0]) {
                 Child::Unbalanced => return false,
                 Child::Enter => {
                     next[depth] = 0;
