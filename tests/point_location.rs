@@ -183,3 +183,22 @@ fn size_and_height_of_grid_triangulations() {
         assert!(mean <= 2.0 * (nv as f64).log2() + 10.0);
     }
 }
+
+/// The exercise's rule on a sliver (two unit edges 2^-40 apart) stops at its square budget with a
+/// typed error instead of running out of memory; the default rule builds a small tree.
+#[test]
+fn the_exercise_rule_refuses_slivers_by_budget() {
+    let h = 2f64.powi(-40);
+    let v = vec![[0.0, 0.0], [1.0, 0.0], [1.0, h], [0.0, h]];
+    let e = vec![[0, 1], [1, 2], [2, 3], [3, 0]];
+    let s = Subdivision::new(v, e).unwrap();
+    let err = PointLocator::with_exercise_rule(s.clone()).unwrap_err();
+    assert_eq!(
+        err,
+        SubdivisionError::TooManySquares {
+            limit: 64 * 8 + 4096
+        }
+    );
+    assert!(err.to_string().contains("PointLocator::new"));
+    assert!(PointLocator::new(s).is_ok());
+}

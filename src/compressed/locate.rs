@@ -106,6 +106,9 @@ impl PointLocator {
     /// split until it holds at most one edge. Queries then scan at most one edge outside the
     /// finest cells, but the size grows like the length of close edges over their distance
     /// (two unit edges 2^-40 apart need about 2^33 squares): use it on well-spaced input.
+    ///
+    /// Errors: those of [`PointLocator::new`], and [`SubdivisionError::TooManySquares`] once the
+    /// tree would pass 64 squares per vertex and edge plus 4096.
     pub fn with_exercise_rule(subdivision: Subdivision) -> Result<Self, SubdivisionError> {
         Self::build_with(subdivision, true)
     }
@@ -130,6 +133,8 @@ impl PointLocator {
 
     fn build(&mut self, split_edges: bool) -> Result<(), SubdivisionError> {
         let s = &self.subdivision;
+        // The exercise's rule has no size bound in the input size: stop it before memory runs out.
+        let limit = 64 * (s.vertices().len() + s.edges().len()) + 4096;
         let mut stack = vec![Task {
             parent: NIL,
             quadrant: 0,
@@ -138,6 +143,9 @@ impl PointLocator {
             edges: (0..s.edges().len() as u32).collect(),
         }];
         while let Some(task) = stack.pop() {
+            if split_edges && self.nodes.len() >= limit {
+                return Err(SubdivisionError::TooManySquares { limit });
+            }
             let cell = if task.parent == NIL {
                 task.cell
             } else {

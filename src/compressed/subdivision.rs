@@ -68,6 +68,12 @@ pub enum SubdivisionError {
     },
     /// More vertices or edges than a `u32` can index.
     TooLarge,
+    /// The exercise's rule ([`PointLocator::with_exercise_rule`](super::PointLocator::with_exercise_rule))
+    /// would need more than `limit` squares: edges too close for their length.
+    TooManySquares {
+        /// The budget: 64 squares per vertex and edge, plus 4096.
+        limit: usize,
+    },
 }
 
 impl core::fmt::Display for SubdivisionError {
@@ -94,6 +100,11 @@ impl core::fmt::Display for SubdivisionError {
             }
             Self::Crossing { a, b } => write!(f, "edges {a} and {b} cross"),
             Self::TooLarge => f.write_str("too many vertices or edges"),
+            Self::TooManySquares { limit } => write!(
+                f,
+                "the exercise's rule needs more than {limit} squares (edges too close for their \
+                 length); use PointLocator::new"
+            ),
         }
     }
 }
