@@ -7,6 +7,7 @@ mod error;
 mod generate;
 mod halfedge;
 mod labels;
+mod nesting;
 mod options;
 mod outline;
 mod output;
