@@ -115,11 +115,13 @@ impl PointLocator {
 
     fn build_with(subdivision: Subdivision, split_edges: bool) -> Result<Self, SubdivisionError> {
         let v = subdivision.vertices();
-        let mut bounds = Bounds::new();
-        v.iter().for_each(|&p| bounds.add(p));
-        let mut bounds = bounds.0;
+        let mut bounds = Aabb::empty();
+        v.iter().for_each(|p| bounds.add_point(p));
         if v.is_empty() {
-            bounds = Aabb::new([0.0; 2], [1.0; 2]).expect("a valid box");
+            bounds = Aabb {
+                min: [0.0; 2],
+                max: [1.0; 2],
+            };
         }
         let mut locator = PointLocator {
             geometry: RootGeometry::enclosing(&bounds),
@@ -250,17 +252,16 @@ impl PointLocator {
     fn shrink(&self, cell: Cell<2>, vertices: &[u32], edges: &[u32]) -> Cell<2> {
         let s = &self.subdivision;
         let b = self.geometry.cell_box(&cell);
-        let mut bounds = Bounds::new();
+        let mut content = Aabb::empty();
         vertices
             .iter()
-            .for_each(|&v| bounds.add(s.vertices()[v as usize]));
+            .for_each(|&v| content.add_point(&s.vertices()[v as usize]));
         for &e in edges {
             if let Some((p, q)) = clip(s, e, &b) {
-                bounds.add(p);
-                bounds.add(q);
+                content.add_point(&p);
+                content.add_point(&q);
             }
         }
-        let content = bounds.0;
         let mut at = cell;
         while at.level() < Cell::<2>::MAX_LEVEL {
             let inner = (0..4).map(|q| at.child(q)).find(|c| {
@@ -395,25 +396,6 @@ impl PointLocator {
     /// The cell of every node with `true` for a leaf (for pictures).
     pub fn cells(&self) -> impl Iterator<Item = (Cell<2>, bool)> + '_ {
         self.nodes.iter().map(|n| (n.cell, n.leaf))
-    }
-}
-
-/// A bounding box grown point by point (empty at first).
-struct Bounds(Aabb<f64, 2>);
-
-impl Bounds {
-    fn new() -> Self {
-        Bounds(Aabb {
-            min: [f64::INFINITY; 2],
-            max: [f64::NEG_INFINITY; 2],
-        })
-    }
-
-    fn add(&mut self, p: [f64; 2]) {
-        for (a, x) in p.into_iter().enumerate() {
-            self.0.min[a] = self.0.min[a].min(x);
-            self.0.max[a] = self.0.max[a].max(x);
-        }
     }
 }
 

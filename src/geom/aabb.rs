@@ -88,9 +88,49 @@ impl<S: Scalar, const D: usize> Aabb<S, D> {
     }
 }
 
+impl<const D: usize> Aabb<f64, D> {
+    /// The empty box (min above max on every axis), the start of a bounding-box fold.
+    pub(crate) const fn empty() -> Self {
+        Aabb {
+            min: [f64::INFINITY; D],
+            max: [f64::NEG_INFINITY; D],
+        }
+    }
+
+    /// Grows the box to hold `p`.
+    #[inline]
+    pub(crate) fn add_point(&mut self, p: &[f64; D]) {
+        for (a, &x) in p.iter().enumerate() {
+            self.min[a] = self.min[a].min(x);
+            self.max[a] = self.max[a].max(x);
+        }
+    }
+
+    /// Grows the box to hold `other` (nothing for an empty `other`).
+    pub(crate) fn add_box(&mut self, other: &Self) {
+        for a in 0..D {
+            self.min[a] = self.min[a].min(other.min[a]);
+            self.max[a] = self.max[a].max(other.max[a]);
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn bounding_box_folds() {
+        let mut b = Aabb::<f64, 2>::empty();
+        b.add_box(&Aabb::empty());
+        assert!(b.min[0] > b.max[0]);
+        b.add_point(&[1.0, -2.0]);
+        b.add_point(&[-1.0, 3.0]);
+        let mut c = Aabb::empty();
+        c.add_box(&b);
+        c.add_box(&Aabb::empty());
+        assert_eq!((c.min, c.max), ([-1.0, -2.0], [1.0, 3.0]));
+    }
 
     #[test]
     fn rejects_bad_boxes_naming_the_axis() {

@@ -192,10 +192,7 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
     where
         S: 'p,
     {
-        let mut bounds = Aabb {
-            min: [f64::INFINITY; D],
-            max: [f64::NEG_INFINITY; D],
-        };
+        let mut bounds = Aabb::empty();
         for index in range {
             let p = point(index);
             if let Err(axis) = crate::geom::validate_point(p) {
@@ -218,10 +215,7 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
                     });
                 }
             }
-            for (a, x) in p.into_iter().enumerate() {
-                bounds.min[a] = bounds.min[a].min(x);
-                bounds.max[a] = bounds.max[a].max(x);
-            }
+            bounds.add_point(&p);
         }
         Ok(bounds)
     }

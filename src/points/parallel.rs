@@ -40,16 +40,9 @@ impl<S: Scalar + Send + Sync, const D: usize> PointTreeBuilder<S, D> {
             .into_par_iter()
             .map(|c| self.scan(root.as_ref(), c * CHUNK..((c + 1) * CHUNK).min(n), &point))
             .collect();
-        let mut bounds = Aabb {
-            min: [f64::INFINITY; D],
-            max: [f64::NEG_INFINITY; D],
-        };
+        let mut bounds = Aabb::empty();
         for scan in scans {
-            let b = scan?;
-            for a in 0..D {
-                bounds.min[a] = bounds.min[a].min(b.min[a]);
-                bounds.max[a] = bounds.max[a].max(b.max[a]);
-            }
+            bounds.add_box(&scan?);
         }
         let (geometry, domain) = settle(root, bounds, n);
         let mut keyed: Vec<u128> = entries
