@@ -31,6 +31,10 @@ pub struct RootGeometry<const D: usize> {
     /// 2^FINEST / half_side (0 for an empty cube): turns a coordinate into a first guess of its
     /// cell, which `coordinate` then checks exactly.
     scale: f64,
+    /// Per axis, a bound on the rounding error of the guess plus that of the boundaries, in
+    /// finest cells, doubled (above 1 where no bound is known): a guess whose fraction is
+    /// farther than this from an integer is the exact cell (see [`RootGeometry::coordinate`]).
+    margin: [f64; D],
 }
 
 impl<const D: usize> RootGeometry<D> {
@@ -54,6 +58,7 @@ impl<const D: usize> RootGeometry<D> {
             half_lo,
             half_side,
             scale,
+            margin: half_lo.map(|lo| guess_margin(lo, half_side, Self::FINEST)),
         }
     }
 
@@ -111,12 +116,31 @@ impl<const D: usize> RootGeometry<D> {
 
     /// The finest-level cell coordinate of `x` along `axis`: the `j` with `b(j) < x <= b(j + 1)`,
     /// clamped to the root cube (the first cell includes its lower boundary).
+    ///
+    /// The guess `s = (x / 2 - lo / 2) * 2^FINEST / h` is within a few units in the last place
+    /// of the exact position, and so is every boundary; when the fraction of `s` is farther
+    /// from an integer than both errors together (`margin`, known from the cube alone), the
+    /// guess is the answer. Otherwise the boundaries decide: the guess and its neighbours, then
+    /// a binary search.
     #[inline]
     pub fn coordinate(&self, axis: usize, x: f64) -> u32 {
+        let scaled = (x * 0.5 - self.half_lo[axis]) * self.scale;
+        // `as` truncates (and saturates; NaN gives 0); the fraction is exact below 2^52 and
+        // fails the test for negative, huge or NaN guesses.
+        let guess = scaled as i64;
+        let fraction = scaled - guess as f64;
+        let margin = self.margin[axis];
+        if fraction > margin && fraction < 1.0 - margin && guess <= Self::LAST as i64 {
+            return guess as u32;
+        }
+        self.exact_coordinate(axis, x, scaled)
+    }
+
+    /// [`RootGeometry::coordinate`] from the boundaries alone; `scaled` is the guess.
+    fn exact_coordinate(&self, axis: usize, x: f64, scaled: f64) -> u32 {
         let at = |j: u64| self.boundary(axis, j, Self::FINEST as u8);
         let fits = |j: u64| (j == 0 || at(j) < x) && (j == Self::LAST || x <= at(j + 1));
-        // A guess, then the exact test; `as` saturates and maps NaN to 0.
-        let scaled = (x * 0.5 - self.half_lo[axis]) * self.scale;
+        // `as` saturates and maps NaN to 0.
         let guess = scaled.clamp(0.0, Self::LAST as f64) as i64 as u64;
         for j in [guess, guess.saturating_sub(1), (guess + 1).min(Self::LAST)] {
             if fits(j) {
@@ -149,6 +173,30 @@ impl<const D: usize> RootGeometry<D> {
     }
 }
 
+/// The `margin` of [`RootGeometry::coordinate`] for an axis with `half_lo` and `half_side`,
+/// in cells of level `finest`.
+///
+/// With u = 2^-53, a boundary `b(j) = 2 fl(lo/2 + fl(h t))` sits within u (2 + |lo/2| / h)
+/// cells (plus u^2 terms) of its exact place `j` (doubling is exact), and the guess (three
+/// rounded operations, `x / 2` exact for normal `x`) within 3u |s| <= 3u 2^finest of the exact
+/// position of `x`. If the guess's fraction is more than the sum away from 0 and 1, `x` is
+/// strictly above boundary `j` and at most boundary `j + 1`. The sum is doubled, with slack
+/// for the u^2 terms; the bound is refused (2.0, never met) where subnormal or overflowing
+/// values could break the relative error model.
+fn guess_margin(half_lo: f64, half_side: f64, finest: u32) -> f64 {
+    let safe = half_side >= (-960f64).exp2() && half_lo.abs() + 2.0 * half_side <= 1000f64.exp2();
+    if !safe {
+        return 2.0;
+    }
+    let u_cells = (finest as f64 - 53.0).exp2();
+    let margin = 2.0 * u_cells * (5.01 + half_lo.abs() / half_side) + (-40f64).exp2();
+    if margin < 0.25 {
+        margin
+    } else {
+        2.0
+    }
+}
+
 /// Half of `m`, rounded down: halving a subnormal can round up (to even), which would put the
 /// root's lower side above the smallest point.
 fn half_down(m: f64) -> f64 {
@@ -171,6 +219,61 @@ mod tests {
         assert_eq!(g.cell_of(&[0.5, -0.5], 2).coords(), [2, 0]);
         assert_eq!(g.cell_of(&[0.5000001, -0.5], 2).coords(), [3, 0]);
         assert_eq!(g.cell_of(&[-1.0, 1.0], 3).coords(), [0, 7]);
+    }
+
+    /// The guess's shortcut against the boundaries alone, on boundaries, next to them, and at
+    /// random, for cubes near and far from the origin, tiny and huge.
+    #[test]
+    fn the_guess_shortcut_agrees_with_the_boundaries() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand::rngs::SmallRng::seed_from_u64(3);
+        fn check<const D: usize>(g: &RootGeometry<D>, x: f64) {
+            for axis in 0..D {
+                let scaled = (x * 0.5 - g.half_lo[axis]) * g.scale;
+                assert_eq!(
+                    g.coordinate(axis, x),
+                    g.exact_coordinate(axis, x, scaled),
+                    "x = {x:e} in {g:?}"
+                );
+            }
+        }
+        let cubes = [
+            (0.0, 1.0),
+            (-1.0, 2.0),
+            (0.1, 0.7),
+            (100.0, 1.0),
+            (-1e4, 3.0),
+            (1e6, 1.0),
+            (-3e9, 1e-3),
+            (1e15, 7.0),
+            (1e-300, 1e-300),
+            (0.0, 1e300),
+            (-1e300, 1e300),
+        ];
+        // the shortcut is taken nearly always on the usual cubes
+        assert!(guess_margin(0.0, 0.5, 32) < 1e-5);
+        assert!(guess_margin(-50.0, 0.5, 32) < 1e-3);
+        for (lo, side) in cubes {
+            let g2 = RootGeometry::<2>::new([lo; 2], side);
+            let g3 = RootGeometry::<3>::new([lo; 3], side);
+            for _ in 0..20_000 {
+                let t: f64 = rng.gen_range(-0.01..1.01);
+                let x = lo + side * t;
+                check(&g2, x);
+                check(&g3, x);
+                let j = rng.gen_range(0..=RootGeometry::<2>::LAST);
+                for b in [g2.boundary(0, j, 32)] {
+                    for y in [b, b.next_up(), b.next_down()] {
+                        check(&g2, y);
+                    }
+                }
+                let j = rng.gen_range(0..=RootGeometry::<3>::LAST);
+                let b = g3.boundary(0, j, 21);
+                for y in [b, b.next_up(), b.next_down()] {
+                    check(&g3, y);
+                }
+            }
+        }
     }
 
     #[test]
