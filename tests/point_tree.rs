@@ -241,3 +241,23 @@ fn new_uses_the_defaults() {
     let t2: PointTree<f64, usize, 3> = PointTree::new(&e).unwrap();
     assert_eq!(t2.tree(), t.tree());
 }
+
+/// A bulk build keeps no spare capacity: beyond the points and items, 13 bytes per node (its run,
+/// first child and level) plus 4 per child block, so the bytes per point are a known number.
+#[test]
+fn a_build_keeps_no_spare_capacity() {
+    use rand::{Rng, SeedableRng};
+    let mut rng = rand::rngs::SmallRng::seed_from_u64(9);
+    let entries: Vec<([f64; 2], u64)> = (0..100_000).map(|i| ([rng.gen(), rng.gen()], i)).collect();
+    let t = Quadtree::new(&entries).unwrap();
+    let payload = entries.len() * core::mem::size_of::<([f64; 2], u64)>();
+    let nodes = t.node_count();
+    let topology = nodes * 13 + (nodes - 1) / 4 * 4;
+    let slack = 4096; // the tree's small per-level tables
+    assert!(
+        t.heap_bytes() <= payload + topology + slack,
+        "{} bytes for {} nodes",
+        t.heap_bytes(),
+        nodes
+    );
+}

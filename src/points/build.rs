@@ -9,8 +9,10 @@
 //!    binary search on the next key digit. With bucket size 1 this is exactly the chapter's
 //!    quadtree (section 14.2), all 2^D children of a split node present.
 //!
-//! Time O(n log n) for the sort plus O(m 2^D log n) for m nodes; memory 12 bytes per point for
-//! the keys during the build.
+//! Time O(n log n) for the sort plus O(m 2^D log n) for m nodes. Memory during the build: 32
+//! bytes per point for the (key, index) pairs and the sort's buffer; after it, the points and
+//! items plus 13 bytes per node and 4 per child block (the arrays are shrunk to fit: about 2.6
+//! bytes per point for uniform points in 2D, 4 in 3D, at the default bucket size).
 
 use super::{PointTree, RootGeometry};
 use crate::error::Error;
@@ -156,6 +158,9 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
             balanced: None,
         };
         tree.subdivide(NodeId::ROOT, |_, i| (keyed[i] >> 32) as u64);
+        // The node arrays grew by doubling: up to half their memory is spare.
+        tree.tree.shrink_to_fit();
+        tree.ranges.shrink_to_fit();
         tree
     }
 

@@ -225,6 +225,13 @@ impl<const D: usize> Tree<D> {
         self.block_parent.reserve(splits);
     }
 
+    /// Gives back the spare capacity of the node arrays (after a bulk build, say).
+    pub fn shrink_to_fit(&mut self) {
+        self.first_child.shrink_to_fit();
+        self.level.shrink_to_fit();
+        self.block_parent.shrink_to_fit();
+    }
+
     /// Heap bytes used by the topology.
     pub fn heap_bytes(&self) -> usize {
         self.first_child.capacity() * 4
