@@ -1,13 +1,17 @@
 //! Point location, insert and delete on the compressed quadtree (walking down from its root)
 //! and on the skip quadtree, for 10^3 to 10^6 points, to show the growth per operation; and
-//! location on caterpillars as deep as the cells allow, with the nodes each location touches
-//! (printed once per size to stderr).
+//! location on caterpillars as deep as f64 coordinates allow, with the nodes each location
+//! touches (printed once per input to stderr).
 //!
 //! Groups `compressed/{uniform,clustered}/{locate,update}` with functions `compressed/{n}` and
-//! `skip/{n}`, and `compressed/deep/locate`. One iteration of `locate` locates a batch of 1000
-//! points of the same distribution; one of `update` inserts 1000 new points and removes them
-//! again (so the tree is the same after every iteration): the time per element is one insert
-//! plus one delete.
+//! `skip/{n}`. One iteration of `locate` locates a batch of 1000 points of the same
+//! distribution; one of `update` inserts 1000 new points and removes them again (so the tree is
+//! the same after every iteration): the time per element is one insert plus one delete.
+//!
+//! Groups `compressed/deep/locate` (caterpillars 53 levels deep below the unit square, n
+//! growing; functions `{compressed,skip}/{n}`) and `compressed/deep_by_depth/locate` (n near
+//! 2^14, legs 6 to 48 deep; functions `{compressed,skip}/legs{legs}`) locate 1000 points taken
+//! from the deepest quarter of the legs, the lookups a walk from the root pays most for.
 //!
 //! Group `compressed/point_location/{relaxed,exercise}` builds the point locator of exercise
 //! 14.10 on triangulated grids (`build/{edges}`, time per edge) and locates 1000 random points
@@ -73,14 +77,15 @@ fn trees(
 fn locate(
     c: &mut Criterion,
     group: &str,
-    n: usize,
+    label: &str,
     queries: &[[f64; 2]],
     t: &(CompressedTree<f64, u32, 2>, SkipQuadtree<f64, u32, 2>),
 ) {
     let (ct, st) = t;
     let mut g = c.benchmark_group(group);
     setup(&mut g);
-    g.bench_function(format!("compressed/{n}"), |b| {
+    g.throughput(Throughput::Elements(queries.len() as u64));
+    g.bench_function(format!("compressed/{label}"), |b| {
         b.iter(|| {
             queries
                 .iter()
@@ -88,7 +93,7 @@ fn locate(
                 .sum::<usize>()
         })
     });
-    g.bench_function(format!("skip/{n}"), |b| {
+    g.bench_function(format!("skip/{label}"), |b| {
         b.iter(|| {
             queries
                 .iter()
@@ -101,7 +106,8 @@ fn locate(
         queries.iter().map(f).sum::<usize>() as f64 / queries.len() as f64
     };
     eprintln!(
-        "{group} n = {n}: depth {}, nodes touched per location: compressed walk {:.1}, skip {:.1} ({} levels)",
+        "{group} {label}, n = {}: depth {}, nodes touched per location: compressed walk {:.1}, skip {:.1} ({} levels)",
+        ct.len(),
         ct.depth(),
         touched(&|q| ct.locate(q).unwrap().touched),
         touched(&|q| st.locate(q).unwrap().touched),
@@ -116,7 +122,8 @@ fn bench(c: &mut Criterion) {
             let queries = dist.points::<2>(BATCH, 22);
             let mut t = trees(&points, margin(&points));
             let name = dist.name();
-            locate(c, &format!("compressed/{name}/locate"), n, &queries, &t);
+            let group = format!("compressed/{name}/locate");
+            locate(c, &group, &n.to_string(), &queries, &t);
             let mut g = c.benchmark_group(format!("compressed/{name}/update"));
             setup(&mut g);
             g.bench_function(format!("compressed/{n}"), |b| {
@@ -142,17 +149,37 @@ fn bench(c: &mut Criterion) {
             g.finish();
         }
     }
-    // Caterpillars: copies of the points at 1 - 2^-k of a square, nested down to the finest cells.
+    // Caterpillars: copies of the points at 1 - 2^-k of a square, nested down to the last bit
+    // of f64; n growing at the greatest depth, then the depth growing at n near 2^14.
     for copies in [16usize, 256, 4096, 32768] {
-        let pts = workload::caterpillars(copies);
-        let t = trees(&pts, Aabb::new([0.0; 2], [1.0; 2]).unwrap());
-        let queries: Vec<[f64; 2]> = pts
-            .iter()
-            .step_by((pts.len() / BATCH).max(1))
-            .copied()
-            .collect();
-        locate(c, "compressed/deep/locate", pts.len(), &queries, &t);
+        let (pts, legs) = workload::caterpillars(copies, 53);
+        deep(
+            c,
+            "compressed/deep/locate",
+            &pts.len().to_string(),
+            &pts,
+            legs,
+        );
     }
+    for legs in [6u32, 12, 24, 48] {
+        let (pts, legs) = workload::caterpillars((1 << 14) / legs as usize, legs);
+        deep(
+            c,
+            "compressed/deep_by_depth/locate",
+            &format!("legs{legs}"),
+            &pts,
+            legs,
+        );
+    }
+}
+
+/// Location of (at most) 1000 points from the deepest quarter of the caterpillars' legs.
+fn deep(c: &mut Criterion, group: &str, label: &str, pts: &[[f64; 2]], legs: u32) {
+    let t = trees(pts, Aabb::new([0.0; 2], [1.0; 2]).unwrap());
+    let deepest = workload::deep_legs(pts, legs);
+    let step = (deepest.len() / BATCH).max(1);
+    let queries: Vec<[f64; 2]> = deepest.iter().step_by(step).copied().take(BATCH).collect();
+    locate(c, group, label, &queries, &t);
 }
 
 /// Point location (exercise 14.10) on jittered triangulated grids: building the locator, and a

@@ -33,7 +33,9 @@ pub mod tree;
 
 pub use compressed::{CompressedTree, CompressedTreeBuilder, SkipQuadtree};
 pub use error::Error;
-pub use geom::{morton, validate_point, Aabb, AabbError, Cell, Connectivity, Direction, Scalar};
+pub use geom::{
+    morton, validate_point, Aabb, AabbError, Cell, Connectivity, DeepCell, Direction, Scalar,
+};
 pub use image::{ImageTree, RegionTree, VoxelTree};
 pub use points::{
     Leaf, Leaves, Octree, PointTree, PointTreeBuilder, Quadtree, RootGeometry, ValidationError,

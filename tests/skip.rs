@@ -17,7 +17,7 @@ fn grid_point() -> impl Strategy<Value = [f64; 2]> {
     proptest::array::uniform2((0u32..=32).prop_map(|j| j as f64 / 32.0))
 }
 
-fn shape(t: &SkipQuadtree<f64, usize, 2>) -> Vec<Vec<(orthtree::Cell<2>, bool)>> {
+fn shape(t: &SkipQuadtree<f64, usize, 2>) -> Vec<Vec<(orthtree::DeepCell<2>, bool)>> {
     (0..t.level_count())
         .map(|i| t.level_cells(i).collect())
         .collect()
@@ -142,36 +142,97 @@ fn bad_input_and_empty_trees() {
     t.validate().unwrap();
 }
 
+/// Mean nodes touched per location on caterpillars: (n, depth, levels, walk from the root and
+/// skip quadtree over every point, the same over the deepest quarter of the legs).
+fn touched(copies: usize, legs: u32) -> (usize, usize, usize, [f64; 4]) {
+    let (pts, legs) = workload::caterpillars(copies, legs);
+    let e: Vec<([f64; 2], ())> = pts.iter().map(|&p| (p, ())).collect();
+    let t = SkipQuadtree::new(&e).unwrap();
+    t.validate().unwrap();
+    assert_eq!(
+        t.base().leaf_count(),
+        pts.len(),
+        "every leg is its own leaf"
+    );
+    let mean = |qs: &[[f64; 2]], f: &dyn Fn(&[f64; 2]) -> usize| {
+        qs.iter().map(f).sum::<usize>() as f64 / qs.len() as f64
+    };
+    let walk = |q: &[f64; 2]| t.base().locate(q).unwrap().touched;
+    let skip = |q: &[f64; 2]| t.locate(q).unwrap().touched;
+    let deep = workload::deep_legs(&pts, legs);
+    let means = [
+        mean(&pts, &walk),
+        mean(&pts, &skip),
+        mean(&deep, &walk),
+        mean(&deep, &skip),
+    ];
+    println!(
+        "{}, {legs}, {}, {}, {:.1}, {:.1}, {:.1}, {:.1}",
+        pts.len(),
+        t.base().depth(),
+        t.level_count(),
+        means[0],
+        means[1],
+        means[2],
+        means[3]
+    );
+    (pts.len(), t.base().depth(), t.level_count(), means)
+}
+
 #[test]
 fn skip_location_touches_log_n_nodes_where_the_compressed_walk_touches_depth() {
-    println!("n, compressed depth, mean nodes touched: compressed walk, skip quadtree, levels");
+    println!("n, legs, compressed depth, levels, mean nodes touched: walk, skip; deepest legs: walk, skip");
+    // As deep as f64 allows (53 bits below the unit square), n growing.
     let mut rows = Vec::new();
     for copies in [1usize, 4, 16, 64, 256, 1024, 4096] {
-        let pts = workload::caterpillars(copies);
-        let e: Vec<([f64; 2], ())> = pts.iter().map(|&p| (p, ())).collect();
-        let t = SkipQuadtree::new(&e).unwrap();
-        t.validate().unwrap();
-        let (mut walk, mut skip) = (0usize, 0usize);
-        for p in &pts {
-            walk += t.base().locate(p).unwrap().touched;
-            skip += t.locate(p).unwrap().touched;
-        }
-        let n = pts.len();
-        let (walk, skip) = (walk as f64 / n as f64, skip as f64 / n as f64);
-        println!(
-            "{n}, {}, {walk:.1}, {skip:.1}, {}",
-            t.base().depth(),
-            t.level_count()
+        rows.push(touched(copies, 53));
+    }
+    for &(n, depth, levels, [walk, skip, deep_walk, deep_skip]) in &rows {
+        let log_n = (n as f64).log2();
+        assert!(depth >= 50, "n = {n}: depth {depth}");
+        assert!(
+            deep_walk >= 0.85 * depth as f64,
+            "n = {n}: walk {deep_walk}"
         );
-        rows.push((n, walk, skip));
+        // the skip quadtree: O(log n) whatever the depth, and the same on deep and shallow legs
+        assert!(
+            skip <= 2.5 * log_n + 6.0 && deep_skip <= 2.5 * log_n + 6.0,
+            "n = {n}"
+        );
+        assert!((levels as f64) <= log_n + 5.0, "n = {n}: {levels} levels");
+        assert!(
+            deep_skip <= 0.75 * deep_walk,
+            "n = {n}: {deep_skip} vs {deep_walk}"
+        );
+        if n < 1000 {
+            assert!(skip <= 0.75 * walk, "n = {n}: {skip} vs {walk}");
+        }
     }
-    // the walk grows with the depth, the skip quadtree like log n
-    for &(n, _, skip) in &rows {
-        assert!(skip <= 3.0 * (n as f64).log2() + 6.0, "n = {n}: {skip}");
-    }
-    let (_, walk0, skip0) = rows[0];
+    // the skip quadtree's count grows with log n: about 2 nodes per doubling, far below depth
+    let (first, last) = (rows[0], rows[rows.len() - 1]);
+    let doublings = (last.0 as f64 / first.0 as f64).log2();
     assert!(
-        skip0 < walk0,
-        "one caterpillar: skip {skip0} vs walk {walk0}"
+        last.3[3] - first.3[3] <= 2.5 * doublings,
+        "{first:?} {last:?}"
     );
+    assert!(last.3[3] > first.3[3], "{first:?} {last:?}");
+
+    // n fixed near 2^14, the depth growing: the walk follows the depth, the skip quadtree not.
+    let mut rows = Vec::new();
+    for legs in [6u32, 12, 24, 48] {
+        rows.push(touched((1 << 14) / legs as usize, legs));
+    }
+    for pair in rows.windows(2) {
+        let (w0, w1) = (pair[0].3[2], pair[1].3[2]);
+        assert!(w1 >= w0 + 4.0, "the walk grows with the depth: {pair:?}");
+    }
+    // over the deepest legs: the walk's count spreads with the depth, the skip quadtree's little
+    let spread = |i: usize| {
+        let v = || rows.iter().map(|r| r.3[i]);
+        v().fold(f64::MIN, f64::max) - v().fold(f64::MAX, f64::min)
+    };
+    assert!(spread(3) <= 0.35 * spread(2), "{rows:?}");
+    let (shallow, deep) = (rows[0].3, rows[rows.len() - 1].3);
+    assert!(deep[2] >= 3.0 * shallow[2], "{shallow:?} {deep:?}");
+    assert!(deep[3] <= 0.7 * deep[2], "{deep:?}");
 }

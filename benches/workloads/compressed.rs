@@ -5,23 +5,42 @@
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
 
-/// `copies` caterpillars in the unit square (with its corners): copy `c` sits in its own square
-/// of side `s` and holds the points at `1 - 2^-k` of it along x for every `k` whose offset is
-/// still a distinct finest cell (2D, 32 levels): nested clusters down to the last bits of the
-/// cells, so the compressed quadtree is as deep as it can be.
+/// `copies` caterpillars in the unit square, with its corners: the copies sit in a `2^p` by
+/// `2^p` grid of squares of side `s = 2^-p` (the smallest such grid), and each holds the points
+/// at `1 - 2^-k` of its square along x, halfway up, for `k = 1..=legs`: clusters nested one in
+/// the other down to the `legs`-th bit below the square, so that leg `k` is a leaf about
+/// `p + k` nodes deep in the compressed tree. `legs` is capped at `53 - p`, where the last leg
+/// sits on the last bit of an `f64` below 1 (every point is exact: no rounding merges two legs).
+///
+/// Returns the points and the number of legs used.
 #[allow(dead_code)]
-pub fn caterpillars(copies: usize) -> Vec<[f64; 2]> {
-    let side = (copies as f64).sqrt().ceil() as usize;
-    let s = 1.0 / side as f64;
-    let levels = 32 - (side as f64).log2().ceil() as i32 - 1;
+pub fn caterpillars(copies: usize, legs: u32) -> (Vec<[f64; 2]>, u32) {
+    let mut p = 0;
+    while 1usize << (2 * p) < copies {
+        p += 1;
+    }
+    let legs = legs.min(53 - p);
+    let s = (-(p as f64)).exp2();
     let mut pts = vec![[0.0, 0.0], [1.0, 1.0]];
     for c in 0..copies {
-        let (cx, cy) = ((c % side) as f64 * s, (c / side) as f64 * s);
-        for k in 1..=levels {
-            pts.push([cx + s * (1.0 - (-(k as f64)).exp2()), cy + 0.5 * s]);
+        let (cx, cy) = ((c >> p) as f64 * s, (c & ((1 << p) - 1)) as f64 * s);
+        for k in 1..=legs {
+            pts.push([cx + s - s * (-(k as f64)).exp2(), cy + 0.5 * s]);
         }
     }
-    pts
+    (pts, legs)
+}
+
+/// The deepest quarter of every caterpillar's legs (legs `k > 3 legs / 4`): the lookups whose
+/// walk from the root is the longest.
+#[allow(dead_code)]
+pub fn deep_legs(pts: &[[f64; 2]], legs: u32) -> Vec<[f64; 2]> {
+    let legs = legs as usize;
+    let first = 3 * legs / 4;
+    pts[2..]
+        .chunks(legs)
+        .flat_map(|c| c[first..].iter().copied())
+        .collect()
 }
 
 /// A triangulation: vertices, edges, and triangles counter-clockwise.

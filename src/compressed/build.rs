@@ -4,7 +4,12 @@
 //! 1. Check the points and choose the root cube exactly as [`PointTreeBuilder`] does (the same
 //!    code: a point tree with one bucket holding everything, which is only the validation, the
 //!    root cube and the Morton sort), so both trees have the same cells.
-//! 2. Walk the sorted keys once with a stack holding the rightmost path of the tree built so far
+//! 2. Key every point again at 64 levels ([`RootGeometry::deep_key`](crate::RootGeometry::deep_key)).
+//!    The deep boundaries refine the point tree's, so step 1's order is already the deep Morton
+//!    order except among points sharing a finest [`Cell`]: one O(n) pass checks it, and only
+//!    when it fails does a stable merge sort of slot numbers put them in order (Rust's sort,
+//!    near-linear on such presorted runs; the radix sort of step 1 is not run again).
+//! 3. Walk the sorted keys once with a stack holding the rightmost path of the tree built so far
 //!    ([`Topology::from_sorted`](super::topology::Topology::from_sorted)): consecutive keys part
 //!    at the level of their longest common prefix, and that cell is the only node the new key
 //!    can need besides its leaf. Every node is pushed and popped once: O(n).
@@ -14,9 +19,13 @@
 //!
 //! Conversions between [`PointTree`] and [`CompressedTree`] live here too. Both share
 //! [`RootGeometry`](crate::RootGeometry), so every point keeps its cell and its Morton key: the
-//! compressed tree of a point tree is exercise 14.5's compression of it (with its leaves at the
-//! finest cells), and the point tree of a compressed tree is the fresh build of the same points
-//! over the same root cube. Both directions run over the points in Morton order without sorting.
+//! compressed tree of a point tree is exercise 14.5's compression of it, carried on below the
+//! point tree's deepest level to 64 levels (step 2 above), and the point tree of a compressed
+//! tree is the fresh build of the same points over the same root cube, a compressed node deeper
+//! than its maximum depth lying in one of its deepest leaves
+//! ([`DeepCell::to_cell`](crate::DeepCell::to_cell)). The point tree's order among points
+//! sharing a finest [`Cell`] is its input order, the compressed tree's their deep Morton order.
+//! Both directions run over the points in Morton order without a full sort.
 
 use super::CompressedTree;
 use crate::error::Error;

@@ -18,7 +18,8 @@
 //! then walk arrays in the order they are stored, as on the point tree.
 
 use super::topology::{Topology, NIL};
-use crate::geom::{Aabb, Cell, Scalar};
+use crate::geom::deep::morton_cmp;
+use crate::geom::{Aabb, DeepKey, Scalar};
 use crate::points::RootGeometry;
 use crate::query::SpatialIndex;
 use core::ops::Range;
@@ -44,7 +45,7 @@ pub struct CompressedIndex<S, const D: usize> {
     pub(crate) domain: Aabb<f64, D>,
     pub(crate) topology: Topology<D>,
     pub(crate) points: Vec<[S; D]>,
-    pub(crate) keys: Vec<u64>,
+    pub(crate) keys: Vec<DeepKey<D>>,
     /// The leaf of each slot, and its neighbours in the leaf's list.
     pub(crate) leaf: Vec<u32>,
     pub(crate) prev: Vec<u32>,
@@ -84,42 +85,41 @@ struct View<S, const D: usize> {
 }
 
 impl<S: Scalar, const D: usize> CompressedIndex<S, D> {
-    /// An index over `geometry` from points in Morton order; equal keys share a leaf, in the
-    /// order given.
+    /// An index over `geometry` from points in any order, fastest when already in deep Morton
+    /// order; equal keys share a leaf, in the order given. The slots are the positions given.
+    ///
+    /// Points in the Morton order of [`Cell`](crate::Cell) keys (a point tree's order) are in
+    /// deep order except where several share a finest [`Cell`]: one pass checks the order, and
+    /// only when it fails does a stable sort of slot numbers by deep key run (Rust's merge sort,
+    /// near-linear on such nearly sorted runs).
     pub(crate) fn from_sorted(
         geometry: RootGeometry<D>,
         domain: Aabb<f64, D>,
         points: Vec<[S; D]>,
     ) -> Self {
-        // RootGeometry::key's two steps, keeping the coordinates: they are the leaf's cell.
-        let finest = Cell::<D>::MAX_LEVEL;
-        let coords: Vec<[u32; D]> = points
+        let keys: Vec<DeepKey<D>> = points
             .iter()
-            .map(|p| core::array::from_fn(|a| geometry.coordinate(a, p[a].to_f64())))
+            .map(|p| geometry.deep_key(&p.map(Scalar::to_f64)))
             .collect();
-        let keys: Vec<u64> = coords
-            .iter()
-            .map(|&c| crate::geom::morton::interleave(c, finest as u32))
-            .collect();
+        let order = deep_order(&keys);
+        let slot = |i: usize| order.as_ref().map_or(i, |o| o[i] as usize);
         let n = keys.len();
         let starts: Vec<usize> = (0..n)
-            .filter(|&i| i == 0 || keys[i] != keys[i - 1])
+            .filter(|&i| i == 0 || keys[slot(i)] != keys[slot(i - 1)])
             .collect();
         let mut leaf = vec![NIL; n];
         let mut prev = vec![NIL; n];
         let mut next = vec![NIL; n];
-        let leaves = starts.iter().map(|&s| {
-            let cell = Cell::new(finest, coords[s]).expect("coordinates below 2^MAX_LEVEL");
-            (keys[s], cell)
-        });
+        let leaves = starts.iter().map(|&i| keys[slot(i)]);
         let topology = Topology::from_sorted(leaves, |t, node, g| {
             let (s, e) = (starts[g], starts.get(g + 1).copied().unwrap_or(n));
-            t.nodes[node as usize].head = s as u32;
-            t.nodes[node as usize].tail = (e - 1) as u32;
+            t.nodes[node as usize].head = slot(s) as u32;
+            t.nodes[node as usize].tail = slot(e - 1) as u32;
             for i in s..e {
-                leaf[i] = node;
-                prev[i] = if i == s { NIL } else { (i - 1) as u32 };
-                next[i] = if i + 1 == e { NIL } else { (i + 1) as u32 };
+                let here = slot(i);
+                leaf[here] = node;
+                prev[here] = if i == s { NIL } else { slot(i - 1) as u32 };
+                next[here] = if i + 1 == e { NIL } else { slot(i + 1) as u32 };
             }
         });
         CompressedIndex {
@@ -180,7 +180,7 @@ impl<S: Scalar, const D: usize> CompressedIndex<S, D> {
                 s = self.next[s as usize];
             }
             runs.push((start, slots.len() as u32));
-            boxes.push(self.geometry.cell_box(&t.node(v).cell));
+            boxes.push(self.geometry.deep_cell_box(&t.node(v).cell));
             let first = children.len() as u32;
             children.extend(t.children(v).map(|c| rank[c as usize]));
             kids.push((first, children.len() as u32));
@@ -203,7 +203,7 @@ impl<S: Scalar, const D: usize> CompressedIndex<S, D> {
     }
 
     /// Stores `point` with finest key `key` in a new slot at the end of `leaf`'s list.
-    pub(crate) fn push_slot(&mut self, point: [S; D], key: u64, leaf: u32) {
+    pub(crate) fn push_slot(&mut self, point: [S; D], key: DeepKey<D>, leaf: u32) {
         let s = self.points.len() as u32;
         let tail = self.topology.node(leaf).tail;
         self.points.push(point);
@@ -315,4 +315,15 @@ impl<S: Scalar, const D: usize> SpatialIndex<D> for CompressedIndex<S, D> {
         }
         first < end
     }
+}
+
+/// `None` when `keys` are in Morton order, else the positions sorted by key (stable: equal keys
+/// keep their order).
+fn deep_order<const D: usize>(keys: &[DeepKey<D>]) -> Option<Vec<u32>> {
+    if keys.windows(2).all(|w| morton_cmp(&w[0], &w[1]).is_le()) {
+        return None;
+    }
+    let mut order: Vec<u32> = (0..keys.len() as u32).collect();
+    order.sort_by(|&a, &b| morton_cmp(&keys[a as usize], &keys[b as usize]));
+    Some(order)
 }

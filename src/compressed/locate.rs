@@ -42,7 +42,7 @@
 //! `tests/point_location.rs` and `benches/compressed.rs` measure both.
 
 use super::subdivision::{FaceId, Subdivision, SubdivisionError};
-use super::topology::{digit, holds, NIL};
+use super::topology::NIL;
 use crate::error::Error;
 use crate::geom::{Aabb, Cell};
 use crate::points::RootGeometry;
@@ -345,15 +345,9 @@ impl PointLocator {
                 };
                 return Ok((FaceId(face), touched + work));
             }
-            let q = digit::<2>(key, node.cell.level());
+            let q = digit(key, node.cell.level());
             let c = node.children[q];
-            if c == NIL
-                || !holds::<2>(
-                    self.nodes[c as usize].key,
-                    self.nodes[c as usize].cell.level(),
-                    key,
-                )
-            {
+            if c == NIL || !holds(&self.nodes[c as usize], key) {
                 return Ok((FaceId(node.faces[q]), touched));
             }
             v = c as usize;
@@ -397,6 +391,25 @@ impl PointLocator {
     pub fn cells(&self) -> impl Iterator<Item = (Cell<2>, bool)> + '_ {
         self.nodes.iter().map(|n| (n.cell, n.leaf))
     }
+}
+
+/// Bits below the digits of `level` in a finest key.
+#[inline]
+fn shift(level: u8) -> u32 {
+    2 * (Cell::<2>::MAX_LEVEL - level) as u32
+}
+
+/// `true` when `node`'s cell holds the finest key `key`.
+#[inline]
+fn holds(node: &Node, key: u64) -> bool {
+    let s = shift(node.cell.level());
+    s >= 64 || (node.key ^ key) >> s == 0
+}
+
+/// The quadrant at `level + 1` of the finest key `key`.
+#[inline]
+fn digit(key: u64, level: u8) -> usize {
+    ((key >> shift(level + 1)) & 3) as usize
 }
 
 /// The face on `q`'s side of edge `e` (left on the edge itself).

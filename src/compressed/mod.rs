@@ -5,7 +5,8 @@
 //!   Overmars, *Computational Geometry* (chapter 14, and its notes, after Aluru's survey): a node
 //!   only where the points branch. Its nodes are the root cell, every cell whose points fall into
 //!   at least two of its children, and one leaf per distinct point cell at the finest level
-//!   ([`Cell::MAX_LEVEL`]; equal points, or points closer than the finest cell, share a leaf).
+//!   (level 64 on every axis, [`DeepCell`]; equal points, or points closer than the finest
+//!   cell, share a leaf).
 //!   Every node but the root has at least two children, so **a tree over `m` distinct finest
 //!   cells (`m <= n`) has at most `2m` nodes** (`m` leaves, at most `m - 1` branching nodes, and
 //!   the root): O(n) for any input, where the plain tree has O((d + 1) n) for depth d.
@@ -20,8 +21,24 @@
 //! - [`Subdivision`] and [`PointLocator`]: point location in a planar subdivision with a
 //!   quadtree, exercise 14.10.
 //!
-//! Cells are those of [`RootGeometry`]: the same root cube and the same exact Morton keys as
-//! [`PointTree`], so converting between the two trees moves no point to another cell.
+//! # Cells 64 levels deep
+//! A compressed tree has a node only where points branch, so its size does not grow with the
+//! depth of its cells, and its cells can be as fine as `f64` coordinates tell apart: 53
+//! mantissa bits need 53 levels below a unit root box, beyond the 32 (2D) or 21 (3D) levels of
+//! [`Cell`](crate::Cell), whose Morton keys fit a `u64`. Its cells are [`DeepCell`]s instead: 64
+//! levels on every axis whatever D, each point keyed by its level-64 coordinates
+//! ([`RootGeometry::deep_key`], a [`DeepKey`] of D `u64`s, compared in Morton order without
+//! interleaving). Their split lines are [`RootGeometry`]'s down to level 32, exactly, so a
+//! [`PointTree`] over the same root cube has the same cells down to its maximum depth, and
+//! converting between the two trees moves no point to another cell: a compressed node deeper
+//! than the point tree's cells lies in the point tree's cell [`DeepCell::to_cell`]. Below level
+//! 32 each level-32 cell's `f64` values are split evenly by their order (the dyadic split,
+//! rounded, inside one binade), so distinct coordinates get distinct cells wherever a level-32
+//! cell holds at most 2^32 values, and a point on a line goes to the lower cell at every level;
+//! cells holding no `f64` stay empty.
+//!
+//! [`PointLocator`] keeps [`Cell`](crate::Cell)s: its leaves hold edges, and cells finer than 32
+//! levels would only add squares along close edges.
 
 mod build;
 mod index;
@@ -40,7 +57,7 @@ pub use skip::SkipQuadtree;
 pub use subdivision::{FaceId, Subdivision, SubdivisionError};
 
 use crate::error::Error;
-use crate::geom::{Aabb, Cell, Scalar};
+use crate::geom::{Aabb, DeepCell, DeepKey, Scalar};
 use crate::points::{PointTree, RootGeometry, ValidationError};
 use topology::NIL;
 
@@ -49,15 +66,19 @@ use topology::NIL;
 ///
 /// ```
 /// use orthtree::{CompressedTree, Quadtree};
-/// // 100 points 2^-40 apart in the unit square: the plain tree is as deep as cells go
+/// // 100 points 2^-30 apart in the unit square: the plain tree is 32 levels deep
 /// let mut pts: Vec<([f64; 2], usize)> =
-///     (0..100).map(|i| ([0.3 + i as f64 * (-40f64).exp2(), 0.7], i)).collect();
+///     (0..100).map(|i| ([0.3 + i as f64 * (-30f64).exp2(), 0.7], i)).collect();
 /// pts.extend([([0.0, 0.0], 100), ([1.0, 1.0], 101)]);
 /// let c = CompressedTree::new(&pts).unwrap();
 /// let plain = Quadtree::builder().bucket_size(1).build(&pts).unwrap();
 /// assert!(c.node_count() <= 2 * pts.len());
-/// assert!(plain.node_count() > 10 * c.node_count());
+/// assert!(plain.node_count() > 2 * c.node_count());
 /// assert_eq!(*c.nearest(&[0.3, 0.7]).unwrap().unwrap().item, 0);
+/// // 2^-50 apart: one leaf of the plain tree, 64-level cells tell them apart
+/// let close = [([0.3, 0.7], 0), ([0.3 + (-50f64).exp2(), 0.7], 1), ([1.0, 1.0], 2)];
+/// let c = CompressedTree::new(&close).unwrap();
+/// assert_eq!((c.leaf_count(), c.node_count()), (3, 5));
 /// c.validate().unwrap();
 /// ```
 #[derive(Clone, Debug)]
@@ -72,8 +93,9 @@ pub struct CompressedTree<S, T, const D: usize> {
 pub struct Location<const D: usize> {
     /// The node's id in the tree's arena (valid until the next update).
     pub node: u32,
-    /// Its cell.
-    pub cell: Cell<D>,
+    /// Its cell (down to level 64; [`DeepCell::to_cell`] gives the [`PointTree`] cell holding
+    /// it).
+    pub cell: DeepCell<D>,
     /// `true` when the node is a leaf, i.e. points with the query's finest cell are stored.
     pub leaf: bool,
     /// The nodes visited on the way (the start node of every level included).
@@ -184,7 +206,7 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
 
     /// The cell of every node in pre-order (Morton order, ancestors first), with `true` for a
     /// leaf.
-    pub fn cells(&self) -> impl Iterator<Item = (Cell<D>, bool)> + '_ {
+    pub fn cells(&self) -> impl Iterator<Item = (DeepCell<D>, bool)> + '_ {
         let t = &self.index.topology;
         t.pre_order().map(move |v| (t.node(v).cell, t.is_leaf(v)))
     }
@@ -203,7 +225,7 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
     pub fn locate(&self, point: &[S; D]) -> Result<Location<D>, Error> {
         let key = self.query_key(point)?;
         let mut touched = 0;
-        let v = self.index.topology.descend(0, key, |_| touched += 1);
+        let v = self.index.topology.descend(0, &key, |_| touched += 1);
         Ok(self.location(v, touched))
     }
 
@@ -218,7 +240,7 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
     }
 
     /// The finest key of a query point, checked finite and inside the domain.
-    pub(crate) fn query_key(&self, point: &[S; D]) -> Result<u64, Error> {
+    pub(crate) fn query_key(&self, point: &[S; D]) -> Result<DeepKey<D>, Error> {
         let p = point.map(Scalar::to_f64);
         match check(&p, self.domain()) {
             Err(Bad::NotFinite(axis)) => Err(Error::QueryNotFinite {
@@ -230,12 +252,12 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
                 value: p[axis],
                 interval: (self.domain().min[axis], self.domain().max[axis]),
             }),
-            Ok(()) => Ok(self.geometry().key(&p)),
+            Ok(()) => Ok(self.geometry().deep_key(&p)),
         }
     }
 
     /// The finest key of a point to insert as number `index`, checked like the build's input.
-    pub(crate) fn input_key(&self, point: &[S; D], index: usize) -> Result<u64, Error> {
+    pub(crate) fn input_key(&self, point: &[S; D], index: usize) -> Result<DeepKey<D>, Error> {
         let p = point.map(Scalar::to_f64);
         match check(&p, self.domain()) {
             Err(Bad::NotFinite(axis)) => Err(Error::NonFiniteCoordinate {
@@ -249,7 +271,7 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
                 value: p[axis],
                 interval: (self.domain().min[axis], self.domain().max[axis]),
             }),
-            Ok(()) => Ok(self.geometry().key(&p)),
+            Ok(()) => Ok(self.geometry().deep_key(&p)),
         }
     }
 
@@ -289,8 +311,8 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
             if !self.domain().contains(&q) {
                 return fail(format!("point {s} lies outside the domain"));
             }
-            let key = self.geometry().key(&q);
-            if key != ix.keys[s] || t.node(ix.leaf[s]).key != key {
+            let key = self.geometry().deep_key(&q);
+            if key != ix.keys[s] || t.node(ix.leaf[s]).cell.anchor() != key {
                 return fail(format!("point {s} is not in its key's leaf"));
             }
         }
@@ -301,7 +323,8 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
     /// `max_depth` (as [`crate::PointTreeBuilder`] takes them): the points in Morton order, no
     /// sort. O(n + nodes).
     ///
-    /// Errors: a zero bucket size; a maximum depth beyond [`Cell::MAX_LEVEL`].
+    /// Errors: a zero bucket size; a maximum depth beyond
+    /// [`Cell::MAX_LEVEL`](crate::Cell::MAX_LEVEL).
     pub fn to_point_tree(
         &self,
         bucket_size: usize,

@@ -5,7 +5,9 @@
 //! index reports back to the tree's items: there is no second copy of any query.
 //!
 //! Indices in [`Neighbor::index`] are positions in `self.index().points()` (Morton order), which
-//! break ties as in the point tree; on a freshly built tree they equal the point tree's.
+//! break ties as in the point tree; on a freshly built tree they equal the point tree's, except
+//! among points sharing one of its finest cells, which the compressed tree orders by their
+//! 64-level keys.
 
 use super::{CompressedIndex, CompressedTree};
 use crate::geom::{Aabb, Scalar};

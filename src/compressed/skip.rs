@@ -23,14 +23,15 @@
 //!   priority search, not the O(eps^(1-d) log n) of the paper's level-by-level search.
 //!
 //! The sample is drawn by hashing each key with a seed ([`SkipQuadtree::with_seed`]): a key's
-//! height is the number of trailing zero bits of the SplitMix64 hash of `key ^ seed`. The
+//! height is the number of trailing zero bits of its SplitMix64 hash (chained over its D
+//! coordinates, starting from the seed). The
 //! expectations hold for any input chosen without knowledge of the seed, and the structure is
 //! a function of the stored keys and the seed alone, so it equals a fresh build after updates.
 
 use super::topology::{Inserted, Topology, NIL};
 use super::{CompressedTree, Location};
 use crate::error::Error;
-use crate::geom::{Aabb, Scalar};
+use crate::geom::{Aabb, DeepCell, DeepKey, Scalar};
 use crate::points::ValidationError;
 use crate::query::{Metric, Neighbor, QueryError, SpatialIndex, SquaredEuclidean};
 use smallvec::SmallVec;
@@ -84,10 +85,10 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
     /// the base is built.
     pub fn with_seed(base: CompressedTree<S, T, D>, seed: u64) -> Self {
         let t = &base.index.topology;
-        let mut sample: Vec<(u64, crate::Cell<D>)> = t
+        let mut sample: Vec<DeepKey<D>> = t
             .pre_order()
             .filter(|&v| t.is_leaf(v))
-            .map(|v| (t.node(v).key, t.node(v).cell))
+            .map(|v| t.node(v).cell.anchor())
             .collect();
         let mut skip = SkipQuadtree {
             base,
@@ -95,7 +96,7 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
             seed,
         };
         for i in 1.. {
-            sample.retain(|&(k, _)| skip.height(k) >= i);
+            sample.retain(|k| skip.height(k) >= i);
             if sample.is_empty() {
                 break;
             }
@@ -115,8 +116,9 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
     }
 
     /// The height of a key: its levels are `0..=height`.
-    fn height(&self, key: u64) -> u32 {
-        splitmix64(key ^ self.seed).trailing_zeros().min(MAX_HEIGHT)
+    fn height(&self, key: &DeepKey<D>) -> u32 {
+        let hash = key.iter().fold(self.seed, |h, &k| splitmix64(h ^ k));
+        hash.trailing_zeros().min(MAX_HEIGHT)
     }
 
     /// Level `i` (0 is the base's tree).
@@ -154,7 +156,7 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
 
     /// The cell of every node of level `i` (0 is the base) in pre-order, with `true` for a
     /// leaf; nothing for a level above the top.
-    pub fn level_cells(&self, i: usize) -> impl Iterator<Item = (crate::Cell<D>, bool)> + '_ {
+    pub fn level_cells(&self, i: usize) -> impl Iterator<Item = (DeepCell<D>, bool)> + '_ {
         let level = (i <= self.levels.len()).then(|| self.level(i));
         let nodes = level
             .into_iter()
@@ -163,7 +165,7 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
     }
 
     /// The deepest node holding `key` on every level, counting the nodes visited.
-    fn search(&self, key: u64, touched: &mut usize) -> Path {
+    fn search(&self, key: &DeepKey<D>, touched: &mut usize) -> Path {
         let mut path: Path = SmallVec::from_elem(0, self.levels.len() + 1);
         let mut v = 0;
         for i in (0..=self.levels.len()).rev() {
@@ -182,7 +184,7 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
     pub fn locate(&self, point: &[S; D]) -> Result<Location<D>, Error> {
         let key = self.base.query_key(point)?;
         let mut touched = 0;
-        let path = self.search(key, &mut touched);
+        let path = self.search(&key, &mut touched);
         Ok(self.base.location(path[0], touched))
     }
 
@@ -191,19 +193,19 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
     /// Errors: those of [`CompressedTree::insert`].
     pub fn insert(&mut self, point: [S; D], item: T) -> Result<(), Error> {
         let key = self.base.checked_insert_key(&point)?;
-        let path = self.search(key, &mut 0);
+        let path = self.search(&key, &mut 0);
         let mut below = self.base.insert_below(path[0], point, key, item);
         if !below.created {
             return Ok(());
         }
-        for i in 1..=self.height(key) as usize {
+        for i in 1..=self.height(&key) as usize {
             if self.levels.len() < i {
                 let mut fresh = Topology::new();
                 fresh.nodes[0].down = 0;
                 self.levels.push(fresh);
             }
             let start = path.get(i).copied().unwrap_or(0);
-            let done = self.levels[i - 1].insert(start, key);
+            let done = self.levels[i - 1].insert(start, &key);
             self.link_down(i, done, below);
             below = done;
         }
@@ -242,11 +244,11 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
 
     fn remove_where(&mut self, point: &[S; D], accept: impl Fn(&T) -> bool) -> Option<T> {
         let key = self.base.query_key(point).ok()?;
-        let path = self.search(key, &mut 0);
-        let (item, removed) = self.base.remove_in_leaf(path[0], key, point, accept)?;
+        let path = self.search(&key, &mut 0);
+        let (item, removed) = self.base.remove_in_leaf(path[0], &key, point, accept)?;
         if removed != NIL {
             for (level, &v) in self.levels.iter_mut().zip(&path[1..]) {
-                if level.is_leaf(v) && level.node(v).key == key {
+                if level.is_leaf(v) && level.node(v).cell.anchor() == key {
                     level.remove_leaf(v);
                 }
             }
@@ -327,12 +329,12 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
             if let Err(e) = level.validate() {
                 return fail(format!("level {i}: {e}"));
             }
-            let keys = |t: &Topology<D>| -> Vec<u64> {
+            let keys = |t: &Topology<D>| -> Vec<DeepKey<D>> {
                 let leaves = t.pre_order().filter(|&v| t.is_leaf(v));
-                leaves.map(|v| t.node(v).key).collect()
+                leaves.map(|v| t.node(v).cell.anchor()).collect()
             };
             let mut want = keys(below);
-            want.retain(|&k| self.height(k) >= i as u32);
+            want.retain(|k| self.height(k) >= i as u32);
             if keys(level) != want || want.is_empty() {
                 return fail(format!("level {i} does not hold its sample"));
             }

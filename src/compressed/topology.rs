@@ -1,10 +1,10 @@
 //! [`Topology`]: the nodes of one compressed quadtree (exercise 14.5) as an arena, with the
 //! construction from sorted keys and the two local edits every update is made of.
 //!
-//! A node is a cell: the root cell, a cell in which the stored keys fall into at least two
-//! children ("branching"), or a leaf, the finest cell ([`Cell::MAX_LEVEL`]) of one stored key.
+//! A node is a [`DeepCell`]: the root cell, a cell in which the stored keys fall into at least
+//! two children ("branching"), or a leaf, the finest cell (level 64) of one stored [`DeepKey`].
 //! Children hang in a singly linked list sorted by the child quadrant of their parent they lie
-//! in (Morton order), so a node costs a fixed 40-odd bytes whatever D.
+//! in (Morton order), so a node costs a fixed 32 + 8D bytes whatever the branching.
 //!
 //! - [`Topology::from_sorted`]: the stack construction over Morton-sorted keys (exercise 14.5,
 //!   second part): keep the rightmost path on a stack; for the next key, pop every node deeper
@@ -18,7 +18,8 @@
 //! Both edits keep the tree *canonical*: the nodes are exactly the root, the branching cells and
 //! the stored keys' finest cells, so the tree equals a fresh build over the same keys.
 
-use crate::geom::{Cell, Dim};
+use crate::geom::deep::{common_level, morton_cmp};
+use crate::geom::{DeepCell, DeepKey};
 use smallvec::SmallVec;
 
 /// "No node".
@@ -28,9 +29,7 @@ pub(crate) const NIL: u32 = u32::MAX;
 /// cell one level lower (in a [`super::SkipQuadtree`]).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Node<const D: usize> {
-    pub cell: Cell<D>,
-    /// The Morton key of the cell's lowest finest descendant ([`Cell::aligned_key`]).
-    pub key: u64,
+    pub cell: DeepCell<D>,
     pub parent: u32,
     pub first_child: u32,
     pub next_sibling: u32,
@@ -44,49 +43,6 @@ pub(crate) struct Node<const D: usize> {
 pub(crate) struct Topology<const D: usize> {
     pub nodes: Vec<Node<D>>,
     free: Vec<u32>,
-}
-
-/// The level at which two finest keys part: the deepest level whose cell holds both
-/// ([`Cell::MAX_LEVEL`] when they are equal).
-#[inline]
-pub(crate) fn common_level<const D: usize>(a: u64, b: u64) -> u8 {
-    let max = Cell::<D>::MAX_LEVEL;
-    let x = a ^ b;
-    if x == 0 {
-        return max;
-    }
-    let unused = 64 - D as u32 * max as u32;
-    ((x.leading_zeros() - unused) / D as u32) as u8
-}
-
-/// Bits below the digits of `level` in a finest key.
-#[inline]
-fn shift<const D: usize>(level: u8) -> u32 {
-    D as u32 * (Cell::<D>::MAX_LEVEL - level.min(Cell::<D>::MAX_LEVEL)) as u32
-}
-
-/// `true` when the cell at `level` with aligned key `cell_key` holds the finest key `key`.
-#[inline]
-pub(crate) fn holds<const D: usize>(cell_key: u64, level: u8, key: u64) -> bool {
-    let s = shift::<D>(level);
-    s >= 64 || (cell_key ^ key) >> s == 0
-}
-
-/// The child digit (quadrant) at `level + 1` of the finest key `key`.
-#[inline]
-pub(crate) fn digit<const D: usize>(key: u64, level: u8) -> usize {
-    ((key >> shift::<D>(level + 1)) as usize) & (Dim::<D>::CHILDREN - 1)
-}
-
-/// The aligned key of the ancestor at `level` of the finest key `key`.
-#[inline]
-fn truncate<const D: usize>(key: u64, level: u8) -> u64 {
-    let s = shift::<D>(level);
-    if s >= 64 {
-        0
-    } else {
-        key >> s << s
-    }
 }
 
 /// What [`Topology::insert`] did.
@@ -103,9 +59,8 @@ pub(crate) struct Inserted {
 impl<const D: usize> Topology<D> {
     /// A tree holding no key: the root alone.
     pub fn new() -> Self {
-        let root = Cell::<D>::root();
         Topology {
-            nodes: vec![Node::blank(root, 0, NIL)],
+            nodes: vec![Node::blank(DeepCell::root(), NIL)],
             free: Vec::new(),
         }
     }
@@ -127,7 +82,7 @@ impl<const D: usize> Topology<D> {
 
     #[inline]
     pub fn is_leaf(&self, v: u32) -> bool {
-        self.nodes[v as usize].cell.level() == Cell::<D>::MAX_LEVEL
+        self.nodes[v as usize].cell.level() == DeepCell::<D>::MAX_LEVEL
     }
 
     /// The children of `v`, in Morton order.
@@ -141,17 +96,14 @@ impl<const D: usize> Topology<D> {
 
     /// The child of `v` that holds `key`, if any; `v` must hold `key`.
     #[inline]
-    pub fn child_holding(&self, v: u32, key: u64) -> Option<u32> {
-        self.children(v).find(|&c| {
-            let n = self.node(c);
-            holds::<D>(n.key, n.cell.level(), key)
-        })
+    pub fn child_holding(&self, v: u32, key: &DeepKey<D>) -> Option<u32> {
+        self.children(v).find(|&c| self.node(c).cell.holds(key))
     }
 
     /// The deepest node holding `key` below `from` (which must hold it), calling `touch` on
     /// every node on the way, `from` included.
     #[inline]
-    pub fn descend(&self, from: u32, key: u64, mut touch: impl FnMut(u32)) -> u32 {
+    pub fn descend(&self, from: u32, key: &DeepKey<D>, mut touch: impl FnMut(u32)) -> u32 {
         let mut v = from;
         touch(v);
         while let Some(c) = self.child_holding(v, key) {
@@ -181,11 +133,12 @@ impl<const D: usize> Topology<D> {
 
     /// Links the parentless `child` into `parent`'s list at its quadrant's place.
     fn link(&mut self, parent: u32, child: u32) {
-        let level = self.nodes[parent as usize].cell.level();
-        let q = digit::<D>(self.nodes[child as usize].key, level);
+        let cell = self.nodes[parent as usize].cell;
+        let quadrant = |v: u32| cell.child_digit(&self.nodes[v as usize].cell.anchor());
+        let q = quadrant(child);
         let mut prev = NIL;
         let mut at = self.nodes[parent as usize].first_child;
-        while at != NIL && digit::<D>(self.nodes[at as usize].key, level) < q {
+        while at != NIL && quadrant(at) < q {
             prev = at;
             at = self.nodes[at as usize].next_sibling;
         }
@@ -225,7 +178,7 @@ impl<const D: usize> Topology<D> {
     }
 
     /// Adds `key` below `at`, the deepest node holding it (from [`Topology::descend`]).
-    pub fn insert(&mut self, at: u32, key: u64) -> Inserted {
+    pub fn insert(&mut self, at: u32, key: &DeepKey<D>) -> Inserted {
         let mut done = Inserted {
             leaf: at,
             created: false,
@@ -234,24 +187,21 @@ impl<const D: usize> Topology<D> {
         if self.is_leaf(at) {
             return done;
         }
-        let leaf_cell = Cell::from_aligned_key(key, Cell::<D>::MAX_LEVEL);
-        let leaf = self.alloc(Node::blank(leaf_cell, key, NIL));
+        let leaf = self.alloc(Node::blank(DeepCell::finest(*key), NIL));
         done.leaf = leaf;
         done.created = true;
-        let level = self.nodes[at as usize].cell.level();
-        let q = digit::<D>(key, level);
+        let cell = self.nodes[at as usize].cell;
+        let q = cell.child_digit(key);
         let sibling = self
             .children(at)
-            .find(|&c| digit::<D>(self.nodes[c as usize].key, level) == q);
+            .find(|&c| cell.child_digit(&self.nodes[c as usize].cell.anchor()) == q);
         let Some(c) = sibling else {
             self.link(at, leaf);
             return done;
         };
         // `c` shares the quadrant but not the key: branch where they part.
-        let c_node = self.nodes[c as usize];
-        let l = common_level::<D>(c_node.key, key);
-        let branch_cell = c_node.cell.ancestor(l);
-        let branch = self.alloc(Node::blank(branch_cell, truncate::<D>(key, l), NIL));
+        let l = common_level(&self.nodes[c as usize].cell.anchor(), key);
+        let branch = self.alloc(Node::blank(DeepCell::of_key(key, l), NIL));
         self.replace(c, branch);
         self.nodes[c as usize].next_sibling = NIL;
         self.link(branch, c);
@@ -280,20 +230,23 @@ impl<const D: usize> Topology<D> {
         parent
     }
 
-    /// The tree over distinct `keys` in increasing order, each with its finest cell;
-    /// `on_leaf(leaf, i)` is told the leaf of the `i`-th key.
+    /// The tree over distinct `keys` in increasing Morton order; `on_leaf(leaf, i)` is told the
+    /// leaf of the `i`-th key.
     pub fn from_sorted(
-        keys: impl IntoIterator<Item = (u64, Cell<D>)>,
+        keys: impl IntoIterator<Item = DeepKey<D>>,
         mut on_leaf: impl FnMut(&mut Self, u32, usize),
     ) -> Self {
         let mut t = Self::new();
         // The rightmost path: every node on it is the last child of the one below it.
         let mut stack: Vec<u32> = vec![0];
-        let mut previous: Option<u64> = None;
-        for (i, (key, cell)) in keys.into_iter().enumerate() {
+        let mut previous: Option<DeepKey<D>> = None;
+        for (i, key) in keys.into_iter().enumerate() {
             if let Some(p) = previous {
-                debug_assert!(p < key, "keys must be distinct and increasing");
-                let l = common_level::<D>(p, key);
+                debug_assert!(
+                    morton_cmp(&p, &key).is_lt(),
+                    "keys must be distinct and increasing"
+                );
+                let l = common_level(&p, &key);
                 let mut popped = NIL;
                 while let Some(&top) = stack.last() {
                     if t.nodes[top as usize].cell.level() <= l {
@@ -304,8 +257,7 @@ impl<const D: usize> Topology<D> {
                 let top = *stack.last().unwrap_or(&0);
                 if t.nodes[top as usize].cell.level() < l {
                     // The branching cell at l holds the popped subtree and the new key.
-                    let cell = t.nodes[popped as usize].cell.ancestor(l);
-                    let branch = t.alloc(Node::blank(cell, truncate::<D>(key, l), NIL));
+                    let branch = t.alloc(Node::blank(DeepCell::of_key(&key, l), NIL));
                     t.replace(popped, branch);
                     t.nodes[popped as usize].next_sibling = NIL;
                     t.nodes[popped as usize].parent = branch;
@@ -314,7 +266,7 @@ impl<const D: usize> Topology<D> {
                 }
             }
             let parent = *stack.last().unwrap_or(&0);
-            let leaf = t.alloc(Node::blank(cell, key, parent));
+            let leaf = t.alloc(Node::blank(DeepCell::finest(key), parent));
             t.append(parent, leaf);
             on_leaf(&mut t, leaf, i);
             stack.push(leaf);
@@ -349,20 +301,17 @@ impl<const D: usize> Topology<D> {
 
     /// Checks the arena; `Err` names the first broken rule: links agree, every child lies in
     /// its own quadrant strictly inside its parent and in Morton order, every internal node but
-    /// the root branches, leaves are finest cells, keys match cells, the free list is disjoint
+    /// the root branches, leaves are finest cells, the free list is disjoint
     /// from the tree.
     pub fn validate(&self) -> Result<(), String> {
         let root = self.node(0);
-        if root.cell != Cell::root() || root.parent != NIL {
+        if root.cell != DeepCell::root() || root.parent != NIL {
             return Err("node 0 is not the root cell".into());
         }
         let mut seen = 0usize;
         for v in self.pre_order() {
             seen += 1;
             let n = self.node(v);
-            if n.key != n.cell.aligned_key() {
-                return Err(format!("node {v}'s key does not match its cell"));
-            }
             if self.is_leaf(v) {
                 if n.first_child != NIL {
                     return Err(format!("leaf {v} has children"));
@@ -378,7 +327,7 @@ impl<const D: usize> Topology<D> {
                 {
                     return Err(format!("node {c} is not a proper child of node {v}"));
                 }
-                let q = digit::<D>(cn.key, n.cell.level());
+                let q = n.cell.child_digit(&cn.cell.anchor());
                 if last.is_some_and(|l| l >= q) {
                     return Err(format!(
                         "children of node {v} share a quadrant or are unsorted"
@@ -405,10 +354,9 @@ impl<const D: usize> Topology<D> {
 const FREED: u32 = NIL - 1;
 
 impl<const D: usize> Node<D> {
-    fn blank(cell: Cell<D>, key: u64, parent: u32) -> Self {
+    fn blank(cell: DeepCell<D>, parent: u32) -> Self {
         Node {
             cell,
-            key,
             parent,
             first_child: NIL,
             next_sibling: NIL,

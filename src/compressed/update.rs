@@ -21,7 +21,7 @@
 use super::topology::NIL;
 use super::CompressedTree;
 use crate::error::Error;
-use crate::geom::Scalar;
+use crate::geom::{DeepKey, Scalar};
 
 impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
     /// Inserts `item` at `point`. O(depth).
@@ -42,13 +42,13 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
     /// ```
     pub fn insert(&mut self, point: [S; D], item: T) -> Result<(), Error> {
         let key = self.checked_insert_key(&point)?;
-        let at = self.index.topology.descend(0, key, |_| {});
+        let at = self.index.topology.descend(0, &key, |_| {});
         self.insert_below(at, point, key, item);
         Ok(())
     }
 
     /// The key of a point to insert, checked (finiteness, domain, room for one more).
-    pub(crate) fn checked_insert_key(&self, point: &[S; D]) -> Result<u64, Error> {
+    pub(crate) fn checked_insert_key(&self, point: &[S; D]) -> Result<DeepKey<D>, Error> {
         let n = self.len();
         if n + 1 >= u32::MAX as usize {
             return Err(Error::TooManyPoints { len: n + 1 });
@@ -61,10 +61,10 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
         &mut self,
         at: u32,
         point: [S; D],
-        key: u64,
+        key: DeepKey<D>,
         item: T,
     ) -> super::topology::Inserted {
-        let done = self.index.topology.insert(at, key);
+        let done = self.index.topology.insert(at, &key);
         self.index.push_slot(point, key, done.leaf);
         self.items.push(item);
         done
@@ -100,20 +100,20 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
         accept: impl Fn(&T) -> bool,
     ) -> Option<(T, u32)> {
         let key = self.query_key(point).ok()?;
-        let leaf = self.index.topology.descend(0, key, |_| {});
-        self.remove_in_leaf(leaf, key, point, accept)
+        let leaf = self.index.topology.descend(0, &key, |_| {});
+        self.remove_in_leaf(leaf, &key, point, accept)
     }
 
     /// [`CompressedTree::remove_where`] once the deepest node holding `key` is known.
     pub(crate) fn remove_in_leaf(
         &mut self,
         leaf: u32,
-        key: u64,
+        key: &DeepKey<D>,
         point: &[S; D],
         accept: impl Fn(&T) -> bool,
     ) -> Option<(T, u32)> {
         let t = &self.index.topology;
-        if !t.is_leaf(leaf) || t.node(leaf).key != key {
+        if !t.is_leaf(leaf) || t.node(leaf).cell.anchor() != *key {
             return None;
         }
         let same = |a: &[S; D]| (0..D).all(|i| a[i].to_f64() == point[i].to_f64());

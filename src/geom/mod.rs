@@ -1,8 +1,10 @@
 //! The vocabulary shared by every layer: [`Scalar`] coordinates, closed boxes ([`Aabb`]), exact
-//! dyadic cells ([`Cell`]) with Morton keys, and [`Direction`]s with their [`Connectivity`].
+//! dyadic cells ([`Cell`]) with Morton keys, cells 64 levels deep on every axis ([`DeepCell`]),
+//! and [`Direction`]s with their [`Connectivity`].
 
 mod aabb;
 mod cell;
+pub mod deep;
 mod direction;
 pub mod morton;
 mod scalar;
@@ -10,5 +12,6 @@ mod scalar;
 pub use aabb::{Aabb, AabbError};
 pub use cell::Cell;
 pub(crate) use cell::Dim;
+pub use deep::{DeepCell, DeepKey};
 pub use direction::{Connectivity, Direction};
 pub use scalar::{validate_point, Scalar};

@@ -10,6 +10,9 @@
 //! next, and a point lies in cell `j` (at the finest level) exactly when `b(j) < x <= b(j + 1)`.
 //! A coordinate on a split line (`x == b(t)`) therefore goes to the lower cell, as in the chapter,
 //! and a cell's points are exactly those whose key has the cell's key as prefix.
+//!
+//! The 64 levels of [`DeepCell`](crate::DeepCell)s, for the compressed trees, continue these
+//! lines below level 32 (`deep_geometry.rs`: [`RootGeometry::deep_coordinate`]).
 
 use crate::geom::{Aabb, Cell};
 
@@ -38,8 +41,7 @@ pub struct RootGeometry<const D: usize> {
 }
 
 impl<const D: usize> RootGeometry<D> {
-    const FINEST: u32 = Cell::<D>::MAX_LEVEL as u32;
-    const LAST: u64 = (1u64 << Self::FINEST) - 1;
+    pub(super) const FINEST: u32 = Cell::<D>::MAX_LEVEL as u32;
 
     /// The cube with lower corner `min` and side `side` (finite, non-negative).
     pub fn new(min: [f64; D], side: f64) -> Self {
@@ -91,13 +93,18 @@ impl<const D: usize> RootGeometry<D> {
     #[inline]
     pub fn boundary(&self, axis: usize, j: u64, level: u8) -> f64 {
         // j / 2^level, exactly: a multiplication by a power of two.
-        let t = (j as i64) as f64 * f64::from_bits((1023 - level as u64) << 52);
+        self.at(axis, (j as i64) as f64 * pow2(level))
+    }
+
+    /// The boundary at the fraction `t` of the root's side along `axis`: `2 * (lo / 2 + h * t)`.
+    #[inline]
+    fn at(&self, axis: usize, t: f64) -> f64 {
         2.0 * (self.half_lo[axis] + self.half_side * t)
     }
 
     #[inline]
     fn upper(&self, axis: usize) -> f64 {
-        2.0 * (self.half_lo[axis] + self.half_side)
+        self.at(axis, 1.0)
     }
 
     /// The root cube.
@@ -124,31 +131,40 @@ impl<const D: usize> RootGeometry<D> {
     /// a binary search.
     #[inline]
     pub fn coordinate(&self, axis: usize, x: f64) -> u32 {
-        let scaled = (x * 0.5 - self.half_lo[axis]) * self.scale;
+        self.coordinate_at(axis, x, Self::FINEST as u8) as u32
+    }
+
+    /// [`RootGeometry::coordinate`] at `level` (`Cell::MAX_LEVEL..=32`): the guess's shortcut
+    /// (the margin grows with the cells' count, 2^level), else the boundaries.
+    #[inline]
+    pub(super) fn coordinate_at(&self, axis: usize, x: f64, level: u8) -> u64 {
+        let finer = (1u64 << (level as u32 - Self::FINEST)) as f64;
+        let scaled = (x * 0.5 - self.half_lo[axis]) * (self.scale * finer);
         // `as` truncates (and saturates; NaN gives 0); the fraction is exact below 2^52 and
         // fails the test for negative, huge or NaN guesses.
         let guess = scaled as i64;
         let fraction = scaled - guess as f64;
-        let margin = self.margin[axis];
-        if fraction > margin && fraction < 1.0 - margin && guess <= Self::LAST as i64 {
-            return guess as u32;
+        let margin = self.margin[axis] * finer;
+        if fraction > margin && fraction < 1.0 - margin && guess < (1i64 << level) {
+            return guess as u64;
         }
-        self.exact_coordinate(axis, x, scaled)
+        self.exact_coordinate(axis, x, scaled, level)
     }
 
-    /// [`RootGeometry::coordinate`] from the boundaries alone; `scaled` is the guess.
-    fn exact_coordinate(&self, axis: usize, x: f64, scaled: f64) -> u32 {
-        let at = |j: u64| self.boundary(axis, j, Self::FINEST as u8);
-        let fits = |j: u64| (j == 0 || at(j) < x) && (j == Self::LAST || x <= at(j + 1));
+    /// [`RootGeometry::coordinate_at`] from the boundaries alone; `scaled` is the guess.
+    fn exact_coordinate(&self, axis: usize, x: f64, scaled: f64, level: u8) -> u64 {
+        let last = (1u64 << level) - 1;
+        let at = |j: u64| self.boundary(axis, j, level);
+        let fits = |j: u64| (j == 0 || at(j) < x) && (j == last || x <= at(j + 1));
         // `as` saturates and maps NaN to 0.
-        let guess = scaled.clamp(0.0, Self::LAST as f64) as i64 as u64;
-        for j in [guess, guess.saturating_sub(1), (guess + 1).min(Self::LAST)] {
+        let guess = scaled.clamp(0.0, last as f64) as i64 as u64;
+        for j in [guess, guess.saturating_sub(1), (guess + 1).min(last)] {
             if fits(j) {
-                return j as u32;
+                return j;
             }
         }
-        // The first j in 0..=LAST with x <= b(j + 1) (the boundaries are monotone).
-        let (mut lo, mut hi) = (0u64, Self::LAST);
+        // The first j in 0..=last with x <= b(j + 1) (the boundaries are monotone).
+        let (mut lo, mut hi) = (0u64, last);
         while lo < hi {
             let mid = lo + (hi - lo) / 2;
             if x <= at(mid + 1) {
@@ -157,7 +173,7 @@ impl<const D: usize> RootGeometry<D> {
                 lo = mid + 1;
             }
         }
-        lo as u32
+        lo
     }
 
     /// The Morton key of `point` at the finest level ([`Cell::MAX_LEVEL`]).
@@ -197,6 +213,12 @@ fn guess_margin(half_lo: f64, half_side: f64, finest: u32) -> f64 {
     }
 }
 
+/// 2^-level, exactly.
+#[inline]
+fn pow2(level: u8) -> f64 {
+    f64::from_bits((1023 - level as u64) << 52)
+}
+
 /// Half of `m`, rounded down: halving a subnormal can round up (to even), which would put the
 /// root's lower side above the smallest point.
 fn half_down(m: f64) -> f64 {
@@ -228,13 +250,18 @@ mod tests {
         use rand::{Rng, SeedableRng};
         let mut rng = rand::rngs::SmallRng::seed_from_u64(3);
         fn check<const D: usize>(g: &RootGeometry<D>, x: f64) {
+            let finest = RootGeometry::<D>::FINEST as u8;
             for axis in 0..D {
-                let scaled = (x * 0.5 - g.half_lo[axis]) * g.scale;
-                assert_eq!(
-                    g.coordinate(axis, x),
-                    g.exact_coordinate(axis, x, scaled),
-                    "x = {x:e} in {g:?}"
-                );
+                // the finest level, and level 32, where the deep cells start
+                for level in [finest, 32] {
+                    let finer = (1u64 << (level - finest)) as f64;
+                    let scaled = (x * 0.5 - g.half_lo[axis]) * g.scale * finer;
+                    assert_eq!(
+                        g.coordinate_at(axis, x, level),
+                        g.exact_coordinate(axis, x, scaled, level),
+                        "x = {x:e} at level {level} in {g:?}"
+                    );
+                }
             }
         }
         let cubes = [
@@ -261,13 +288,13 @@ mod tests {
                 let x = lo + side * t;
                 check(&g2, x);
                 check(&g3, x);
-                let j = rng.gen_range(0..=RootGeometry::<2>::LAST);
+                let j = rng.gen_range(0..1u64 << 32);
                 for b in [g2.boundary(0, j, 32)] {
                     for y in [b, b.next_up(), b.next_down()] {
                         check(&g2, y);
                     }
                 }
-                let j = rng.gen_range(0..=RootGeometry::<3>::LAST);
+                let j = rng.gen_range(0..1u64 << 21);
                 let b = g3.boundary(0, j, 21);
                 for y in [b, b.next_up(), b.next_down()] {
                     check(&g3, y);

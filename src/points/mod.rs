@@ -6,6 +6,7 @@
 //! streams through memory, and a node wholly inside a region yields its run untested.
 
 mod build;
+mod deep_geometry;
 mod geometry;
 mod leaves;
 #[cfg(feature = "rayon")]
