@@ -19,9 +19,17 @@
 //! its cell). Keeping the runs contiguous adds one `memmove` of the points and items after the
 //! update's position and a shift of the runs of the nodes after it: O(n) bytes moved and O(m)
 //! runs adjusted, with a small constant, but not O(depth): measured about 10 us per update at
-//! n = 10^4 and 100 us at n = 10^5 (2D, uniform, bucket 16, release build). A gapped layout
-//! (a packed memory array, leaves' runs with slack) would remove that term at the price of gaps
-//! inside `points()`, which every query would then have to skip; that change is left for later.
+//! n = 10^4 and 100 us at n = 10^5 (2D, uniform, bucket 16, release build).
+//!
+//! That term cannot be O(depth) while `points()` and `items()` are dense slices in Morton order:
+//! an adversary inserting at the front moves every point each time. With gaps, keeping n items
+//! in key order in an array of O(n) slots costs Θ(log² n) amortised moves per insert (a packed
+//! memory array meets it; Bulánek, Koucký and Saks, "Tight lower bounds for the online labeling
+//! problem", STOC 2012, show no array layout does better), and a gap needs a placeholder item,
+//! which a generic `T` (no `Default`, no `unsafe`) does not have. [`crate::CompressedTree`] gives
+//! O(depth) updates with the same queries: its points sit in slots in insertion order, and the
+//! Morton-ordered view its queries read is rebuilt (O(n), in two linear passes) at the first
+//! query after a batch of updates, which suits many updates between queries.
 //!
 //! # Rules
 //! - The root box is fixed at build time: the given root box, or the enclosing cube of the first
