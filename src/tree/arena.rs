@@ -204,6 +204,13 @@ impl<const D: usize> Tree<D> {
         Ok(NodeId(first as u32))
     }
 
+    /// The parent of every child block, by block number (block `b` holds nodes
+    /// `1 + b * 2^D ..`); freed blocks keep their last parent.
+    #[inline]
+    pub(super) fn block_parents(&self) -> &[u32] {
+        &self.block_parent
+    }
+
     /// The deepest node whose cell contains `cell`: O(level of the result).
     pub fn locate_cell(&self, cell: &Cell<D>) -> NodeId {
         let mut v = NodeId::ROOT;

@@ -1,5 +1,7 @@
-//! [`Tree::is_balanced`]: one top-down pass that hands every internal node its neighbours, with no
-//! neighbour search at all.
+//! [`Tree::is_balanced`]: one top-down pass over a compact table of the internal nodes that hands
+//! every internal node its neighbours, with no neighbour search at all; or, for trees shallow
+//! enough, the test of the same condition on a dense bitmap of internal cells
+//! (`balance_dense.rs`), which is faster still (two sequential passes, no walk).
 //!
 //! The test. A tree is balanced (adjacent leaves differ by at most k levels under a connectivity)
 //! exactly when, for every internal node C at level l and every direction δ allowed by the
@@ -9,74 +11,106 @@
 //! every leaf has its adjacent leaves within k levels (the argument of `ripple.rs`'s module doc).
 //!
 //! The pass. A depth-first walk keeps, for the node at each level of the current path, the result
-//! of the neighbour search in every allowed direction: the same-level neighbour when it exists,
-//! else the leaf that covers its cell, else "outside". A child's neighbours follow from its
-//! parent's in O(1) each, the classic top-down neighbour rule (Samet, *The Design and Analysis
-//! of Spatial Data Structures*, 1990, section 3.2): moving from child c in direction δ stays in
-//! the parent along the axes where c is on the far side and leaves it along the others, so the
-//! neighbour is the sibling c ^ axes(δ) when δ leaves the parent along no axis, and otherwise the
-//! child c ^ axes(δ) of the parent's neighbour in the restriction of δ to the leaving axes (or
-//! that neighbour itself, when it is a leaf or shallower).
+//! of the neighbour search in every allowed direction: the same-level neighbour when it is
+//! internal, else the level of the leaf that covers its cell (or "outside"). A child's neighbours
+//! follow from its parent's in O(1) each, the classic top-down neighbour rule (Samet, *The Design
+//! and Analysis of Spatial Data Structures*, 1990, section 3.2): moving from child c in direction
+//! δ stays in the parent along the axes where c is on the far side and leaves it along the
+//! others, so the neighbour is the sibling c ^ axes(δ) when δ leaves the parent along no axis,
+//! and otherwise the child c ^ axes(δ) of the parent's neighbour in the restriction of δ to the
+//! leaving axes (or that neighbour itself, when it is a leaf).
 //!
-//! Cost: one bitmap lookup per child of an entered node, and rows only where they are needed: a
-//! node is entered only when it has internal children; a node whose row holds no neighbour too
-//! coarse for its children ("clean") lets those children pass without computing their rows; and
-//! a neighbour's children are read (one array read per direction) only when some child needs a
-//! row. Leaves are never entered, nothing recurses, and memory is one row per level of the
-//! current path.
+//! The walk reads only the table of internal nodes of `inner.rs` (records numbered in id order,
+//! each with its children's masks and the number of its first internal child), never the
+//! arena: a leaf has no record, and a row entry is either a record or the level of a leaf.
+//!
+//! Cost: O(1) per internal child of an entered node, and rows only where they are needed: a
+//! node is entered only when it has internal children; a node whose row holds no leaf too coarse
+//! for its children ("clean") lets those children pass without looking at them unless they have
+//! internal children themselves. Nothing recurses; memory is one row per level of the current
+//! path, plus the table (two words per internal node up to D = 4).
 
-use super::arena::NONE;
+use super::balance_dense::Dense;
+use super::inner::Inner;
 use super::{BalanceOptions, NodeId, Tree};
 use crate::geom::{Dim, Direction};
-use smallvec::SmallVec;
 
-/// The search result for a direction that leaves the root cell.
-const OUTSIDE: u32 = u32::MAX;
-
-/// Where the neighbour of a child in one direction comes from.
-#[derive(Clone, Copy, Debug)]
-enum Source {
-    /// The sibling with this child index.
-    Sibling(u8),
-    /// Child `index` of the parent's neighbour in direction number `direction`.
-    Parent { direction: u16, index: u8 },
-}
-
-/// The neighbour rule of the module doc, tabulated: `rule[c * k + j]` for child `c` and
-/// direction number `j` of the `k` allowed directions.
-struct Rule {
+/// The neighbour rule of the module doc, tabulated for rows of `directions + 1` entries, the
+/// last one the node itself (so that a sibling is a child of entry `directions`).
+pub(super) struct Rule {
     directions: usize,
-    sources: Vec<Source>,
+    /// `sources[c * directions + j]`: for child `c` and direction number `j`, the parent's row
+    /// entry the neighbour comes from, and the child of that entry to take.
+    sources: Vec<(u16, u8)>,
+    /// `touch[touch_start[c]..touch_start[c + 1]]`: the parent's directions that child `c`
+    /// inherits (where a leaf too coarse for `c` can come from).
+    touch: Vec<u16>,
+    touch_start: Vec<usize>,
+    /// The directions of `touch`.
+    steps: Vec<Direction>,
 }
 
 impl Rule {
-    fn new<const D: usize>(options: BalanceOptions) -> Rule {
+    /// The rule for `options`.
+    ///
+    /// # Panics
+    /// If `options.max_level_difference` is 0.
+    pub(super) fn new<const D: usize>(options: BalanceOptions) -> Rule {
+        assert!(
+            options.max_level_difference >= 1,
+            "max_level_difference must be at least 1"
+        );
         let directions: Vec<Direction> = Direction::all::<D>(options.connectivity).collect();
+        let k = directions.len();
         let number = |d: Direction| {
             directions
                 .iter()
                 .position(|&e| e == d)
                 .expect("a restriction of an allowed direction is allowed") as u16
         };
-        let mut sources = Vec::with_capacity(Dim::<D>::CHILDREN * directions.len());
+        let mut sources = Vec::with_capacity(Dim::<D>::CHILDREN * k);
+        let (mut touch, mut touch_start, mut steps) = (Vec::new(), vec![0], Vec::new());
         for c in 0..Dim::<D>::CHILDREN as u8 {
+            let first = touch.len();
             for &d in &directions {
                 let index = c ^ d.axes();
                 let (plus, minus) = (d.plus_mask() & c, d.minus_mask() & !c);
-                sources.push(if plus | minus == 0 {
-                    Source::Sibling(index)
+                if plus | minus == 0 {
+                    sources.push((k as u16, index));
                 } else {
-                    Source::Parent {
-                        direction: number(Direction::from_masks(plus, minus)),
-                        index,
+                    let from = number(Direction::from_masks(plus, minus));
+                    sources.push((from, index));
+                    if !touch[first..].contains(&from) {
+                        touch.push(from);
+                        steps.push(directions[from as usize]);
                     }
-                });
+                }
             }
+            touch_start.push(touch.len());
         }
         Rule {
-            directions: directions.len(),
+            directions: k,
             sources,
+            touch,
+            touch_start,
+            steps,
         }
+    }
+
+    #[inline]
+    fn sources(&self, c: usize) -> &[(u16, u8)] {
+        &self.sources[c * self.directions..(c + 1) * self.directions]
+    }
+
+    #[inline]
+    fn touch(&self, c: usize) -> &[u16] {
+        &self.touch[self.touch_start[c]..self.touch_start[c + 1]]
+    }
+
+    /// The distinct directions in which child `c` leaves its parent's cell.
+    #[inline]
+    pub(super) fn steps(&self, c: usize) -> &[Direction] {
+        &self.steps[self.touch_start[c]..self.touch_start[c + 1]]
     }
 }
 
@@ -104,11 +138,32 @@ impl<const D: usize> Tree<D> {
     /// assert!(t.is_balanced(BalanceOptions::new(Connectivity::Corner).weak()));
     /// ```
     pub fn is_balanced(&self, options: impl Into<BalanceOptions>) -> bool {
-        let check = Check::new(self, options.into());
+        match Plan::new(self, options.into()) {
+            Plan::Leaf => true,
+            Plan::Dense(dense, rule, k) => dense.balanced(&rule, k),
+            Plan::Walk(check) => check.below(&check.root()),
+        }
+    }
+
+    /// [`Tree::is_balanced`] by the walk, even where the dense test applies.
+    #[cfg(test)]
+    pub(super) fn is_balanced_walk(&self, options: BalanceOptions) -> bool {
+        let rule = Rule::new::<D>(options);
         if self.is_leaf(NodeId::ROOT) {
             return true;
         }
-        check.below(check.root())
+        let check = Check::new(self, rule, options);
+        check.below(&check.root())
+    }
+
+    /// [`Tree::is_balanced`] by the dense test; `None` where it does not apply.
+    #[cfg(test)]
+    pub(super) fn is_balanced_dense(&self, options: BalanceOptions) -> Option<bool> {
+        let rule = Rule::new::<D>(options);
+        if self.is_leaf(NodeId::ROOT) {
+            return None;
+        }
+        Some(Dense::new(self)?.balanced(&rule, options.max_level_difference))
     }
 
     /// [`Tree::is_balanced`] with the subtrees spread over rayon's threads: the top levels are
@@ -130,230 +185,215 @@ impl<const D: usize> Tree<D> {
     #[cfg(feature = "rayon")]
     pub fn par_is_balanced(&self, options: impl Into<BalanceOptions>) -> bool {
         use rayon::prelude::*;
-        let check = Check::new(self, options.into());
-        if self.is_leaf(NodeId::ROOT) {
-            return true;
-        }
+        let check = match Plan::new(self, options.into()) {
+            Plan::Leaf => return true,
+            Plan::Dense(dense, rule, k) => return dense.par_balanced(&rule, k),
+            Plan::Walk(check) => check,
+        };
         let mut frontier = vec![check.root()];
         let wanted = 64 * rayon::current_num_threads();
         while !frontier.is_empty() && frontier.len() < wanted {
             let mut next = Vec::new();
-            for top in &mut frontier {
-                let mut row = check.empty_entry();
-                for c in 0..Dim::<D>::CHILDREN {
-                    match check.child(top, c, &mut row) {
+            for top in &frontier {
+                let mut frame = top.frame;
+                while let Some(c) = check.next_child(&mut frame) {
+                    let mut row = vec![0; check.rule.directions + 1];
+                    match check.child(frame, &top.row, c, &mut row) {
                         Child::Unbalanced => return false,
-                        Child::Enter => next.push(row.clone()),
+                        Child::Enter(frame) => next.push(Top { frame, row }),
                         Child::Done => {}
                     }
                 }
             }
             frontier = next;
         }
-        frontier.into_par_iter().all(|top| check.below(top))
+        frontier.into_par_iter().all(|top| check.below(&top))
     }
 }
 
-/// One balance test: the tree, the neighbour rule, and a bit per node slot telling internal
-/// nodes from leaves (so that testing a node's children reads a bitmap that stays in cache, not
-/// the children's own entries).
-struct Check<'a, const D: usize> {
-    tree: &'a Tree<D>,
-    rule: Rule,
-    internal: Vec<u64>,
-    slack: u8,
+/// How to test a tree: nothing to test (a single leaf), the dense test of `balance_dense.rs`
+/// (with the rule and the allowed level difference) where it applies, else the walk.
+enum Plan<const D: usize> {
+    Leaf,
+    Dense(Dense<D>, Rule, u8),
+    Walk(Check<D>),
 }
 
-/// An internal node with internal children, ready to have them tested: its first child, level,
-/// neighbour row (for each allowed direction the neighbour search's result, a node id or
-/// [`OUTSIDE`], and its level), and the first child of each neighbour at its own level (else
-/// `NONE`).
-#[derive(Clone)]
-struct Entry {
-    first: u32,
+impl<const D: usize> Plan<D> {
+    fn new(tree: &Tree<D>, options: BalanceOptions) -> Self {
+        let rule = Rule::new::<D>(options);
+        if tree.is_leaf(NodeId::ROOT) {
+            Plan::Leaf
+        } else if let Some(dense) = Dense::new(tree) {
+            Plan::Dense(dense, rule, options.max_level_difference)
+        } else {
+            Plan::Walk(Check::new(tree, rule, options))
+        }
+    }
+}
+
+/// A leaf at level m in a neighbour row: `LEAF + m`; smaller values are records of internal
+/// nodes at the row's own level.
+const LEAF: u32 = u32::MAX - 255;
+
+/// A direction that leaves the root cell: a leaf at level 255, never too coarse.
+const OUTSIDE: u32 = u32::MAX;
+
+/// One balance test: the table of internal nodes, the neighbour rule, the slack and the depth.
+struct Check<const D: usize> {
+    inner: Inner<D>,
+    rule: Rule,
+    slack: u32,
+    depth: usize,
+}
+
+/// An internal node with internal children on the walk: its record, level, whether its row is
+/// clean (no leaf too coarse for its internal children), and the children still to look at
+/// (the set bits of `todo` in mask word `word`).
+#[derive(Clone, Copy)]
+struct Frame {
+    record: u32,
     level: u8,
-    ids: SmallVec<[u32; 32]>,
-    levels: SmallVec<[u8; 32]>,
-    across: SmallVec<[u32; 32]>,
-    /// `true` when no entry of the row is a leaf (or shallower node) too coarse for the node's
-    /// internal children: they then pass the test without looking.
     clean: bool,
-    /// `true` once `across` is filled (it is read only for children that need a row).
-    across_ready: bool,
+    word: u16,
+    todo: u32,
+}
+
+/// A node to walk below, with its neighbour row: for each allowed direction the record of the
+/// same-level internal neighbour, `LEAF + m` for a leaf at level m, or [`OUTSIDE`]; then the
+/// node's own record.
+struct Top {
+    frame: Frame,
+    row: Vec<u32>,
 }
 
 /// What [`Check::child`] found.
 enum Child {
-    /// The child is a leaf, or internal and fine with only leaves below it.
+    /// The child is fine and has no internal children.
     Done,
-    /// The child is internal, fine, and has internal children: its entry is filled.
-    Enter,
-    /// The child is internal and has a neighbour too coarse.
+    /// The child is fine and has internal children: its row is filled.
+    Enter(Frame),
+    /// The child has a neighbour too coarse.
     Unbalanced,
 }
 
-impl<'a, const D: usize> Check<'a, D> {
-    fn new(tree: &'a Tree<D>, options: BalanceOptions) -> Self {
-        assert!(
-            options.max_level_difference >= 1,
-            "max_level_difference must be at least 1"
-        );
-        let internal = tree
-            .first_child
-            .chunks(64)
-            .map(|chunk| {
-                chunk
-                    .iter()
-                    .enumerate()
-                    .fold(0u64, |w, (i, &f)| w | ((f != NONE) as u64) << i)
-            })
-            .collect();
+impl<const D: usize> Check<D> {
+    /// The test of `tree`, whose root is internal.
+    fn new(tree: &Tree<D>, rule: Rule, options: BalanceOptions) -> Self {
         Check {
-            tree,
-            rule: Rule::new::<D>(options),
-            internal,
-            slack: options.max_level_difference - 1,
+            inner: Inner::new(tree).expect("the root is internal"),
+            rule,
+            slack: options.max_level_difference as u32 - 1,
+            depth: tree.depth() as usize,
         }
     }
 
-    fn empty_entry(&self) -> Entry {
-        let k = self.rule.directions;
-        Entry {
-            first: NONE,
-            level: 0,
-            ids: SmallVec::from_elem(OUTSIDE, k),
-            levels: SmallVec::from_elem(0, k),
-            across: SmallVec::from_elem(NONE, k),
-            clean: true,
-            across_ready: false,
+    /// The root, its neighbours all outside.
+    fn root(&self) -> Top {
+        let mut row = vec![OUTSIDE; self.rule.directions + 1];
+        row[self.rule.directions] = 0;
+        Top {
+            frame: self.frame(0, 0, true),
+            row,
         }
     }
 
-    /// The root (internal), its neighbours all outside.
-    fn root(&self) -> Entry {
-        let mut root = self.empty_entry();
-        root.first = self.tree.first_child[0];
-        root
+    /// The frame of record `record` at `level`, its first children to look at ready.
+    #[inline]
+    fn frame(&self, record: u32, level: u8, clean: bool) -> Frame {
+        Frame {
+            record,
+            level,
+            clean,
+            word: 0,
+            todo: self.todo(record, 0, clean),
+        }
     }
 
+    /// The children in mask word `w` of `record` that need a look: every internal child, or only
+    /// those with internal children when the row is clean.
     #[inline]
-    fn is_internal(&self, id: u32) -> bool {
-        (self.internal[(id >> 6) as usize] >> (id & 63)) & 1 != 0
+    fn todo(&self, record: u32, w: usize, clean: bool) -> u32 {
+        if clean {
+            self.inner.grand_word(record, w)
+        } else {
+            self.inner.inner_word(record, w)
+        }
     }
 
-    /// `true` when one of the 2^D children starting at `first` is internal.
+    /// The next child of `frame` to look at, taken off its list.
     #[inline]
-    fn any_internal(&self, first: u32) -> bool {
-        let (start, end) = (first as usize, first as usize + Dim::<D>::CHILDREN);
-        (start >> 6..=(end - 1) >> 6).any(|w| {
-            let lo = start.max(w << 6) - (w << 6);
-            let hi = end.min((w + 1) << 6) - (w << 6);
-            let mask = if hi - lo == 64 {
-                u64::MAX
+    fn next_child(&self, frame: &mut Frame) -> Option<usize> {
+        while frame.todo == 0 {
+            frame.word += 1;
+            if frame.word as usize >= Inner::<D>::WORDS {
+                return None;
+            }
+            frame.todo = self.todo(frame.record, frame.word as usize, frame.clean);
+        }
+        let c = frame.word as usize * 32 + frame.todo.trailing_zeros() as usize;
+        frame.todo &= frame.todo - 1;
+        Some(c)
+    }
+
+    /// `true` when the row entry `e` is a leaf too coarse for an internal node at `level + 1`.
+    #[inline]
+    fn too_coarse(&self, e: u32, level: u8) -> bool {
+        e.wrapping_sub(LEAF) + self.slack <= level as u32
+    }
+
+    /// Tests the internal child `c` of the node of `frame` with row `row` (the rule of the module
+    /// doc) and, when it has internal children, fills `out` with its row.
+    #[inline]
+    fn child(&self, frame: Frame, row: &[u32], c: usize, out: &mut [u32]) -> Child {
+        let level = frame.level;
+        if !frame.clean
+            && self
+                .rule
+                .touch(c)
+                .iter()
+                .any(|&d| self.too_coarse(row[d as usize], level))
+        {
+            return Child::Unbalanced;
+        }
+        if !self.inner.grand(frame.record, c) {
+            return Child::Done;
+        }
+        let finer = LEAF + level as u32 + 1;
+        for (o, &(d, i)) in out.iter_mut().zip(self.rule.sources(c)) {
+            let e = row[d as usize];
+            *o = if e < LEAF {
+                self.inner.child_or(e, i as usize, finer)
             } else {
-                ((1u64 << (hi - lo)) - 1) << lo
+                e
             };
-            self.internal[w] & mask != 0
-        })
-    }
-
-    /// Tests child `c` of `top` (the rule of the module doc) and, when it has internal children,
-    /// fills `out` with its entry. Reads a neighbour's children (`top.across`) only for a child
-    /// that needs a row, the first time one does.
-    #[inline]
-    fn child(&self, top: &mut Entry, c: usize, out: &mut Entry) -> Child {
-        let child = top.first + c as u32;
-        if !self.is_internal(child) {
-            return Child::Done;
-        }
-        let first_child = &self.tree.first_child;
-        let grandchildren = first_child[child as usize];
-        let enter = self.any_internal(grandchildren);
-        if top.clean && !enter {
-            // no neighbour of `top` is too coarse for its children: nothing to test here
-            return Child::Done;
-        }
-        if enter && !top.across_ready {
-            for j in 0..self.rule.directions {
-                let n = top.ids[j];
-                top.across[j] = if self.internal_at(n, top.levels[j], top.level) {
-                    first_child[n as usize]
-                } else {
-                    NONE
-                };
-            }
-            top.across_ready = true;
         }
         let k = self.rule.directions;
-        let level = top.level;
-        let sources = &self.rule.sources[c * k..(c + 1) * k];
-        for (j, &source) in sources.iter().enumerate() {
-            let (id, l) = match source {
-                Source::Sibling(i) => (top.first + i as u32, level + 1),
-                Source::Parent { direction, index } => {
-                    let d = direction as usize;
-                    let (n, nl) = (top.ids[d], top.levels[d]);
-                    if !self.internal_at(n, nl, level) {
-                        (n, nl)
-                    } else if enter {
-                        (top.across[d] + index as u32, level + 1)
-                    } else {
-                        continue; // a same-level internal neighbour: fine, and no row needed
-                    }
-                }
-            };
-            // the child is internal: its neighbour here must not be too coarse
-            if id != OUTSIDE && l + self.slack <= level {
-                return Child::Unbalanced;
-            }
-            out.ids[j] = id;
-            out.levels[j] = l;
-        }
-        if !enter {
-            return Child::Done;
-        }
-        out.first = grandchildren;
-        out.level = level + 1;
-        out.across_ready = false;
-        // clean: no neighbour that its children would see as too coarse
-        out.clean = (0..k).all(|j| {
-            let (n, l) = (out.ids[j], out.levels[j]);
-            n == OUTSIDE || self.internal_at(n, l, level + 1) || l + self.slack > level + 1
-        });
-        Child::Enter
+        let record = self.inner.child_or(frame.record, c, 0);
+        out[k] = record;
+        let clean = !out[..k].iter().any(|&e| self.too_coarse(e, level + 1));
+        Child::Enter(self.frame(record, level + 1, clean))
     }
 
-    /// `true` when `n` (a neighbour row entry at level `l`) is an internal node at `level`.
-    #[inline]
-    fn internal_at(&self, n: u32, l: u8, level: u8) -> bool {
-        n != OUTSIDE && l == level && self.is_internal(n)
-    }
-
-    /// Tests every internal node below `top`, depth first, one entry per level of the current
-    /// path, each child's entry written in place (no recursion, no copies).
-    fn below(&self, top: Entry) -> bool {
-        let mut path = vec![top];
-        let mut next = vec![0usize];
-        let mut depth = 1;
-        while depth > 0 {
-            let r = depth - 1;
-            let c = next[r];
-            if c == Dim::<D>::CHILDREN {
-                depth -= 1;
+    /// Tests every internal node below `top`, depth first, one row per level of the current
+    /// path, each child's row written in place (no recursion, no copies).
+    fn below(&self, top: &Top) -> bool {
+        let s = self.rule.directions + 1;
+        let mut frames = Vec::with_capacity(self.depth + 1);
+        frames.push(top.frame);
+        let mut rows = vec![0; (self.depth + 1) * s];
+        rows[..s].copy_from_slice(&top.row);
+        while let Some(frame) = frames.last_mut() {
+            let Some(c) = self.next_child(frame) else {
+                frames.pop();
                 continue;
-            }
-            next[r] += 1;
-            if path.len() == depth {
-                path.push(self.empty_entry());
-                next.push(0);
-            }
-            let (upper, lower) = path.split_at_mut(depth);
-            match self.child(&mut upper[r], c, &mut lower[0]) {
+            };
+            let frame = *frame;
+            let depth = frames.len();
+            let (upper, lower) = rows.split_at_mut(depth * s);
+            match self.child(frame, &upper[(depth - 1) * s..], c, &mut lower[..s]) {
                 Child::Unbalanced => return false,
-                Child::Enter => {
-                    next[depth] = 0;
-                    depth += 1;
-                }
+                Child::Enter(next) => frames.push(next),
                 Child::Done => {}
             }
         }

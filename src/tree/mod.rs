@@ -4,7 +4,11 @@
 mod arena;
 mod balance;
 mod balance_check;
+#[cfg(test)]
+mod balance_check_tests;
+mod balance_dense;
 mod incremental;
+mod inner;
 mod merge;
 mod neighbors;
 #[cfg(feature = "rayon")]
