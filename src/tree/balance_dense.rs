@@ -43,13 +43,12 @@ pub(super) struct Dense<const D: usize> {
     spread: [u32; D],
 }
 
-/// One neighbour direction in Morton terms: the axes it moves up and down along, and the code
-/// bits of those axes.
+/// One neighbour direction in Morton terms: for each axis a, two bits at 2a choosing to stay
+/// (0), move down (1) or up (2) along it; and the moves it needs, bit 3a + choice.
 #[derive(Clone, Copy)]
 struct Step {
-    plus: u32,
-    minus: u32,
-    bits: u32,
+    choice: u32,
+    needs: u32,
 }
 
 impl<const D: usize> Dense<D> {
@@ -127,10 +126,13 @@ impl<const D: usize> Dense<D> {
     fn steps(&self, rule: &Rule) -> Vec<Vec<Step>> {
         let step = |d: &Direction| {
             let (plus, minus) = (d.plus_mask() as u32, d.minus_mask() as u32);
-            let bits = (0..D)
-                .filter(|a| ((plus | minus) >> a) & 1 != 0)
-                .fold(0, |m, a| m | self.spread[a]);
-            Step { plus, minus, bits }
+            let (mut choice, mut needs) = (0, 0);
+            for a in 0..D {
+                let c = ((minus >> a) & 1) | ((plus >> a) & 1) << 1;
+                choice |= c << (2 * a);
+                needs |= ((c != 0) as u32) << (3 * a + c as usize);
+            }
+            Step { choice, needs }
         };
         if D > 3 {
             return (0..Dim::<D>::CHILDREN)
@@ -167,29 +169,31 @@ impl<const D: usize> Dense<D> {
             if (parent as u64) < first {
                 continue;
             }
-            // The parent's code moved one step down and up along each axis, and the axes where
-            // that leaves the root cell.
+            // The parent's code along each axis as it is, moved one step down and up, and the
+            // moves that leave the root cell.
             let level = (31 - parent.leading_zeros()) / D as u32;
             let low = (1u32 << (D as u32 * level)) - 1;
-            let code = parent & low;
-            let (mut down, mut up) = ([0u32; D], [0u32; D]);
-            let (mut bottom, mut top) = (0u32, 0u32);
-            for a in 0..D {
+            let (code, top) = (parent & low, parent & !low);
+            let mut along = [[0u32; 4]; D];
+            let mut outside = 0u32;
+            for (a, moves) in along.iter_mut().enumerate() {
                 let axis = self.spread[a] & low;
                 let x = code & axis;
-                down[a] = x.wrapping_sub(1 << a) & axis;
-                up[a] = (x | !axis).wrapping_add(1 << a) & axis;
-                bottom |= ((x == 0) as u32) << a;
-                top |= ((x == axis) as u32) << a;
+                *moves = [
+                    x,
+                    x.wrapping_sub(1 << a) & axis,
+                    (x | !axis).wrapping_add(1 << a) & axis,
+                    0,
+                ];
+                outside |= ((x == 0) as u32) << (3 * a + 1) | ((x == axis) as u32) << (3 * a + 2);
             }
             let mut test = |step: &Step| {
-                if step.plus & top | step.minus & bottom != 0 {
+                if step.needs & outside != 0 {
                     return true;
                 }
-                let mut n = parent & !(step.bits & low);
-                for a in 0..D {
-                    n |= up[a] & ((step.plus >> a) & 1).wrapping_neg();
-                    n |= down[a] & ((step.minus >> a) & 1).wrapping_neg();
+                let mut n = top;
+                for (a, moves) in along.iter().enumerate() {
+                    n |= moves[(step.choice >> (2 * a)) as usize & 3];
                 }
                 let n = n >> shift;
                 (self.cells[n as usize >> 6] >> (n & 63)) & 1 != 0
