@@ -5,7 +5,7 @@
 //! radius) fails the batch with a [`BatchError`] naming the first bad query's position; queries
 //! are checked before any work starts.
 
-use super::range::{for_each_in, SCAN};
+use super::range::{for_each_in, scan_limit};
 use super::{Neighbor, QueryError, Region};
 use crate::geom::Scalar;
 use crate::points::PointTree;
@@ -102,7 +102,7 @@ impl<S: Scalar + Sync, T: Sync, const D: usize> PointTree<S, T, D> {
     ) -> Result<Vec<Vec<usize>>, BatchError> {
         run_batch(regions, |r| {
             let mut found = Vec::new();
-            for_each_in(self, r, SCAN, |i| found.push(i))?;
+            for_each_in(self, r, scan_limit(D), |i| found.push(i))?;
             found.sort_unstable();
             Ok(found)
         })

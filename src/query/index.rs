@@ -11,7 +11,7 @@
 use super::knn::{k_nearest, Neighbor};
 use super::metric::Metric;
 use super::nearest_iter::NearestIter;
-use super::range::{for_each_in, QueryStats, RegionIter, SCAN};
+use super::range::{for_each_in, scan_limit, QueryStats, RegionIter};
 use super::region::Region;
 use super::{check_max, check_point, QueryError};
 use crate::geom::{Aabb, Cell, Dim, Scalar};
@@ -87,7 +87,7 @@ pub trait SpatialIndex<const D: usize> {
     where
         Self: Sized,
     {
-        for_each_in(self, &region, SCAN, |_| {}).map(|s| s.count)
+        for_each_in(self, &region, scan_limit(D), |_| {}).map(|s| s.count)
     }
 
     /// Calls `visit(point, item)` for every point in `region` ([`PointTree::query_with`]'s
@@ -101,7 +101,10 @@ pub trait SpatialIndex<const D: usize> {
         Self: Sized,
     {
         let (points, items) = (self.points(), self.items());
-        for_each_in(self, &region, SCAN, |i| visit(&points[i], &items[i])).map(|_| ())
+        for_each_in(self, &region, scan_limit(D), |i| {
+            visit(&points[i], &items[i])
+        })
+        .map(|_| ())
     }
 
     /// The count of `region` with the work done, descending to the leaves
