@@ -44,7 +44,12 @@ fn hundred_thousand_copies_of_one_point() {
     copies::<2>([-5.0, 1e9], n, 1, Some(5));
     copies::<3>([1.0, 2.0, 3.0], n, 1, None);
     copies::<1>([42.0], n, 3, None);
-    copies::<2>([0.0, 0.0], 16, orthtree::DEFAULT_BUCKET_SIZE, None);
+    copies::<2>(
+        [0.0, 0.0],
+        orthtree::DEFAULT_BUCKET_SIZE,
+        orthtree::DEFAULT_BUCKET_SIZE,
+        None,
+    );
 }
 
 /// Copies inside a given root box, with other points around, and balance afterwards.

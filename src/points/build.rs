@@ -11,16 +11,21 @@
 //!
 //! Time O(n log n) for the sort plus O(m 2^D log n) for m nodes. Memory during the build: 32
 //! bytes per point for the (key, index) pairs and the sort's buffer; after it, the points and
-//! items plus 13 bytes per node and 4 per child block (the arrays are shrunk to fit: about 2.6
-//! bytes per point for uniform points in 2D, 4 in 3D, at the default bucket size).
+//! items plus 13 bytes per node and 4 per child block (the arrays are shrunk to fit: about 0.6
+//! bytes per point for uniform points in 2D and 0.5 in 3D at the default bucket size).
 
 use super::{PointTree, RootGeometry};
 use crate::error::Error;
 use crate::geom::{Aabb, Cell, Dim, Scalar};
 use crate::tree::{NodeId, Tree};
 
-/// The bucket size used unless one is set: a leaf holds up to 16 points before it splits.
-pub const DEFAULT_BUCKET_SIZE: usize = 16;
+/// The bucket size used unless one is set: a leaf holds up to 64 points before it splits.
+///
+/// Chosen by measurement (`examples/compare`, 10^6 points, 2D and 3D, uniform, clustered,
+/// duplicated and lattice points): against 16, the queries are as fast or faster (1-NN up to
+/// 1.6x, since fewer and larger leaves stay in cache), and the nodes cost 0.60 (2D) and 0.51
+/// (3D) bytes per point instead of 2.55 and 4.03; 128 measured the same within noise.
+pub const DEFAULT_BUCKET_SIZE: usize = 64;
 
 /// Settings for building a [`PointTree`]: root box, bucket size and maximum depth.
 ///
