@@ -18,7 +18,7 @@
 //! (`locate/{edges}`).
 //!
 //! Groups `compressed/queries/{box,knn10}` run the shared query engines on a `PointTree`
-//! (bucket 16) and on the `CompressedTree` of the same points: 1000 box counts of about 100
+//! (default bucket) and on the `CompressedTree` of the same points: 1000 box counts of about 100
 //! points, and 1000 10-nearest searches.
 //!
 //! Run with `cargo bench --bench compressed` (a few minutes).
