@@ -211,6 +211,14 @@ impl<const D: usize> Tree<D> {
         &self.block_parent
     }
 
+    /// `true` when child block `b` is in use: a block freed by [`Tree::merge`] keeps its last
+    /// parent, which no longer points to it (only checked once something was merged).
+    #[inline]
+    pub(super) fn block_is_live(&self, b: usize) -> bool {
+        self.free_blocks.is_empty()
+            || self.first_child[self.block_parent[b] as usize] as usize == 1 + (b << D)
+    }
+
     /// The deepest node whose cell contains `cell`: O(level of the result).
     pub fn locate_cell(&self, cell: &Cell<D>) -> NodeId {
         let mut v = NodeId::ROOT;

@@ -65,12 +65,11 @@ impl<const D: usize> Dense<D> {
             return None;
         }
         let parents = tree.block_parents();
-        let merged = !tree.free_blocks.is_empty();
         let mut keys = vec![0u32; parents.len()];
         let mut inner = vec![0u32; (parents.len() << D).div_ceil(32)];
         let mut cells = vec![0u64; (1usize << width).div_ceil(64)];
         for (b, &p) in parents.iter().enumerate() {
-            if merged && tree.first_child[p as usize] as usize != 1 + (b << D) {
+            if !tree.block_is_live(b) {
                 continue; // a freed block
             }
             let key = if p == 0 {

@@ -67,19 +67,16 @@ impl<const D: usize> Inner<D> {
             return None;
         }
         let parents = tree.block_parents();
-        let merged = !tree.free_blocks.is_empty();
-        let live =
-            |b: usize, p: u32| !merged || tree.first_child[p as usize] as usize == 1 + (b << D);
         let words = (parents.len() << D).div_ceil(32);
         let mut inner = vec![0u32; words];
         for (b, &p) in parents.iter().enumerate() {
-            if p != 0 && live(b, p) {
+            if p != 0 && tree.block_is_live(b) {
                 set(&mut inner, p as usize - 1);
             }
         }
         let mut grand = vec![0u32; words];
         for (b, &p) in parents.iter().enumerate() {
-            if p != 0 && Self::any(&inner, b) && live(b, p) {
+            if p != 0 && Self::any(&inner, b) && tree.block_is_live(b) {
                 set(&mut grand, p as usize - 1);
             }
         }
@@ -109,7 +106,7 @@ impl<const D: usize> Inner<D> {
                     .sum::<u32>();
                 0
             };
-            if !live(b, p) {
+            if !tree.block_is_live(b) {
                 continue;
             }
             let r = if p == 0 {
