@@ -6,6 +6,7 @@
 //! cargo run --release --example compare                       # N = 10^6, 10^5 queries
 //! cargo run --release --example compare -- --n 100000 --queries 10000 --reps 3
 //! cargo run --release --features rayon --example compare -- --parallel   # + rayon speed-ups
+//! cargo run --release --example compare -- --dim 3 --workload clustered   # one slice of it
 //! ```
 //!
 //! With `--parallel` (feature `rayon`) it also prints the speed-up of `par_build` over `build`
@@ -41,6 +42,10 @@ struct Args {
     queries: usize,
     reps: usize,
     parallel: bool,
+    /// Only this dimension (2 or 3) when set.
+    dim: Option<usize>,
+    /// Only workloads whose name starts with this when set.
+    workload: Option<String>,
 }
 
 fn args() -> Args {
@@ -49,6 +54,8 @@ fn args() -> Args {
         queries: 100_000,
         reps: 5,
         parallel: false,
+        dim: None,
+        workload: None,
     };
     let mut it = std::env::args().skip(1);
     while let Some(flag) = it.next() {
@@ -56,14 +63,21 @@ fn args() -> Args {
             a.parallel = true;
             continue;
         }
-        let value = it.next().and_then(|v| v.parse().ok());
+        let raw = it.next();
+        if flag == "--workload" && raw.is_some() {
+            a.workload = raw;
+            continue;
+        }
+        let value = raw.and_then(|v| v.parse().ok());
         match (flag.as_str(), value) {
             ("--n", Some(v)) => a.n = v,
             ("--queries", Some(v)) => a.queries = v,
             ("--reps", Some(v)) => a.reps = v,
+            ("--dim", Some(v @ (2 | 3))) => a.dim = Some(v),
             _ => {
                 eprintln!(
-                    "usage: compare [--n N] [--queries Q] [--reps R] [--parallel (feature rayon)]"
+                    "usage: compare [--n N] [--queries Q] [--reps R] [--dim 2|3] \
+                     [--workload uniform|clustered|duplicates|lattice] [--parallel (feature rayon)]"
                 );
                 std::process::exit(2);
             }
@@ -134,6 +148,12 @@ fn run<const D: usize>(
     rows: &mut Vec<Row>,
 ) {
     let workload = format!("{name} {D}D");
+    if a.workload
+        .as_ref()
+        .is_some_and(|w| !name.starts_with(w.as_str()))
+    {
+        return;
+    }
     let n = points.len();
     eprintln!("{workload}: n = {n}, {} queries", queries.len());
     let entries: Vec<([f64; D], u64)> = points
@@ -369,8 +389,12 @@ fn workloads<const D: usize>(a: &Args, rows: &mut Vec<Row>) {
 fn main() {
     let a = args();
     let mut rows = Vec::new();
-    workloads::<2>(&a, &mut rows);
-    workloads::<3>(&a, &mut rows);
+    if a.dim != Some(3) {
+        workloads::<2>(&a, &mut rows);
+    }
+    if a.dim != Some(2) {
+        workloads::<3>(&a, &mut rows);
+    }
     println!(
         "\nN = {}, {} queries per row, median of {} runs, ms (total over all queries; build: one build)\n",
         a.n, a.queries, a.reps
@@ -398,8 +422,12 @@ fn main() {
         );
         println!("| workload | operation | serial | rayon | speed-up |");
         println!("| --- | --- | ---: | ---: | ---: |");
-        parallel::<2>(&a);
-        parallel::<3>(&a);
+        if a.dim != Some(3) {
+            parallel::<2>(&a);
+        }
+        if a.dim != Some(2) {
+            parallel::<3>(&a);
+        }
     }
 }
 
