@@ -11,8 +11,8 @@
 //!
 //! Time O(n log n) for the sort plus O(m 2^D log n) for m nodes. Memory during the build: 32
 //! bytes per point for the (key, index) pairs and the sort's buffer; after it, the points and
-//! items plus 13 bytes per node and 4 per child block (the arrays are shrunk to fit: about 0.6
-//! bytes per point for uniform points in 2D and 0.5 in 3D at the default bucket size).
+//! items plus 9 bytes per node (first child, level, run end) and 4 per child block (the arrays
+//! are shrunk to fit).
 
 use super::{PointTree, RootGeometry};
 use crate::error::Error;
@@ -157,7 +157,7 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
             domain,
             points,
             items,
-            ranges: vec![(0, n as u32)],
+            runs: super::Runs::new(n),
             bucket_size: self.bucket_size,
             max_depth: self.max_depth.unwrap_or(Cell::<D>::MAX_LEVEL),
             balanced: None,
@@ -165,7 +165,7 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
         tree.subdivide(NodeId::ROOT, |_, i| (keyed[i] >> 32) as u64);
         // The node arrays grew by doubling: up to half their memory is spare.
         tree.tree.shrink_to_fit();
-        tree.ranges.shrink_to_fit();
+        tree.runs.shrink_to_fit();
         tree
     }
 

@@ -22,6 +22,8 @@ pub struct Leaf<'a, S, T, const D: usize> {
 pub struct Leaves<'a, S, T, const D: usize> {
     tree: &'a PointTree<S, T, D>,
     walk: PreOrder<'a, D>,
+    /// Where the next leaf's run starts: the leaves' runs follow each other in Morton order.
+    start: usize,
 }
 
 impl<'a, S: Scalar, T, const D: usize> Iterator for Leaves<'a, S, T, D> {
@@ -29,11 +31,13 @@ impl<'a, S: Scalar, T, const D: usize> Iterator for Leaves<'a, S, T, D> {
 
     fn next(&mut self) -> Option<Self::Item> {
         let (id, cell) = self.walk.next()?;
+        let run = self.start..self.start + self.tree.runs().count::<D>(id) as usize;
+        self.start = run.end;
         Some(Leaf {
             id,
             cell,
-            points: self.tree.node_points(id),
-            items: self.tree.node_items(id),
+            points: &self.tree.points()[run.clone()],
+            items: &self.tree.items()[run],
         })
     }
 }
@@ -51,6 +55,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         Leaves {
             tree: self,
             walk: self.tree.leaves(),
+            start: 0,
         }
     }
 }

@@ -12,6 +12,7 @@ mod leaves;
 #[cfg(feature = "rayon")]
 mod parallel;
 mod radix;
+mod runs;
 mod update;
 
 pub use build::{PointTreeBuilder, DEFAULT_BUCKET_SIZE};
@@ -21,6 +22,7 @@ pub use leaves::{Leaf, Leaves};
 use crate::error::Error;
 use crate::geom::{Aabb, Cell, Dim, Scalar};
 use crate::tree::{BalanceOptions, NodeId, Tree};
+pub(crate) use runs::Runs;
 
 /// A point quadtree (D = 2), octree (D = 3) or 2^D-tree storing (point, item) pairs.
 ///
@@ -45,7 +47,7 @@ pub struct PointTree<S, T, const D: usize> {
     domain: Aabb<f64, D>,
     points: Vec<[S; D]>,
     items: Vec<T>,
-    ranges: Vec<(u32, u32)>,
+    runs: Runs,
     bucket_size: usize,
     max_depth: u8,
     balanced: Option<BalanceOptions>,
@@ -145,21 +147,28 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         self.geometry.cell_box(&self.tree.cell(id))
     }
 
-    /// The points in the cell of node `id` (all of its subtree's), in Morton order.
+    /// The points in the cell of node `id` (all of its subtree's), in Morton order. O(depth):
+    /// a node records its run relative to its parent's (`runs.rs`); [`PointTree::leaves`] and
+    /// the queries carry the runs down instead.
     pub fn node_points(&self, id: NodeId) -> &[[S; D]] {
-        let (s, e) = self.ranges[id.index()];
-        &self.points[s as usize..e as usize]
+        &self.points[self.node_run(id)]
     }
 
-    /// The items of [`PointTree::node_points`].
+    /// The items of [`PointTree::node_points`]. O(depth).
     pub fn node_items(&self, id: NodeId) -> &[T] {
-        let (s, e) = self.ranges[id.index()];
-        &self.items[s as usize..e as usize]
+        &self.items[self.node_run(id)]
     }
 
-    /// The run `(start, end)` of every node's points, indexed by node.
-    pub(crate) fn ranges(&self) -> &[(u32, u32)] {
-        &self.ranges
+    /// The indices of the points of node `id`. O(depth).
+    pub fn node_run(&self, id: NodeId) -> core::ops::Range<usize> {
+        let (s, e) = self.runs.run(&self.tree, id);
+        s as usize..e as usize
+    }
+
+    /// The node runs (see `runs.rs`).
+    #[inline]
+    pub(crate) fn runs(&self) -> &Runs {
+        &self.runs
     }
 
     /// Geometry, domain, and the points and items in Morton order (the compressed tree's
@@ -180,7 +189,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
             tree: Tree::new(),
             geometry,
             domain,
-            ranges: vec![(0, points.len() as u32)],
+            runs: Runs::new(points.len()),
             points,
             items,
             bucket_size,
@@ -195,7 +204,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     pub fn heap_bytes(&self) -> usize {
         self.points.capacity() * core::mem::size_of::<[S; D]>()
             + self.items.capacity() * core::mem::size_of::<T>()
-            + self.ranges.capacity() * core::mem::size_of::<(u32, u32)>()
+            + self.runs.heap_bytes()
             + self.tree.heap_bytes()
     }
 
@@ -233,8 +242,12 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         let split = self.tree.balance(options);
         let geometry = self.geometry;
         let points = &self.points;
-        for &leaf in &split {
-            partition_children(&self.tree, &mut self.ranges, leaf, |i| {
+        // Parents first, so that each split leaf's run is known when its points are moved.
+        let mut order = split.clone();
+        order.sort_by_key(|&v| self.tree.level(v));
+        for leaf in order {
+            let (s, e) = self.runs.run(&self.tree, leaf);
+            partition_children(&self.tree, &mut self.runs, leaf, (s, e), |i| {
                 geometry.key(&points[i].map(Scalar::to_f64))
             });
         }
@@ -245,16 +258,23 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// Splits below `start` while a node holds more than the bucket size and is above the
     /// maximum depth; `key(points, i)` is the Morton key of point `i`.
     fn subdivide(&mut self, start: NodeId, key: impl Fn(&[[S; D]], usize) -> u64) {
-        let (tree, ranges, points) = (&mut self.tree, &mut self.ranges, &self.points);
-        let mut stack = vec![start];
-        while let Some(v) = stack.pop() {
-            let (s, e) = ranges[v.index()];
+        let (tree, runs, points) = (&mut self.tree, &mut self.runs, &self.points);
+        let mut stack = vec![(start, runs.run(tree, start))];
+        while let Some((v, (s, e))) = stack.pop() {
             if (e - s) as usize <= self.bucket_size || tree.level(v) >= self.max_depth {
                 continue;
             }
             tree.split(v);
-            partition_children(tree, ranges, v, |i| key(points, i));
-            stack.extend(tree.children(v).rev());
+            partition_children(tree, runs, v, (s, e), |i| key(points, i));
+            let block = runs.block::<D>(tree.child(v, 0).expect("just split"));
+            let mut lo = s;
+            for (child, &end) in tree.children(v).zip(block) {
+                stack.push((child, (lo, s + end)));
+                lo = s + end;
+            }
+            // Children in child order: pop the first first.
+            let top = stack.len() - Dim::<D>::CHILDREN;
+            stack[top..].reverse();
         }
     }
 
@@ -265,19 +285,25 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// and then the tree is balanced.
     pub fn validate(&self) -> Result<(), ValidationError> {
         let fail = |msg: String| Err(ValidationError(msg));
-        if self.ranges.len() != self.tree.node_count() {
+        if self.runs.len() != self.tree.node_count() {
             return fail(format!(
                 "{} runs for {} nodes",
-                self.ranges.len(),
+                self.runs.len(),
                 self.tree.node_count()
             ));
         }
-        if self.ranges[0] != (0, self.len() as u32) || self.items.len() != self.len() {
+        if self.runs.total() != self.len() as u32 || self.items.len() != self.len() {
             return fail("the root does not own every point".into());
         }
+        // Absolute runs, filled parent first by the pre-order walk.
+        let mut runs = vec![(0u32, 0u32); self.tree.node_count()];
+        runs[0] = (0, self.len() as u32);
         let mut previous_key = 0u64;
         for (id, cell) in self.tree.pre_order() {
-            let (s, e) = self.ranges[id.index()];
+            let (s, e) = runs[id.index()];
+            if self.runs.run(&self.tree, id) != (s, e) {
+                return fail(format!("node {}'s run found upwards differs", id.0));
+            }
             let count = (e - s) as usize;
             if self.tree.is_leaf(id) {
                 if count > self.bucket_size && cell.level() < self.max_depth {
@@ -303,11 +329,13 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
                 }
             } else {
                 let mut at = s;
-                for child in self.tree.children(id) {
-                    let (cs, ce) = self.ranges[child.index()];
-                    if cs != at || ce < cs {
+                let first = self.tree.child(id, 0).expect("an internal node");
+                for (child, &end) in self.tree.children(id).zip(self.runs.block::<D>(first)) {
+                    let ce = s.wrapping_add(end);
+                    if ce < at || ce > e {
                         return fail(format!("node {}'s children do not partition its run", id.0));
                     }
+                    runs[child.index()] = (at, ce);
                     at = ce;
                 }
                 if at != e {
@@ -337,19 +365,18 @@ fn digit<const D: usize>(key: u64, level: u8) -> usize {
     ((key >> shift) as usize) & (Dim::<D>::CHILDREN - 1)
 }
 
-/// Gives each child of the just-split node `v` its part of `v`'s run, which is sorted by key.
+/// Gives each child of the just-split node `v` its part of `v`'s run `(s, e)`, which is sorted
+/// by key.
 fn partition_children<const D: usize>(
     tree: &Tree<D>,
-    ranges: &mut Vec<(u32, u32)>,
+    runs: &mut Runs,
     v: NodeId,
+    (s, e): (u32, u32),
     key: impl Fn(usize) -> u64,
 ) {
     let level = tree.level(v);
-    let (s, e) = ranges[v.index()];
-    let first = tree.child(v, 0).expect("v was just split");
-    ranges.resize(tree.node_count(), (0, 0));
     let mut lo = s;
-    for c in 0..Dim::<D>::CHILDREN {
+    let ends = (0..Dim::<D>::CHILDREN).map(|c| {
         // First index in lo..e whose digit exceeds c.
         let (mut a, mut b) = (lo, e);
         while a < b {
@@ -360,9 +387,10 @@ fn partition_children<const D: usize>(
                 b = mid;
             }
         }
-        ranges[first.index() + c] = (lo, a);
         lo = a;
-    }
+        a
+    });
+    runs.set_children(tree, v, s, ends);
 }
 
 /// A broken invariant found by [`PointTree::validate`].

@@ -16,10 +16,10 @@
 //! queries read keep their meaning after updates). The tree work of an update is O(depth) node
 //! visits plus O(2^D depth) for the splits or merges it causes, amortised O(depth) (a split or a
 //! merge of a leaf with at most bucket size + 1 points happens only after that many updates in
-//! its cell). Keeping the runs contiguous adds one `memmove` of the points and items after the
-//! update's position and a shift of the runs of the nodes after it: O(n) bytes moved and O(m)
-//! runs adjusted, with a small constant, but not O(depth): measured about 10 us per update at
-//! n = 10^4 and 100 us at n = 10^5 (2D, uniform, bucket 16, release build).
+//! its cell). The node runs change in O(2^D depth): each node records its run's end relative to
+//! its parent's start (`runs.rs`), so only the path and its later siblings move. Keeping the
+//! points contiguous adds one `memmove` of the points and items after the update's position:
+//! O(n) bytes moved, with a small constant, but not O(depth).
 //!
 //! That term cannot be O(depth) while `points()` and `items()` are dense slices in Morton order:
 //! an adversary inserting at the front moves every point each time. With gaps, keeping n items
@@ -48,7 +48,7 @@
 
 use super::PointTree;
 use crate::error::Error;
-use crate::geom::{Dim, Scalar};
+use crate::geom::Scalar;
 use crate::tree::{NodeId, Tree};
 use smallvec::SmallVec;
 
@@ -100,9 +100,8 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
             self.rebuild_canonical();
         }
         let key = self.geometry.key(&p);
-        let path = self.path(key);
+        let (path, (s, e)) = self.path(key);
         let leaf = *path.last().expect("the path holds the root");
-        let (s, e) = self.ranges[leaf.index()];
         // After every point of the leaf whose key is at most `key`.
         let (mut a, mut b) = (s as usize, e as usize);
         while a < b {
@@ -115,7 +114,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         }
         self.points.insert(a, point);
         self.items.insert(a, item);
-        self.shift(&path, 1);
+        self.runs.shift::<D>(&path, 1);
         self.split_down(leaf);
         Ok(())
     }
@@ -142,8 +141,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
             return None;
         }
         let key = self.geometry.key(&p);
-        let leaf = *self.path(key).last().expect("the path holds the root");
-        let (s, e) = self.ranges[leaf.index()];
+        let (_, (s, e)) = self.path(key);
         // The first point of the leaf with this key, then scan the equal keys.
         let (mut a, mut b) = (s as usize, e as usize);
         while a < b {
@@ -169,14 +167,13 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
             // Rebuilding keeps the points' order, so `i` stays valid.
             self.rebuild_canonical();
         }
-        let path = self.path(key);
+        let (path, _) = self.path(key);
         self.points.remove(i);
         let item = self.items.remove(i);
-        self.shift(&path, -1);
+        self.runs.shift::<D>(&path, -1);
         // The shallowest node on the path now holding at most the bucket size becomes a leaf.
         if let Some(&top) = path.iter().find(|&&v| {
-            let (s, e) = self.ranges[v.index()];
-            !self.tree.is_leaf(v) && (e - s) as usize <= self.bucket_size
+            !self.tree.is_leaf(v) && self.runs.count::<D>(v) as usize <= self.bucket_size
         }) {
             self.tree.merge_subtree(top);
         }
@@ -189,38 +186,20 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         self.geometry.key(&self.points[i].map(Scalar::to_f64))
     }
 
-    /// The nodes from the root to the leaf holding Morton key `key`.
-    fn path(&self, key: u64) -> Path {
+    /// The nodes from the root to the leaf holding Morton key `key`, and the leaf's run.
+    fn path(&self, key: u64) -> (Path, (u32, u32)) {
         let mut path = Path::new();
         let mut v = NodeId::ROOT;
+        let (mut s, mut e) = (0, self.runs.total());
         path.push(v);
         while let Some(first) = self.tree.child(v, 0) {
             let c = super::digit::<D>(key, self.tree.level(v));
+            let ends = self.runs.block::<D>(first);
+            (s, e) = (s + if c == 0 { 0 } else { ends[c - 1] }, s + ends[c]);
             v = NodeId(first.0 + c as u32);
             path.push(v);
         }
-        path
-    }
-
-    /// After one point was inserted (`delta` 1) into or removed (-1) from the run of the leaf at
-    /// the end of `path`: the nodes on the path grow or shrink by one at their end, and every node
-    /// after the leaf in Morton order moves by `delta`.
-    fn shift(&mut self, path: &[NodeId], delta: i32) {
-        let add = |x: u32| x.wrapping_add_signed(delta);
-        let mut stack: SmallVec<[NodeId; 64]> = SmallVec::new();
-        for (k, &v) in path.iter().enumerate() {
-            let r = &mut self.ranges[v.index()];
-            r.1 = add(r.1);
-            if let Some(&next) = path.get(k + 1) {
-                let ci = self.tree.child_index(next);
-                stack.extend((ci + 1..Dim::<D>::CHILDREN).filter_map(|j| self.tree.child(v, j)));
-            }
-        }
-        while let Some(v) = stack.pop() {
-            let r = &mut self.ranges[v.index()];
-            *r = (add(r.0), add(r.1));
-            stack.extend(self.tree.children(v));
-        }
+        (path, (s, e))
     }
 
     /// Splits below `start` as a fresh build would, recomputing the points' keys.
@@ -235,7 +214,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// of the stored points gives. The points keep their order.
     fn rebuild_canonical(&mut self) {
         self.tree = Tree::new();
-        self.ranges = vec![(0, self.points.len() as u32)];
+        self.runs = super::Runs::new(self.points.len());
         self.balanced = None;
         self.split_down(NodeId::ROOT);
     }

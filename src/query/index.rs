@@ -14,7 +14,7 @@ use super::nearest_iter::NearestIter;
 use super::range::{for_each_in, scan_limit, QueryStats, RegionIter};
 use super::region::Region;
 use super::{check_max, check_point, QueryError};
-use crate::geom::{Aabb, Cell, Dim, Scalar};
+use crate::geom::{Aabb, Cell, Scalar};
 use crate::points::PointTree;
 use crate::tree::NodeId;
 use core::ops::Range;
@@ -152,13 +152,18 @@ pub trait SpatialIndex<const D: usize> {
     }
 }
 
-/// A node of a [`PointTree`] as the query engines see it: its id and its cell.
+/// A node of a [`PointTree`] as the query engines see it: its id, its cell and its run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PointNode<const D: usize> {
     /// The node.
     pub id: NodeId,
     /// Its cell (carried along so that boxes need no walk up the tree).
     pub cell: Cell<D>,
+    /// The first index of its run of points (carried along: a node records only where its run
+    /// ends relative to its parent's start).
+    pub start: u32,
+    /// One past the last index of its run.
+    pub end: u32,
 }
 
 impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointTree<S, T, D> {
@@ -184,14 +189,15 @@ impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointTree<S, T, D> {
         let node = PointNode {
             id: NodeId::ROOT,
             cell,
+            start: 0,
+            end: self.len() as u32,
         };
         Some((node, self.geometry().cell_box(&cell)))
     }
 
     #[inline]
     fn run(&self, node: PointNode<D>) -> Range<usize> {
-        let (s, e) = self.ranges()[node.id.index()];
-        s as usize..e as usize
+        node.start as usize..node.end as usize
     }
 
     #[inline]
@@ -220,11 +226,9 @@ impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointTree<S, T, D> {
         let level = node.cell.level() + 1;
         let c = node.cell.coords();
         let mid: [f64; D] = core::array::from_fn(|a| g.boundary(a, 2 * c[a] as u64 + 1, level));
-        let start = first.index();
-        let Some(ranges) = self.ranges().get(start..start + Dim::<D>::CHILDREN) else {
-            return false;
-        };
-        for (i, &(s, e)) in ranges.iter().enumerate() {
+        let mut s = node.start;
+        for (i, &end) in self.runs().block::<D>(first).iter().enumerate() {
+            let e = node.start + end;
             if s == e {
                 continue;
             }
@@ -248,9 +252,12 @@ impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointTree<S, T, D> {
                 PointNode {
                     id: NodeId(first.0 + i as u32),
                     cell: node.cell.child(i),
+                    start: s,
+                    end: e,
                 },
                 &b,
             );
+            s = e;
         }
         true
     }
