@@ -5,6 +5,7 @@
 //! Points are stored sorted by Morton key, so every node owns one contiguous run of them: a query
 //! streams through memory, and a node wholly inside a region yields its run untested.
 
+mod batch_update;
 mod build;
 mod deep_geometry;
 mod geometry;
