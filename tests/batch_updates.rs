@@ -2,19 +2,13 @@
 //! updates give (same points and items in the same order, same leaves), validates, and equals a
 //! fresh build of the same pairs; bad input leaves the tree unchanged and names the pair.
 
-use orthtree::{Aabb, Cell, Connectivity, Error, PointTree, PointTreeBuilder};
+mod common;
+
+use orthtree::{Aabb, Cell, Connectivity, Error, PointTree};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 
-fn builder<const D: usize>(bucket: usize, max_depth: Option<u8>) -> PointTreeBuilder<f64, D> {
-    let b = PointTree::builder()
-        .root_box(Aabb::new([0.0; D], [1.0; D]).unwrap())
-        .bucket_size(bucket);
-    match max_depth {
-        Some(m) => b.max_depth(m),
-        None => b,
-    }
-}
+use common::points::unit_builder as builder;
 
 /// Grid coordinates 0..=8 on [0, 1]: many on split lines, many repeated.
 fn pairs<const D: usize>(raw: &[([u8; D], u8)]) -> Vec<([f64; D], u8)> {

@@ -4,7 +4,9 @@
 //! every query kind (box, ball, half-space, k-nearest) agrees with a brute-force scan of the
 //! stored pairs.
 
-use orthtree::{Aabb, Ball, Cell, Error, HalfSpace, PointTree, PointTreeBuilder};
+mod common;
+
+use orthtree::{Aabb, Ball, Cell, Error, HalfSpace, PointTree};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 
@@ -93,15 +95,7 @@ fn check_queries<const D: usize>(
     Ok(())
 }
 
-fn builder<const D: usize>(bucket: usize, max_depth: Option<u8>) -> PointTreeBuilder<f64, D> {
-    let b = PointTree::builder()
-        .root_box(Aabb::new([0.0; D], [1.0; D]).unwrap())
-        .bucket_size(bucket);
-    match max_depth {
-        Some(m) => b.max_depth(m),
-        None => b,
-    }
-}
+use common::points::unit_builder as builder;
 
 fn run<const D: usize>(
     initial: Vec<([u8; D], u8)>,

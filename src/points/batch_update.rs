@@ -66,32 +66,33 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         let mut points = Vec::with_capacity(total);
         let mut items = Vec::with_capacity(total);
         let mut keys = Vec::with_capacity(total);
-        let mut pending = keyed.iter().peekable();
-        let old = core::mem::take(&mut self.points)
+        let geometry = self.geometry;
+        let mut old = core::mem::take(&mut self.points)
             .into_iter()
-            .zip(core::mem::take(&mut self.items));
-        for (p, item) in old {
-            let key = self.geometry.key(&p.map(Scalar::to_f64));
-            // New pairs with a smaller key go first; equal keys keep the stored pairs first.
-            while let Some(&k) = pending.next_if(|&&k| ((k >> 32) as u64) < key) {
-                let (q, t) = new[k as u32 as usize]
-                    .take()
-                    .expect("each pair is taken once");
-                points.push(q);
-                items.push(t);
-                keys.push((k >> 32) as u64);
-            }
+            .zip(core::mem::take(&mut self.items))
+            .map(|(p, t)| (geometry.key(&p.map(Scalar::to_f64)), p, t))
+            .peekable();
+        let mut pending = keyed
+            .iter()
+            .map(|&k| ((k >> 32) as u64, k as u32))
+            .peekable();
+        loop {
+            // A new pair goes first only with a smaller key: equal keys keep the stored first.
+            let new_first = match (old.peek(), pending.peek()) {
+                (None, None) => break,
+                (Some(&(stored, ..)), Some(&(key, _))) => key < stored,
+                (stored, _) => stored.is_none(),
+            };
+            let (key, p, t) = match pending.next_if(|_| new_first) {
+                Some((key, i)) => {
+                    let (p, t) = new[i as usize].take().expect("each pair is taken once");
+                    (key, p, t)
+                }
+                None => old.next().expect("a stored pair is left"),
+            };
             points.push(p);
-            items.push(item);
-            keys.push(key);
-        }
-        for &k in pending {
-            let (q, t) = new[k as u32 as usize]
-                .take()
-                .expect("each pair is taken once");
-            points.push(q);
             items.push(t);
-            keys.push((k >> 32) as u64);
+            keys.push(key);
         }
         self.points = points;
         self.items = items;

@@ -204,31 +204,38 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
     {
         let mut bounds = Aabb::empty();
         for index in range {
-            let p = point(index);
-            if let Err(axis) = crate::geom::validate_point(p) {
-                return Err(Error::NonFiniteCoordinate {
-                    index,
-                    axis,
-                    value: p[axis].to_f64(),
-                });
-            }
-            let p = p.map(Scalar::to_f64);
-            if let Some(root) = root {
-                if let Some(axis) = (0..D).find(|&a| !(root.min[a] <= p[a] && p[a] <= root.max[a]))
-                {
-                    let interval = (root.min[axis], root.max[axis]);
-                    return Err(Error::OutsideRootBox {
-                        index,
-                        axis,
-                        value: p[axis],
-                        interval,
-                    });
-                }
-            }
-            bounds.add_point(&p);
+            bounds.add_point(&check_point(point(index), root, index)?);
         }
         Ok(bounds)
     }
+}
+
+/// `p` as `f64`, or the error naming it (as point `index`) when a coordinate is NaN or infinite,
+/// or outside `root` when one is given.
+pub(super) fn check_point<S: Scalar, const D: usize>(
+    p: &[S; D],
+    root: Option<&Aabb<f64, D>>,
+    index: usize,
+) -> Result<[f64; D], Error> {
+    if let Err(axis) = crate::geom::validate_point(p) {
+        return Err(Error::NonFiniteCoordinate {
+            index,
+            axis,
+            value: p[axis].to_f64(),
+        });
+    }
+    let p = p.map(Scalar::to_f64);
+    if let Some(root) = root {
+        if let Some(axis) = (0..D).find(|&a| !(root.min[a] <= p[a] && p[a] <= root.max[a])) {
+            return Err(Error::OutsideRootBox {
+                index,
+                axis,
+                value: p[axis],
+                interval: (root.min[axis], root.max[axis]),
+            });
+        }
+    }
+    Ok(p)
 }
 
 /// The pair `key << 32 | index` of point `p` with input index `index`: sorting the pairs sorts

@@ -170,23 +170,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// Refuses a point that is not finite or lies outside the domain; `index` names it in the
     /// error.
     pub(super) fn check_insertable(&self, point: &[S; D], index: usize) -> Result<(), Error> {
-        if let Err(axis) = crate::geom::validate_point(point) {
-            return Err(Error::NonFiniteCoordinate {
-                index,
-                axis,
-                value: point[axis].to_f64(),
-            });
-        }
-        let p = point.map(Scalar::to_f64);
-        match (0..D).find(|&a| !(self.domain.min[a] <= p[a] && p[a] <= self.domain.max[a])) {
-            Some(axis) => Err(Error::OutsideRootBox {
-                index,
-                axis,
-                value: p[axis],
-                interval: (self.domain.min[axis], self.domain.max[axis]),
-            }),
-            None => Ok(()),
-        }
+        super::build::check_point(point, Some(&self.domain), index).map(|_| ())
     }
 
     /// The Morton key of stored point `i`.

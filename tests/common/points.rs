@@ -3,7 +3,7 @@
 //! `PointTree` must have.
 
 use super::{all_options, leaf_cells};
-use orthtree::{BalanceOptions, Cell, PointTree, RootGeometry, Scalar};
+use orthtree::{Aabb, BalanceOptions, Cell, PointTree, PointTreeBuilder, RootGeometry, Scalar};
 use proptest::test_runner::{Config, RngSeed};
 
 /// A proptest configuration with a fixed seed, `cases` cases and no regression files.
@@ -188,5 +188,19 @@ pub fn check_all<S: Scalar, const D: usize>(
         assert_eq!(b.tree(), &topo);
         assert_eq!(leaf_cells(b.tree()), leaf_cells(&topo));
         check_points(&b, entries, Some(opts));
+    }
+}
+
+/// A builder over the unit root box with `bucket` and, when given, `max_depth`.
+pub fn unit_builder<const D: usize>(
+    bucket: usize,
+    max_depth: Option<u8>,
+) -> PointTreeBuilder<f64, D> {
+    let b = PointTree::builder()
+        .root_box(Aabb::new([0.0; D], [1.0; D]).unwrap())
+        .bucket_size(bucket);
+    match max_depth {
+        Some(m) => b.max_depth(m),
+        None => b,
     }
 }
