@@ -96,7 +96,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         }
         self.points = points;
         self.items = items;
-        self.recut(|_, i| keys[i]);
+        self.recut(|_, i, _| keys[i]);
         Ok(())
     }
 
@@ -123,12 +123,13 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         self.items
             .retain(|_| *flags.next().expect("one flag per item"));
         let geometry = self.geometry;
-        self.recut(|points, i| geometry.key(&points[i].map(Scalar::to_f64)));
+        self.recut(|points, i, _| geometry.key(&points[i].map(Scalar::to_f64)));
     }
 
     /// Drops every node (and any balance refinement) and cuts the stored run, which is in Morton
-    /// order, from the root down; `key(points, i)` is point `i`'s Morton key.
-    pub(super) fn recut(&mut self, key: impl Fn(&[[S; D]], usize) -> u64) {
+    /// order, from the root down; `key(points, i, level)` is point `i`'s Morton key (as for
+    /// `subdivide`).
+    pub(super) fn recut(&mut self, key: impl Fn(&[[S; D]], usize, u8) -> u64) {
         self.tree = Tree::new();
         self.runs = Runs::new(self.points.len());
         self.balanced = None;

@@ -197,7 +197,9 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
             max_depth,
             balanced: None,
         };
-        tree.subdivide(NodeId::ROOT, |p, i| geometry.key(&p[i].map(Scalar::to_f64)));
+        tree.subdivide(NodeId::ROOT, |p, i, _| {
+            geometry.key(&p[i].map(Scalar::to_f64))
+        });
         tree
     }
 
@@ -257,8 +259,9 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     }
 
     /// Splits below `start` while a node holds more than the bucket size and is above the
-    /// maximum depth; `key(points, i)` is the Morton key of point `i`.
-    fn subdivide(&mut self, start: NodeId, key: impl Fn(&[[S; D]], usize) -> u64) {
+    /// maximum depth; `key(points, i, level)` is the Morton key of point `i`, or any value with
+    /// the same digits down to level `level + 1` (the digit that splits a node at `level`).
+    fn subdivide(&mut self, start: NodeId, key: impl Fn(&[[S; D]], usize, u8) -> u64) {
         let (tree, runs, points) = (&mut self.tree, &mut self.runs, &self.points);
         let mut stack = vec![(start, runs.run(tree, start))];
         while let Some((v, (s, e))) = stack.pop() {
@@ -266,7 +269,8 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
                 continue;
             }
             tree.split(v);
-            partition_children(tree, runs, v, (s, e), |i| key(points, i));
+            let level = tree.level(v);
+            partition_children(tree, runs, v, (s, e), |i| key(points, i, level));
             let block = runs.block::<D>(tree.child(v, 0).expect("just split"));
             let mut lo = s;
             for (child, &end) in tree.children(v).zip(block) {

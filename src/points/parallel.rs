@@ -7,7 +7,7 @@
 //! points and items into key order. Cutting the sorted run into nodes stays serial: it is a small
 //! part of the time. The result is the same tree as [`PointTreeBuilder::build`] gives.
 
-use super::build::{key_pair, settle};
+use super::build::{index_bits, pack, settle, unpack_index};
 use super::{PointTree, PointTreeBuilder};
 use crate::error::Error;
 use crate::geom::{Aabb, Scalar};
@@ -45,16 +45,17 @@ impl<S: Scalar + Send + Sync, const D: usize> PointTreeBuilder<S, D> {
             bounds.add_box(&scan?);
         }
         let (geometry, domain) = settle(root, bounds, n);
-        let mut keyed: Vec<u128> = entries
+        let bits = index_bits(n);
+        let mut packed: Vec<u64> = entries
             .par_iter()
             .enumerate()
-            .map(|(i, (p, _))| key_pair(&geometry, p, i))
+            .map(|(i, (p, _))| pack(geometry.key(&p.map(Scalar::to_f64)), i, bits))
             .collect();
-        super::radix::par_sort_keyed(&mut keyed);
-        let (points, items): (Vec<[S; D]>, Vec<T>) = keyed
+        super::radix::par_sort_keyed(&mut packed);
+        let (points, items): (Vec<[S; D]>, Vec<T>) = packed
             .par_iter()
-            .map(|&k| entries[k as u32 as usize].clone())
+            .map(|&k| entries[unpack_index(k, bits)].clone())
             .unzip();
-        Ok(self.assemble(geometry, domain, &keyed, points, items))
+        Ok(self.assemble(geometry, domain, packed, bits, points, items))
     }
 }

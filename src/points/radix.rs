@@ -1,5 +1,8 @@
-//! The sort behind the bulk build: (Morton key, input index) pairs packed as `key << 32 | index`
-//! in a `u128`, sorted by key, equal keys in input order.
+//! The sort behind the bulk build: (Morton key, input index) pairs packed into one integer
+//! ([`Packed`]) and sorted by key, equal keys in input order. The build packs a point's key with
+//! its low bits replaced by its index into a `u64` (8 bytes moved per point and pass, see
+//! `build.rs`); the batch insert packs the whole key and the index as `key << 32 | index` into a
+//! `u128`.
 //!
 //! Most-significant-digit radix sort (the byte-wise MSD sort of McIlroy, Bostic and McIlroy,
 //! "Engineering radix sort", Computing Systems 6, 1993), out of place with one buffer: a run is
@@ -16,19 +19,40 @@
 /// Runs this short are sorted by comparison.
 const SMALL: usize = 48;
 
-/// Sorts `pairs` (each `key << 32 | index`, the index below 2^32) by key, then index.
-pub(super) fn sort_keyed(pairs: &mut [u128]) {
+/// A (key, index) pair packed into one integer whose order is the pairs' order.
+pub(super) trait Packed: Copy + Ord + Default + Send + Sync {
+    /// Byte `shift / 8` (0 the lowest, 7 the highest) of the 64-bit sort key: for a `u128`
+    /// `key << 32 | index` the key; for a `u64`, the whole value.
+    fn byte(self, shift: u32) -> usize;
+}
+
+impl Packed for u128 {
+    #[inline]
+    fn byte(self, shift: u32) -> usize {
+        ((self >> (32 + shift)) & 0xFF) as usize
+    }
+}
+
+impl Packed for u64 {
+    #[inline]
+    fn byte(self, shift: u32) -> usize {
+        ((self >> shift) & 0xFF) as usize
+    }
+}
+
+/// Sorts `pairs` by key, then index (a `u64` by value).
+pub(super) fn sort_keyed<P: Packed>(pairs: &mut [P]) {
     if pairs.len() <= SMALL {
         pairs.sort_unstable();
         return;
     }
-    let mut buffer = vec![0u128; pairs.len()];
+    let mut buffer = vec![P::default(); pairs.len()];
     sort_run(pairs, &mut buffer, 56, true);
 }
 
 /// [`sort_keyed`] with the runs after the first byte that differs sorted in parallel.
 #[cfg(feature = "rayon")]
-pub(super) fn par_sort_keyed(pairs: &mut [u128]) {
+pub(super) fn par_sort_keyed<P: Packed>(pairs: &mut [P]) {
     use rayon::prelude::*;
     if pairs.len() <= SMALL {
         pairs.sort_unstable();
@@ -45,7 +69,7 @@ pub(super) fn par_sort_keyed(pairs: &mut [u128]) {
             None => return, // every key equal: already in input order
         }
     };
-    let mut buffer = vec![0u128; pairs.len()];
+    let mut buffer = vec![P::default(); pairs.len()];
     scatter(pairs, &mut buffer, shift, &counts);
     let Some(next) = shift.checked_sub(8) else {
         pairs.copy_from_slice(&buffer);
@@ -67,21 +91,16 @@ pub(super) fn par_sort_keyed(pairs: &mut [u128]) {
 }
 
 /// The byte at `shift` (within the key) of every pair, counted.
-fn count_bytes(pairs: &[u128], shift: u32) -> [usize; 256] {
+fn count_bytes<P: Packed>(pairs: &[P], shift: u32) -> [usize; 256] {
     let mut counts = [0usize; 256];
     for &p in pairs {
-        counts[byte(p, shift)] += 1;
+        counts[p.byte(shift)] += 1;
     }
     counts
 }
 
-#[inline]
-fn byte(pair: u128, shift: u32) -> usize {
-    ((pair >> (32 + shift)) & 0xFF) as usize
-}
-
 /// Moves `src` into `dst` ordered by the byte at `shift`, stably; `counts` from [`count_bytes`].
-fn scatter(src: &[u128], dst: &mut [u128], shift: u32, counts: &[usize; 256]) {
+fn scatter<P: Packed>(src: &[P], dst: &mut [P], shift: u32, counts: &[usize; 256]) {
     let mut offsets = [0usize; 256];
     let mut at = 0;
     for (offset, &count) in offsets.iter_mut().zip(counts) {
@@ -89,7 +108,7 @@ fn scatter(src: &[u128], dst: &mut [u128], shift: u32, counts: &[usize; 256]) {
         at += count;
     }
     for &p in src {
-        let b = byte(p, shift);
+        let b = p.byte(shift);
         dst[offsets[b]] = p;
         offsets[b] += 1;
     }
@@ -97,7 +116,7 @@ fn scatter(src: &[u128], dst: &mut [u128], shift: u32, counts: &[usize; 256]) {
 
 /// Sorts one run whose pairs agree on every key byte above `shift`: the run is in `pairs` when
 /// `in_pairs`, else in `buffer` (the same positions), and ends sorted in `pairs`.
-fn sort_run(pairs: &mut [u128], buffer: &mut [u128], shift: u32, in_pairs: bool) {
+fn sort_run<P: Packed>(pairs: &mut [P], buffer: &mut [P], shift: u32, in_pairs: bool) {
     // (start, end, bit shift of the next byte within the key, data in `pairs` rather than `buffer`)
     let mut stack = vec![(0usize, pairs.len(), shift, in_pairs)];
     while let Some((start, end, shift, in_pairs)) = stack.pop() {
@@ -166,6 +185,19 @@ mod tests {
             assert_eq!(parallel, expected);
         }
         let _ = &mut parallel;
+        // The same keys as `u64`s (the key's low 32 bits given to the index).
+        let mut packed: Vec<u64> = expected.iter().map(|&p| (p >> 32) as u64).collect();
+        let mut by_value = packed.clone();
+        by_value.sort_unstable();
+        sort_keyed(&mut packed);
+        assert_eq!(packed, by_value);
+        #[cfg(feature = "rayon")]
+        {
+            let mut parallel = by_value.clone();
+            parallel.reverse();
+            par_sort_keyed(&mut parallel);
+            assert_eq!(parallel, by_value);
+        }
     }
 
     #[test]

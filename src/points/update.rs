@@ -198,7 +198,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// Splits below `start` as a fresh build would, recomputing the points' keys.
     fn split_down(&mut self, start: NodeId) {
         let geometry = self.geometry;
-        self.subdivide(start, |points, i| {
+        self.subdivide(start, |points, i, _| {
             geometry.key(&points[i].map(Scalar::to_f64))
         });
     }
@@ -207,7 +207,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// of the stored points gives. The points keep their order.
     fn rebuild_canonical(&mut self) {
         let geometry = self.geometry;
-        self.recut(|points, i| geometry.key(&points[i].map(Scalar::to_f64)));
+        self.recut(|points, i, _| geometry.key(&points[i].map(Scalar::to_f64)));
     }
 }
 
