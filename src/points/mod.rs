@@ -12,6 +12,7 @@ mod geometry;
 mod leaves;
 #[cfg(feature = "rayon")]
 mod parallel;
+mod prefetch;
 mod radix;
 mod runs;
 mod update;

@@ -8,6 +8,7 @@
 //! part of the time. The result is the same tree as [`PointTreeBuilder::build`] gives.
 
 use super::build::{index_bits, pack, settle, unpack_index};
+use super::prefetch::{prefetch, LOOKAHEAD};
 use super::{PointTree, PointTreeBuilder};
 use crate::error::Error;
 use crate::geom::{Aabb, Scalar};
@@ -54,7 +55,13 @@ impl<S: Scalar + Send + Sync, const D: usize> PointTreeBuilder<S, D> {
         super::radix::par_sort_keyed(&mut packed);
         let (points, items): (Vec<[S; D]>, Vec<T>) = packed
             .par_iter()
-            .map(|&k| entries[unpack_index(k, bits)].clone())
+            .enumerate()
+            .map(|(j, &k)| {
+                if let Some(&later) = packed.get(j + LOOKAHEAD) {
+                    prefetch(&entries[unpack_index(later, bits)]);
+                }
+                entries[unpack_index(k, bits)].clone()
+            })
             .unzip();
         Ok(self.assemble(geometry, domain, packed, bits, points, items))
     }

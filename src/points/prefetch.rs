@@ -1,0 +1,46 @@
+//! A hint to the processor to start loading a value into cache: the bulk build's gather reads
+//! the input in Morton order, which for scattered points is a random walk over the input, and
+//! each read misses the cache. Asking for the record a few steps ahead overlaps those misses.
+//!
+//! Measured (10^6 uniform points, `(point, u64)` input, the build alone, four alternating runs
+//! of 21 builds each, medians): 2D 45.5-46.1 ms without, 37.1-39.4 ms with a lookahead of 16
+//! records; 3D 46.5-47.3 against 38.3-39.3. Lookaheads of 8, 32 and 64 were no better.
+//! A plain load of the record ahead (safe code) did not help: it waits like the one it hides.
+
+/// How many records ahead of the one being read the gather asks for.
+pub(super) const LOOKAHEAD: usize = 16;
+
+/// Starts loading the cache line holding the start of `value`; does nothing else (and
+/// nothing at all off x86-64).
+#[inline(always)]
+pub(super) fn prefetch<T>(value: &T) {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: `_mm_prefetch` only hints the cache: it neither reads into the program nor
+    // faults, whatever the address; here the address is that of a live reference anyway. SSE
+    // is part of the x86-64 baseline, so the instruction exists on every x86-64 processor.
+    #[allow(unsafe_code)]
+    unsafe {
+        use core::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+        _mm_prefetch::<_MM_HINT_T0>((value as *const T).cast::<i8>());
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = value;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn prefetch_leaves_values_alone() {
+        let v: Vec<([f64; 2], u64)> = (0..100).map(|i| ([i as f64, 0.5], i)).collect();
+        for r in &v {
+            prefetch(r);
+        }
+        prefetch(&());
+        assert!(v
+            .iter()
+            .enumerate()
+            .all(|(i, r)| r.1 == i as u64 && r.0[0] == i as f64));
+    }
+}
