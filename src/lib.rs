@@ -30,6 +30,7 @@ pub mod image;
 pub mod io;
 pub mod mesh;
 pub mod points;
+mod prefetch;
 pub mod query;
 pub mod tree;
 

@@ -19,10 +19,10 @@
 //! items plus 9 bytes per node (first child, level, run end) and 4 per child block (the arrays
 //! are shrunk to fit).
 
-use super::prefetch::{prefetch, LOOKAHEAD};
 use super::{PointTree, RootGeometry};
 use crate::error::Error;
 use crate::geom::{Aabb, Cell, Dim, Scalar};
+use crate::prefetch::{prefetch, LOOKAHEAD};
 use crate::tree::{NodeId, Tree};
 
 /// The bucket size used unless one is set: a leaf holds up to 64 points before it splits.

@@ -12,7 +12,6 @@ mod geometry;
 mod leaves;
 #[cfg(feature = "rayon")]
 mod parallel;
-mod prefetch;
 mod radix;
 mod runs;
 mod update;

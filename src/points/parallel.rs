@@ -8,10 +8,10 @@
 //! part of the time. The result is the same tree as [`PointTreeBuilder::build`] gives.
 
 use super::build::{index_bits, pack, settle, unpack_index};
-use super::prefetch::{prefetch, LOOKAHEAD};
 use super::{PointTree, PointTreeBuilder};
 use crate::error::Error;
 use crate::geom::{Aabb, Scalar};
+use crate::prefetch::{prefetch, LOOKAHEAD};
 use rayon::prelude::*;
 
 /// Points per parallel task when checking the input.

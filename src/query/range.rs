@@ -38,6 +38,7 @@ use super::region::{Ball, HalfSpace, Region, Relation};
 use super::QueryError;
 use crate::geom::{Aabb, Scalar};
 use crate::points::PointTree;
+use crate::prefetch::prefetch;
 use core::ops::Range;
 use smallvec::SmallVec;
 
@@ -82,8 +83,13 @@ pub struct RegionIter<'a, I: SpatialIndex<D>, R, const D: usize> {
     index: &'a I,
     region: R,
     stack: Stack<I::Node, D>,
+    /// The rest of an inside node's run: reported untested.
     run: Range<usize>,
-    test: bool,
+    /// The rest of a crossing node's run: tested [`CHUNK`] points at a time.
+    pending: Range<usize>,
+    /// The points of the chunk tested last that lie in the region, bit `j` for `base + j`.
+    mask: u64,
+    base: usize,
 }
 
 impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> RegionIter<'a, I, R, D> {
@@ -92,14 +98,16 @@ impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> RegionIter<'a, I, R, 
         region.validate()?;
         let mut stack = Stack::new();
         if let Some((root, b)) = index.root() {
-            push_child(&mut stack, &region, root, &b);
+            push_child(&mut stack, index, &region, root, &b);
         }
         Ok(RegionIter {
             index,
             region,
             stack,
             run: 0..0,
-            test: false,
+            pending: 0..0,
+            mask: 0,
+            base: 0,
         })
     }
 }
@@ -110,51 +118,93 @@ impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> Iterator for RegionIt
     fn next(&mut self) -> Option<Self::Item> {
         let (points, items) = (self.index.points(), self.index.items());
         loop {
-            if self.test {
-                for i in self.run.by_ref() {
-                    let p = &points[i];
-                    if self.region.contains(&p.map(Scalar::to_f64)) {
-                        return Some((p, &items[i]));
-                    }
-                }
-            } else if let Some(i) = self.run.next() {
+            if self.mask != 0 {
+                let i = self.base + self.mask.trailing_zeros() as usize;
+                self.mask &= self.mask - 1;
                 return Some((&points[i], &items[i]));
+            }
+            if let Some(i) = self.run.next() {
+                return Some((&points[i], &items[i]));
+            }
+            if !self.pending.is_empty() {
+                let chunk = self.pending.start..self.pending.end.min(self.pending.start + CHUNK);
+                self.base = chunk.start;
+                self.pending.start = chunk.end;
+                self.mask = contains_mask(&self.region, &points[chunk]);
+                continue;
             }
             let (node, b, inside) = self.stack.pop()?;
             let run = self.index.run(node);
             if inside {
                 self.run = run;
-                self.test = false;
                 continue;
             }
             if run.len() <= scan_limit(D) {
-                self.run = run;
-                self.test = true;
+                self.pending = run;
                 continue;
             }
-            let (stack, region) = (&mut self.stack, &self.region);
+            let (stack, index, region) = (&mut self.stack, self.index, &self.region);
             let internal = self.index.for_each_child_in(node, &b, |child, b| {
-                push_child(stack, region, child, b);
+                push_child(stack, index, region, child, b);
             });
             if !internal {
-                self.run = run;
-                self.test = true;
+                self.pending = run;
             }
         }
     }
 }
 
+/// The most points [`contains_mask`] tests at once: the bits of its mask.
+const CHUNK: usize = 64;
+
+/// Bit `j` set when `points[j]` lies in `region` (at most [`CHUNK`] points). The loop has no
+/// branch that depends on the answer (the built-in regions' tests have none either), so it runs
+/// at the speed of the arithmetic, where a test-and-report loop mispredicts at every edge of
+/// the region (box queries 1.05x faster in 3D; balls within noise).
 #[inline(always)]
-fn push_child<N, R: Region<D>, const D: usize>(
-    stack: &mut Stack<N, D>,
+fn contains_mask<S: Scalar, R: Region<D>, const D: usize>(region: &R, points: &[[S; D]]) -> u64 {
+    debug_assert!(points.len() <= CHUNK);
+    let mut mask = 0;
+    for (j, p) in points.iter().enumerate() {
+        mask |= u64::from(region.contains(&p.map(Scalar::to_f64))) << j;
+    }
+    mask
+}
+
+#[inline(always)]
+fn push_child<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
+    stack: &mut Stack<I::Node, D>,
+    index: &I,
     region: &R,
-    child: N,
+    child: I::Node,
     b: &Aabb<f64, D>,
 ) {
-    match region.classify(b) {
-        Relation::Outside => {}
-        Relation::Inside => stack.push((child, *b, true)),
-        Relation::Crossing => stack.push((child, *b, false)),
+    let inside = match region.classify(b) {
+        Relation::Outside => return,
+        Relation::Inside => true,
+        Relation::Crossing => false,
+    };
+    let run = index.run(child);
+    if inside || run.len() <= scan_limit(D) {
+        prefetch_run(index.points(), run.clone());
+        prefetch_run(index.items(), run);
+    }
+    stack.push((child, *b, inside));
+}
+
+/// Asks the cache for the first lines (up to 16) of a run of points or items about to be read.
+///
+/// Each node pushed for reading has its points and items prefetched, so the cache misses of
+/// the (up to 2^D) runs pushed together overlap instead of coming one after another as the
+/// stack pops them: the queries are bound by those misses (a leaf run sits anywhere in
+/// memory), not by the tests. Measured with 10^6 uniform points in 3D, 10^5 queries with ~100
+/// results, best of 15, three alternating runs: balls 586-632 ms without, 459-491 with points
+/// prefetched, 338-361 with points and items; boxes 504-549, 390-417, 250-270.
+#[inline(always)]
+fn prefetch_run<P>(points: &[P], run: Range<usize>) {
+    let step = (64 / core::mem::size_of::<P>().max(1)).max(1);
+    for i in run.step_by(step).take(16) {
+        prefetch(&points[i]);
     }
 }
 
@@ -175,7 +225,7 @@ pub(crate) fn for_each_in<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
     };
     let mut stack = Stack::new();
     stats.nodes_visited = 1;
-    push_child(&mut stack, region, root, &b);
+    push_child(&mut stack, index, region, root, &b);
     let points = index.points();
     while let Some((node, b, inside)) = stack.pop() {
         let run = index.run(node);
@@ -188,16 +238,17 @@ pub(crate) fn for_each_in<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
         let internal = run.len() > scan
             && index.for_each_child_in(node, &b, |child, b| {
                 visited += 1;
-                push_child(&mut stack, region, child, b);
+                push_child(&mut stack, index, region, child, b);
             });
         stats.nodes_visited += visited;
         if !internal {
-            let start = run.start;
             stats.points_tested += run.len();
-            for (j, p) in points[run].iter().enumerate() {
-                if region.contains(&p.map(Scalar::to_f64)) {
-                    stats.count += 1;
-                    report(start + j);
+            for (c, chunk) in points[run.clone()].chunks(CHUNK).enumerate() {
+                let mut mask = contains_mask(region, chunk);
+                stats.count += mask.count_ones() as usize;
+                while mask != 0 {
+                    report(run.start + c * CHUNK + mask.trailing_zeros() as usize);
+                    mask &= mask - 1;
                 }
             }
         }

@@ -98,7 +98,12 @@ impl<const D: usize> Region<D> for Aabb<f64, D> {
     }
     #[inline]
     fn contains(&self, p: &[f64; D]) -> bool {
-        (0..D).all(|a| self.min[a] <= p[a] && p[a] <= self.max[a])
+        // `&`, not `&&`: no branch per axis (see `range::contains_mask`).
+        let mut inside = true;
+        for a in 0..D {
+            inside &= (self.min[a] <= p[a]) & (p[a] <= self.max[a]);
+        }
+        inside
     }
     fn validate(&self) -> Result<(), QueryError> {
         match (0..D).find(|&a| self.min[a].is_nan() || self.max[a].is_nan()) {

@@ -8,12 +8,12 @@
 //! A plain load of the record ahead (safe code) did not help: it waits like the one it hides.
 
 /// How many records ahead of the one being read the gather asks for.
-pub(super) const LOOKAHEAD: usize = 16;
+pub(crate) const LOOKAHEAD: usize = 16;
 
 /// Starts loading the cache line holding the start of `value`; does nothing else (and
 /// nothing at all off x86-64).
 #[inline(always)]
-pub(super) fn prefetch<T>(value: &T) {
+pub(crate) fn prefetch<T>(value: &T) {
     #[cfg(target_arch = "x86_64")]
     // SAFETY: `_mm_prefetch` only hints the cache: it neither reads into the program nor
     // faults, whatever the address; here the address is that of a live reference anyway. SSE
