@@ -16,6 +16,7 @@
 
 use super::index::SpatialIndex;
 use super::metric::{Metric, SquaredEuclidean};
+use super::range::prefetch_run;
 use super::QueryError;
 use crate::geom::{Aabb, Scalar};
 use crate::points::PointTree;
@@ -163,6 +164,11 @@ pub(crate) fn k_nearest<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
             && index.for_each_child_in(node, &b, |child, b| {
                 let d = metric.box_distance(q, b);
                 if d <= bound {
+                    let run = index.run(child);
+                    if run.len() <= SCAN {
+                        // It will be scanned if the bound still lets it: start the load now.
+                        prefetch_run(points, run);
+                    }
                     // Insertion sort, farthest first: the nearest child is popped next.
                     let mut at = stack.len();
                     stack.push((d, child, *b));

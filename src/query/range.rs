@@ -201,7 +201,7 @@ fn push_child<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
 /// results, best of 15, three alternating runs: balls 586-632 ms without, 459-491 with points
 /// prefetched, 338-361 with points and items; boxes 504-549, 390-417, 250-270.
 #[inline(always)]
-fn prefetch_run<P>(points: &[P], run: Range<usize>) {
+pub(super) fn prefetch_run<P>(points: &[P], run: Range<usize>) {
     let step = (64 / core::mem::size_of::<P>().max(1)).max(1);
     for i in run.step_by(step).take(16) {
         prefetch(&points[i]);
