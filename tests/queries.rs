@@ -224,6 +224,8 @@ proptest! {
         // Query boxes and balls at point coordinates put points on their boundary.
         let p0 = points[0];
         run_all(&points, 4, &[(lo, hi), (p0, hi)], &[(c, r), (p0, 0.0)], &[(n, b)], &[q, p0], k);
+        // Leaves of hundreds of points: their tests run in several 64-point chunks.
+        run_all(&points, 300, &[(lo, hi)], &[(c, r)], &[(n, b)], &[q], k);
     }
 
     #[test]
