@@ -5,8 +5,9 @@
 //! 2. Quantise each point to its Morton key at the finest level ([`RootGeometry::key`]), which
 //!    agrees exactly with the split convention; replace the key's low ceil(log2 n) bits by the
 //!    point's input index ([`pack`]) and radix-sort these `u64`s; gather points and items in
-//!    that order, asking the cache for the record 16 ahead (`prefetch.rs`: 1.2x faster); put the rare runs whose keys agree above the index bits but differ below them
-//!    in full key order ([`order_by_full_keys`]). The result is the (key, input index) order.
+//!    that order, asking the cache for the record 16 ahead (`prefetch.rs`: 1.2x faster); put
+//!    the rare runs whose keys agree above the index bits but differ below them in full key
+//!    order ([`order_by_full_keys`]). The result is the (key, input index) order.
 //!    Moving 8 bytes per point instead of a 16-byte (key, index) pair made the build 1.2x (2D)
 //!    to 1.6x (3D) faster on 10^6 uniform points.
 //! 3. Cut the sorted run into nodes top-down with an explicit stack: a node holding more than the
