@@ -102,7 +102,7 @@ impl<S: Scalar + Sync, T: Sync, const D: usize> PointTree<S, T, D> {
     ) -> Result<Vec<Vec<usize>>, BatchError> {
         run_batch(regions, |r| {
             let mut found = Vec::new();
-            for_each_in(self, r, scan_limit(D), |i| found.push(i))?;
+            for_each_in(self, r, scan_limit(D), false, |i| found.push(i))?;
             found.sort_unstable();
             Ok(found)
         })

@@ -87,7 +87,7 @@ pub trait SpatialIndex<const D: usize> {
     where
         Self: Sized,
     {
-        for_each_in(self, &region, scan_limit(D), |_| {}).map(|s| s.count)
+        for_each_in(self, &region, scan_limit(D), false, |_| {}).map(|s| s.count)
     }
 
     /// Calls `visit(point, item)` for every point in `region` ([`PointTree::query_with`]'s
@@ -101,7 +101,7 @@ pub trait SpatialIndex<const D: usize> {
         Self: Sized,
     {
         let (points, items) = (self.points(), self.items());
-        for_each_in(self, &region, scan_limit(D), |i| {
+        for_each_in(self, &region, scan_limit(D), true, |i| {
             visit(&points[i], &items[i])
         })
         .map(|_| ())
@@ -113,7 +113,7 @@ pub trait SpatialIndex<const D: usize> {
     where
         Self: Sized,
     {
-        for_each_in(self, &region, 0, |_| {})
+        for_each_in(self, &region, 0, false, |_| {})
     }
 
     /// The `k` nearest points to `p` within distance `max` under `metric`, sorted by distance

@@ -98,7 +98,7 @@ impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> RegionIter<'a, I, R, 
         region.validate()?;
         let mut stack = Stack::new();
         if let Some((root, b)) = index.root() {
-            push_child(&mut stack, index, &region, root, &b);
+            push_child(&mut stack, index, &region, root, &b, true);
         }
         Ok(RegionIter {
             index,
@@ -145,7 +145,7 @@ impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> Iterator for RegionIt
             }
             let (stack, index, region) = (&mut self.stack, self.index, &self.region);
             let internal = self.index.for_each_child_in(node, &b, |child, b| {
-                push_child(stack, index, region, child, b);
+                push_child(stack, index, region, child, b, true);
             });
             if !internal {
                 self.pending = run;
@@ -171,6 +171,10 @@ fn contains_mask<S: Scalar, R: Region<D>, const D: usize>(region: &R, points: &[
     mask
 }
 
+/// Classifies `child` (box `b`) and stacks it unless it is outside, prefetching what will be
+/// read of it: the points of a run to be tested, and when the caller `reads` the answer's
+/// points and items (not for a count or a list of indices), the items of such a run and the
+/// points and items of an inside run.
 #[inline(always)]
 fn push_child<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
     stack: &mut Stack<I::Node, D>,
@@ -178,6 +182,7 @@ fn push_child<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
     region: &R,
     child: I::Node,
     b: &Aabb<f64, D>,
+    reads: bool,
 ) {
     let inside = match region.classify(b) {
         Relation::Outside => return,
@@ -185,9 +190,11 @@ fn push_child<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
         Relation::Crossing => false,
     };
     let run = index.run(child);
-    if inside || run.len() <= scan_limit(D) {
+    if (inside && reads) || (!inside && run.len() <= scan_limit(D)) {
         prefetch_run(index.points(), run.clone());
-        prefetch_run(index.items(), run);
+        if reads {
+            prefetch_run(index.items(), run);
+        }
     }
     stack.push((child, *b, inside));
 }
@@ -209,13 +216,15 @@ pub(super) fn prefetch_run<P>(points: &[P], run: Range<usize>) {
 }
 
 /// Calls `report(i)` for every point index `i` in `region`; returns the work done. A crossing
-/// node with at most `scan` points has them tested without descending (0: only leaves are).
+/// node with at most `scan` points has them tested without descending (0: only leaves are);
+/// `reads`: whether `report` reads the points and items it is given (see [`push_child`]).
 /// Allocates only when more than 48 nodes are pending (deeper than about 16 levels in 2D, 7 in
 /// 3D).
 pub(crate) fn for_each_in<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
     index: &I,
     region: &R,
     scan: usize,
+    reads: bool,
     mut report: impl FnMut(usize),
 ) -> Result<QueryStats, QueryError> {
     region.validate()?;
@@ -225,7 +234,7 @@ pub(crate) fn for_each_in<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
     };
     let mut stack = Stack::new();
     stats.nodes_visited = 1;
-    push_child(&mut stack, index, region, root, &b);
+    push_child(&mut stack, index, region, root, &b, reads);
     let points = index.points();
     while let Some((node, b, inside)) = stack.pop() {
         let run = index.run(node);
@@ -238,7 +247,7 @@ pub(crate) fn for_each_in<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
         let internal = run.len() > scan
             && index.for_each_child_in(node, &b, |child, b| {
                 visited += 1;
-                push_child(&mut stack, index, region, child, b);
+                push_child(&mut stack, index, region, child, b, reads);
             });
         stats.nodes_visited += visited;
         if !internal {
