@@ -70,7 +70,7 @@ pub fn clustered<const D: usize>(
 }
 
 /// The seed of the cluster centres, shared by every point set.
-const CENTRE_SEED: u64 = 0x5EED_0C1;
+const CENTRE_SEED: u64 = 0x005E_EDC1;
 
 /// One standard normal sample (Box-Muller, cosine branch).
 fn standard_normal(rng: &mut SmallRng) -> f64 {
