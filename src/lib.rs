@@ -18,8 +18,8 @@
 //! ```
 #![warn(missing_docs)]
 #![deny(rustdoc::broken_intra_doc_links)]
-// One exception, allowed where it stands: the cache prefetch of the build's gather
-// (`points/prefetch.rs`, measured there).
+// One exception, allowed where it stands: the cache prefetch of the build's gather and of the
+// query engines (`prefetch.rs`, measured there and in `query/range.rs`).
 #![deny(unsafe_code)]
 
 pub mod compressed;

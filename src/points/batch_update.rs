@@ -70,7 +70,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         let mut old = core::mem::take(&mut self.points)
             .into_iter()
             .zip(core::mem::take(&mut self.items))
-            .map(|(p, t)| (geometry.key(&p.map(Scalar::to_f64)), p, t))
+            .map(|(p, t)| (geometry.scalar_key(&p), p, t))
             .peekable();
         let mut pending = keyed
             .iter()
@@ -123,7 +123,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         self.items
             .retain(|_| *flags.next().expect("one flag per item"));
         let geometry = self.geometry;
-        self.recut(|points, i, _| geometry.key(&points[i].map(Scalar::to_f64)));
+        self.recut(|points, i, _| geometry.scalar_key(&points[i]));
     }
 
     /// Drops every node (and any balance refinement) and cuts the stored run, which is in Morton

@@ -149,7 +149,7 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
         let (geometry, domain) = settle(root, bounds, n);
         let bits = index_bits(n);
         let mut packed: Vec<u64> = (0..n)
-            .map(|i| pack(geometry.key(&point(i).map(Scalar::to_f64)), i, bits))
+            .map(|i| pack(geometry.scalar_key(point(i)), i, bits))
             .collect();
         super::radix::sort_keyed(&mut packed);
         let mut points = Vec::with_capacity(n);
@@ -157,8 +157,7 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
         // The gather reads the input in Morton order, at random for scattered points: ask for
         // the records ahead so that their cache misses overlap.
         for (j, &k) in packed.iter().enumerate() {
-            let later = packed.get(j + LOOKAHEAD).unwrap_or(&k);
-            let (p, item) = take(unpack_index(k, bits), unpack_index(*later, bits));
+            let (p, item) = take(unpack_index(k, bits), later_index(&packed, j, bits));
             points.push(p);
             items.push(item);
         }
@@ -196,7 +195,7 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
             if D as u32 * u32::from(Cell::<D>::MAX_LEVEL - level - 1) >= bits {
                 packed[i]
             } else {
-                geometry.key(&points[i].map(Scalar::to_f64))
+                geometry.scalar_key(&points[i])
             }
         });
         // The node arrays grew by doubling: up to half their memory is spare.
@@ -290,6 +289,14 @@ pub(super) fn pack(key: u64, index: usize, bits: u32) -> u64 {
     (key >> bits << bits) | index as u64
 }
 
+/// The input index the gather reads [`LOOKAHEAD`] steps after step `j` (its own at the end),
+/// for it to [`prefetch`].
+#[inline]
+pub(super) fn later_index(packed: &[u64], j: usize, bits: u32) -> usize {
+    let later = packed.get(j + LOOKAHEAD).unwrap_or(&packed[j]);
+    unpack_index(*later, bits)
+}
+
 /// The input index of a [`pack`]ed key.
 #[inline]
 pub(super) fn unpack_index(packed: u64, bits: u32) -> usize {
@@ -318,7 +325,7 @@ pub(super) fn order_by_full_keys<S: Scalar, T, const D: usize>(
         if points[start + 1..end].iter().any(|p| *p != points[start]) {
             let mut order: Vec<(u64, u64, usize)> = (start..end)
                 .map(|i| {
-                    let key = geometry.key(&points[i].map(Scalar::to_f64));
+                    let key = geometry.scalar_key(&points[i]);
                     (key, packed[i], i)
                 })
                 .collect();
@@ -350,7 +357,7 @@ pub(super) fn key_pair<S: Scalar, const D: usize>(
     p: &[S; D],
     index: usize,
 ) -> u128 {
-    ((geometry.key(&p.map(Scalar::to_f64)) as u128) << 32) | index as u128
+    ((geometry.scalar_key(p) as u128) << 32) | index as u128
 }
 
 /// The root geometry and the domain points must lie in: the root box given, or the smallest

@@ -14,7 +14,7 @@
 //! The 64 levels of [`DeepCell`](crate::DeepCell)s, for the compressed trees, continue these
 //! lines below level 32 (`deep_geometry.rs`: [`RootGeometry::deep_coordinate`]).
 
-use crate::geom::{Aabb, Cell};
+use crate::geom::{Aabb, Cell, Scalar};
 
 /// The root cube of a tree and the map between coordinates and cells.
 ///
@@ -181,6 +181,12 @@ impl<const D: usize> RootGeometry<D> {
     pub fn key(&self, point: &[f64; D]) -> u64 {
         let coords: [u32; D] = core::array::from_fn(|a| self.coordinate(a, point[a]));
         crate::geom::morton::interleave(coords, Self::FINEST)
+    }
+
+    /// [`RootGeometry::key`] of a point with coordinates of any [`Scalar`] (converted to `f64`).
+    #[inline]
+    pub(crate) fn scalar_key<S: Scalar>(&self, point: &[S; D]) -> u64 {
+        self.key(&point.map(Scalar::to_f64))
     }
 
     /// The cell at `level` that holds `point` under the split convention.

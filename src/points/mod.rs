@@ -197,9 +197,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
             max_depth,
             balanced: None,
         };
-        tree.subdivide(NodeId::ROOT, |p, i, _| {
-            geometry.key(&p[i].map(Scalar::to_f64))
-        });
+        tree.subdivide(NodeId::ROOT, |p, i, _| geometry.scalar_key(&p[i]));
         tree
     }
 
@@ -251,7 +249,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         for leaf in order {
             let (s, e) = self.runs.run(&self.tree, leaf);
             partition_children(&self.tree, &mut self.runs, leaf, (s, e), |i| {
-                geometry.key(&points[i].map(Scalar::to_f64))
+                geometry.scalar_key(&points[i])
             });
         }
         self.balanced = Some(options);

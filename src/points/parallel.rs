@@ -7,11 +7,11 @@
 //! points and items into key order. Cutting the sorted run into nodes stays serial: it is a small
 //! part of the time. The result is the same tree as [`PointTreeBuilder::build`] gives.
 
-use super::build::{index_bits, pack, settle, unpack_index};
+use super::build::{index_bits, later_index, pack, settle, unpack_index};
 use super::{PointTree, PointTreeBuilder};
 use crate::error::Error;
 use crate::geom::{Aabb, Scalar};
-use crate::prefetch::{prefetch, LOOKAHEAD};
+use crate::prefetch::prefetch;
 use rayon::prelude::*;
 
 /// Points per parallel task when checking the input.
@@ -50,16 +50,14 @@ impl<S: Scalar + Send + Sync, const D: usize> PointTreeBuilder<S, D> {
         let mut packed: Vec<u64> = entries
             .par_iter()
             .enumerate()
-            .map(|(i, (p, _))| pack(geometry.key(&p.map(Scalar::to_f64)), i, bits))
+            .map(|(i, (p, _))| pack(geometry.scalar_key(p), i, bits))
             .collect();
         super::radix::par_sort_keyed(&mut packed);
         let (points, items): (Vec<[S; D]>, Vec<T>) = packed
             .par_iter()
             .enumerate()
             .map(|(j, &k)| {
-                if let Some(&later) = packed.get(j + LOOKAHEAD) {
-                    prefetch(&entries[unpack_index(later, bits)]);
-                }
+                prefetch(&entries[later_index(&packed, j, bits)]);
                 entries[unpack_index(k, bits)].clone()
             })
             .unzip();

@@ -176,7 +176,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// The Morton key of stored point `i`.
     #[inline]
     fn key_of(&self, i: usize) -> u64 {
-        self.geometry.key(&self.points[i].map(Scalar::to_f64))
+        self.geometry.scalar_key(&self.points[i])
     }
 
     /// The nodes from the root to the leaf holding Morton key `key`, and the leaf's run.
@@ -198,16 +198,14 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// Splits below `start` as a fresh build would, recomputing the points' keys.
     fn split_down(&mut self, start: NodeId) {
         let geometry = self.geometry;
-        self.subdivide(start, |points, i, _| {
-            geometry.key(&points[i].map(Scalar::to_f64))
-        });
+        self.subdivide(start, |points, i, _| geometry.scalar_key(&points[i]));
     }
 
     /// Drops every split (balance's too) and splits again from the root: the tree a fresh build
     /// of the stored points gives. The points keep their order.
     fn rebuild_canonical(&mut self) {
         let geometry = self.geometry;
-        self.recut(|points, i, _| geometry.key(&points[i].map(Scalar::to_f64)));
+        self.recut(|points, i, _| geometry.scalar_key(&points[i]));
     }
 }
 

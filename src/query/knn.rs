@@ -16,10 +16,10 @@
 
 use super::index::SpatialIndex;
 use super::metric::{Metric, SquaredEuclidean};
-use super::range::prefetch_run;
 use super::QueryError;
 use crate::geom::{Aabb, Scalar};
 use crate::points::PointTree;
+use crate::prefetch::prefetch_run;
 use smallvec::SmallVec;
 
 /// A point found by a nearest-neighbour query.

@@ -38,7 +38,7 @@ use super::region::{Ball, HalfSpace, Region, Relation};
 use super::QueryError;
 use crate::geom::{Aabb, Scalar};
 use crate::points::PointTree;
-use crate::prefetch::prefetch;
+use crate::prefetch::prefetch_run;
 use core::ops::Range;
 use smallvec::SmallVec;
 
@@ -98,7 +98,7 @@ impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> RegionIter<'a, I, R, 
         region.validate()?;
         let mut stack = Stack::new();
         if let Some((root, b)) = index.root() {
-            push_child(&mut stack, index, &region, root, &b, true);
+            push_child(&mut stack, index, &region, root, &b, scan_limit(D), true);
         }
         Ok(RegionIter {
             index,
@@ -145,7 +145,7 @@ impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> Iterator for RegionIt
             }
             let (stack, index, region) = (&mut self.stack, self.index, &self.region);
             let internal = self.index.for_each_child_in(node, &b, |child, b| {
-                push_child(stack, index, region, child, b, true);
+                push_child(stack, index, region, child, b, scan_limit(D), true);
             });
             if !internal {
                 self.pending = run;
@@ -172,9 +172,16 @@ fn contains_mask<S: Scalar, R: Region<D>, const D: usize>(region: &R, points: &[
 }
 
 /// Classifies `child` (box `b`) and stacks it unless it is outside, prefetching what will be
-/// read of it: the points of a run to be tested, and when the caller `reads` the answer's
-/// points and items (not for a count or a list of indices), the items of such a run and the
-/// points and items of an inside run.
+/// read of it: the points of a crossing run of at most `scan` points (to be tested), and when
+/// the caller `reads` the answer's points and items (not for a count or a list of indices), the
+/// items of such a run and the points and items of an inside run.
+///
+/// The misses of the (up to 2^D) runs pushed together then overlap instead of coming one after
+/// another as the stack pops them: the queries are bound by those misses (a leaf run sits
+/// anywhere in memory), not by the tests. Measured with 10^6 uniform points in 3D, 10^5
+/// queries with ~100 results, best of 15, three alternating runs: balls 586-632 ms without,
+/// 459-491 with points prefetched, 338-361 with points and items; boxes 504-549, 390-417,
+/// 250-270.
 #[inline(always)]
 fn push_child<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
     stack: &mut Stack<I::Node, D>,
@@ -182,6 +189,7 @@ fn push_child<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
     region: &R,
     child: I::Node,
     b: &Aabb<f64, D>,
+    scan: usize,
     reads: bool,
 ) {
     let inside = match region.classify(b) {
@@ -189,30 +197,16 @@ fn push_child<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
         Relation::Inside => true,
         Relation::Crossing => false,
     };
-    let run = index.run(child);
-    if (inside && reads) || (!inside && run.len() <= scan_limit(D)) {
-        prefetch_run(index.points(), run.clone());
-        if reads {
-            prefetch_run(index.items(), run);
+    if reads || !inside {
+        let run = index.run(child);
+        if inside || run.len() <= scan {
+            prefetch_run(index.points(), run.clone());
+            if reads {
+                prefetch_run(index.items(), run);
+            }
         }
     }
     stack.push((child, *b, inside));
-}
-
-/// Asks the cache for the first lines (up to 16) of a run of points or items about to be read.
-///
-/// Each node pushed for reading has its points and items prefetched, so the cache misses of
-/// the (up to 2^D) runs pushed together overlap instead of coming one after another as the
-/// stack pops them: the queries are bound by those misses (a leaf run sits anywhere in
-/// memory), not by the tests. Measured with 10^6 uniform points in 3D, 10^5 queries with ~100
-/// results, best of 15, three alternating runs: balls 586-632 ms without, 459-491 with points
-/// prefetched, 338-361 with points and items; boxes 504-549, 390-417, 250-270.
-#[inline(always)]
-pub(super) fn prefetch_run<P>(points: &[P], run: Range<usize>) {
-    let step = (64 / core::mem::size_of::<P>().max(1)).max(1);
-    for i in run.step_by(step).take(16) {
-        prefetch(&points[i]);
-    }
 }
 
 /// Calls `report(i)` for every point index `i` in `region`; returns the work done. A crossing
@@ -234,7 +228,7 @@ pub(crate) fn for_each_in<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
     };
     let mut stack = Stack::new();
     stats.nodes_visited = 1;
-    push_child(&mut stack, index, region, root, &b, reads);
+    push_child(&mut stack, index, region, root, &b, scan, reads);
     let points = index.points();
     while let Some((node, b, inside)) = stack.pop() {
         let run = index.run(node);
@@ -247,7 +241,7 @@ pub(crate) fn for_each_in<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
         let internal = run.len() > scan
             && index.for_each_child_in(node, &b, |child, b| {
                 visited += 1;
-                push_child(&mut stack, index, region, child, b, reads);
+                push_child(&mut stack, index, region, child, b, scan, reads);
             });
         stats.nodes_visited += visited;
         if !internal {
