@@ -10,6 +10,7 @@ mod build;
 mod deep_geometry;
 mod geometry;
 mod leaves;
+mod network;
 #[cfg(feature = "rayon")]
 mod parallel;
 mod radix;

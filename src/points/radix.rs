@@ -16,17 +16,22 @@
 //!
 //! Time O(n × bytes used) plus the small sorts; memory one buffer of n pairs.
 
-/// Runs this short are sorted by comparison.
+use super::network::sort_short;
+
+/// Runs this short are sorted by comparison ([`sort_short`]).
 const SMALL: usize = 48;
 
 /// A (key, index) pair packed into one integer whose order is the pairs' order.
 pub(super) trait Packed: Copy + Ord + Default + Send + Sync {
+    /// The greatest value (pads the sorting networks' inputs).
+    const MAX: Self;
     /// Byte `shift / 8` (0 the lowest, 7 the highest) of the 64-bit sort key: for a `u128`
     /// `key << 32 | index` the key; for a `u64`, the whole value.
     fn byte(self, shift: u32) -> usize;
 }
 
 impl Packed for u128 {
+    const MAX: Self = u128::MAX;
     #[inline]
     fn byte(self, shift: u32) -> usize {
         ((self >> (32 + shift)) & 0xFF) as usize
@@ -34,6 +39,7 @@ impl Packed for u128 {
 }
 
 impl Packed for u64 {
+    const MAX: Self = u64::MAX;
     #[inline]
     fn byte(self, shift: u32) -> usize {
         ((self >> shift) & 0xFF) as usize
@@ -43,7 +49,7 @@ impl Packed for u64 {
 /// Sorts `pairs` by key, then index (a `u64` by value).
 pub(super) fn sort_keyed<P: Packed>(pairs: &mut [P]) {
     if pairs.len() <= SMALL {
-        pairs.sort_unstable();
+        sort_short(pairs, P::MAX);
         return;
     }
     let mut buffer = vec![P::default(); pairs.len()];
@@ -55,7 +61,7 @@ pub(super) fn sort_keyed<P: Packed>(pairs: &mut [P]) {
 pub(super) fn par_sort_keyed<P: Packed>(pairs: &mut [P]) {
     use rayon::prelude::*;
     if pairs.len() <= SMALL {
-        pairs.sort_unstable();
+        sort_short(pairs, P::MAX);
         return;
     }
     let mut shift = 56u32;
@@ -127,7 +133,7 @@ fn sort_run<P: Packed>(pairs: &mut [P], buffer: &mut [P], shift: u32, in_pairs: 
         };
         let (src, dst) = (&mut src[start..end], &mut dst[start..end]);
         if end - start <= SMALL {
-            src.sort_unstable();
+            sort_short(src, P::MAX);
             if !in_pairs {
                 dst.copy_from_slice(src);
             }
