@@ -148,9 +148,8 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
         let bounds = self.scan(root.as_ref(), 0..n, &point)?;
         let (geometry, domain) = settle(root, bounds, n);
         let bits = index_bits(n);
-        let mut packed: Vec<u64> = (0..n)
-            .map(|i| pack(geometry.scalar_key(point(i)), i, bits))
-            .collect();
+        let mut packed: Vec<u64> = Vec::with_capacity(n);
+        geometry.keys_into(n, &point, |i, key| packed.push(pack(key, i, bits)));
         super::radix::sort_keyed(&mut packed);
         let mut points = Vec::with_capacity(n);
         let mut items = Vec::with_capacity(n);
@@ -315,7 +314,15 @@ pub(super) fn order_by_full_keys<S: Scalar, T, const D: usize>(
     items: &mut [T],
 ) {
     let mut start = 0;
-    while start < packed.len() {
+    while start + 1 < packed.len() {
+        // Most neighbours differ above the index bits: skip them without a branch per point.
+        let Some(at) = packed[start..]
+            .windows(2)
+            .position(|w| (w[0] ^ w[1]) >> bits == 0)
+        else {
+            return;
+        };
+        start += at;
         let high = packed[start] >> bits;
         let end = start
             + packed[start..]

@@ -16,6 +16,9 @@
 
 use crate::geom::{Aabb, Cell, Scalar};
 
+/// How many points [`RootGeometry::keys_into`] quantises at a time.
+const LANES: usize = 8;
+
 /// The root cube of a tree and the map between coordinates and cells.
 ///
 /// ```
@@ -189,6 +192,65 @@ impl<const D: usize> RootGeometry<D> {
         self.key(&point.map(Scalar::to_f64))
     }
 
+    /// [`RootGeometry::key`] of points `0..n` (`point(i)` reads point `i`), handed to
+    /// `found(i, key)` in index order.
+    ///
+    /// The same guess and margin test as [`RootGeometry::coordinate`], written for [`LANES`]
+    /// points at a time without a conversion to integer (which has no vector form before
+    /// AVX-512): `floor` by rounding through 2^52, whose bits then hold the integer. The
+    /// compiler turns the lanes into vector instructions, and a lane that fails the test takes
+    /// the scalar path. On 10^6 uniform 2D points the keys cost about 20% less.
+    pub(crate) fn keys_into<'p, S: Scalar + 'p>(
+        &self,
+        n: usize,
+        point: impl Fn(usize) -> &'p [S; D],
+        mut found: impl FnMut(usize, u64),
+    ) {
+        let full = n - n % LANES;
+        for first in (0..full).step_by(LANES) {
+            let lanes: [[f64; D]; LANES] =
+                core::array::from_fn(|l| point(first + l).map(Scalar::to_f64));
+            for (l, key) in self.lane_keys(&lanes).into_iter().enumerate() {
+                found(first + l, key);
+            }
+        }
+        for i in full..n {
+            found(i, self.scalar_key(point(i)));
+        }
+    }
+
+    /// The keys of [`LANES`] points: see [`RootGeometry::keys_into`].
+    #[inline]
+    fn lane_keys(&self, points: &[[f64; D]; LANES]) -> [u64; LANES] {
+        // Adding 2^52 to a value in [0, 2^52) rounds it to an integer held in the low bits.
+        const ROUND: f64 = 4_503_599_627_370_496.0;
+        let cells = (1u64 << Self::FINEST) as f64;
+        let mut fast = [true; LANES];
+        let mut coords = [[0u64; LANES]; D];
+        for (a, axis) in coords.iter_mut().enumerate() {
+            let margin = self.margin[a];
+            for (l, c) in axis.iter_mut().enumerate() {
+                let scaled = (points[l][a] * 0.5 - self.half_lo[a]) * self.scale;
+                let near = (scaled + ROUND) - ROUND;
+                let floor = if near > scaled { near - 1.0 } else { near };
+                let fraction = scaled - floor;
+                fast[l] &= (scaled >= 0.0)
+                    & (floor < cells)
+                    & (fraction > margin)
+                    & (fraction < 1.0 - margin);
+                *c = (floor + ROUND).to_bits().wrapping_sub(ROUND.to_bits());
+            }
+        }
+        core::array::from_fn(|l| {
+            if fast[l] {
+                let lane: [u32; D] = core::array::from_fn(|a| coords[a][l] as u32);
+                crate::geom::morton::interleave(lane, Self::FINEST)
+            } else {
+                self.key(&points[l])
+            }
+        })
+    }
+
     /// The cell at `level` that holds `point` under the split convention.
     pub fn cell_of(&self, point: &[f64; D], level: u8) -> Cell<D> {
         Cell::from_aligned_key(self.key(point), level)
@@ -306,6 +368,42 @@ mod tests {
                     check(&g3, y);
                 }
             }
+        }
+    }
+
+    /// The lanes of `keys_into` against `key`: random points, points on and next to cell
+    /// boundaries, the cube's corners, and cubes where the guess is never trusted.
+    #[test]
+    fn lane_keys_agree_with_key() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand::rngs::SmallRng::seed_from_u64(5);
+        fn check<const D: usize>(g: &RootGeometry<D>, points: &[[f64; D]]) {
+            let mut keys = Vec::new();
+            g.keys_into(points.len(), |i| &points[i], |i, k| keys.push((i, k)));
+            let expected: Vec<(usize, u64)> = points.iter().map(|p| g.key(p)).enumerate().collect();
+            assert_eq!(keys, expected, "in {g:?}");
+        }
+        for (lo, side) in [
+            (0.0, 1.0),
+            (-3.0, 7.0),
+            (1e6, 1.0),
+            (-1e300, 1e300),
+            (0.0, 1e-310),
+        ] {
+            let g2 = RootGeometry::<2>::new([lo; 2], side);
+            let g3 = RootGeometry::<3>::new([lo; 3], side);
+            let mut p2 = vec![[lo; 2], [lo + side; 2]];
+            let mut p3 = vec![[lo; 3], [lo + side; 3]];
+            for _ in 0..3001 {
+                let x = lo + side * rng.gen::<f64>();
+                let j = rng.gen_range(0..1u64 << 32);
+                let b = g2.boundary(0, j, 32);
+                p2.push([x, [b, b.next_up(), b.next_down()][j as usize % 3]]);
+                let b = g3.boundary(1, j >> 11, 21);
+                p3.push([x, b, lo + side * rng.gen::<f64>()]);
+            }
+            check(&g2, &p2);
+            check(&g3, &p3);
         }
     }
 

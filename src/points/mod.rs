@@ -369,6 +369,10 @@ fn digit<const D: usize>(key: u64, level: u8) -> usize {
     ((key >> shift) as usize) & (Dim::<D>::CHILDREN - 1)
 }
 
+/// Runs up to this long are partitioned by counting their digits, longer ones by a binary search
+/// per child. Counting is branch-free and reads the run in order.
+const LINEAR_PARTITION: u32 = 512;
+
 /// Gives each child of the just-split node `v` its part of `v`'s run `(s, e)`, which is sorted
 /// by key.
 fn partition_children<const D: usize>(
@@ -379,6 +383,20 @@ fn partition_children<const D: usize>(
     key: impl Fn(usize) -> u64,
 ) {
     let level = tree.level(v);
+    if e - s <= LINEAR_PARTITION {
+        // Short runs: count the digits in one branch-free pass (2^D <= 256 children).
+        let mut ends = [0u32; 256];
+        for i in s..e {
+            ends[digit::<D>(key(i as usize), level)] += 1;
+        }
+        let mut at = s;
+        let ends = ends[..Dim::<D>::CHILDREN].iter().map(|&count| {
+            at += count;
+            at
+        });
+        runs.set_children(tree, v, s, ends);
+        return;
+    }
     let mut lo = s;
     let ends = (0..Dim::<D>::CHILDREN).map(|c| {
         // First index in lo..e whose digit exceeds c.

@@ -47,11 +47,17 @@ impl<S: Scalar + Send + Sync, const D: usize> PointTreeBuilder<S, D> {
         }
         let (geometry, domain) = settle(root, bounds, n);
         let bits = index_bits(n);
-        let mut packed: Vec<u64> = entries
-            .par_iter()
+        let mut packed = vec![0u64; n];
+        packed
+            .par_chunks_mut(CHUNK)
             .enumerate()
-            .map(|(i, (p, _))| pack(geometry.scalar_key(p), i, bits))
-            .collect();
+            .for_each(|(c, out)| {
+                let first = c * CHUNK;
+                let point = |i: usize| &entries[first + i].0;
+                geometry.keys_into(out.len(), point, |i, key| {
+                    out[i] = pack(key, first + i, bits);
+                });
+            });
         super::radix::par_sort_keyed(&mut packed);
         let (points, items): (Vec<[S; D]>, Vec<T>) = packed
             .par_iter()
