@@ -36,6 +36,22 @@ pub fn interleave<const D: usize>(coords: [u32; D], bits: u32) -> u64 {
     }
 }
 
+/// The low `64 / D` bits of `v` spread to every `D`-th bit from bit 0 (for D = 1, `v` itself):
+/// `spread::<D>(c) << a` is the coordinate `c` on axis `a` in a key, so OR-ing those over the
+/// axes is [`interleave`] at the finest level. Lets a caller build keys one axis at a time.
+#[inline]
+pub(crate) fn spread<const D: usize>(v: u64) -> u64 {
+    match D {
+        1 => v,
+        2 => spread2(v),
+        3 => spread3(v),
+        _ => {
+            let bits = 64 / D as u32;
+            (0..bits).fold(0, |key, j| key | ((v >> j) & 1) << (j as usize * D))
+        }
+    }
+}
+
 /// The inverse of [`interleave`].
 #[inline]
 pub fn deinterleave<const D: usize>(key: u64, bits: u32) -> [u32; D] {

@@ -241,14 +241,19 @@ impl<const D: usize> RootGeometry<D> {
                 *c = (floor + ROUND).to_bits().wrapping_sub(ROUND.to_bits());
             }
         }
-        core::array::from_fn(|l| {
-            if fast[l] {
-                let lane: [u32; D] = core::array::from_fn(|a| coords[a][l] as u32);
-                crate::geom::morton::interleave(lane, Self::FINEST)
-            } else {
-                self.key(&points[l])
+        // Plain loops over the lanes (not closures), so that the bit spreading vectorises too.
+        let mut keys = [0u64; LANES];
+        for (a, axis) in coords.iter().enumerate() {
+            for (key, &c) in keys.iter_mut().zip(axis) {
+                *key |= crate::geom::morton::spread::<D>(c) << a;
             }
-        })
+        }
+        for (l, key) in keys.iter_mut().enumerate() {
+            if !fast[l] {
+                *key = self.key(&points[l]);
+            }
+        }
+        keys
     }
 
     /// The cell at `level` that holds `point` under the split convention.
@@ -404,6 +409,11 @@ mod tests {
             }
             check(&g2, &p2);
             check(&g3, &p3);
+            // the other dimensions' spreading
+            let p1: Vec<[f64; 1]> = p2.iter().map(|p| [p[1]]).collect();
+            check(&RootGeometry::<1>::new([lo], side), &p1);
+            let p5: Vec<[f64; 5]> = p3.iter().map(|p| [p[0], p[1], p[2], p[1], p[0]]).collect();
+            check(&RootGeometry::<5>::new([lo; 5], side), &p5);
         }
     }
 
