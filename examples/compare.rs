@@ -18,7 +18,8 @@
 //! build; box queries with about 100 results; radius queries with about 100 results; k-nearest for
 //! k = 1, 10, 100. Query centres follow the data's distribution; the box side and radius are
 //! calibrated so that the average answer holds about 100 points. Every query's answer is
-//! consumed (item ids summed), and the sums are checked equal across the crates.
+//! consumed (item ids summed), and the sums are checked equal across the crates. Each timing is
+//! the median of `--reps` runs after one untimed warm-up run.
 
 #[path = "../benches/common/mod.rs"]
 mod common;
@@ -86,10 +87,12 @@ fn args() -> Args {
     a
 }
 
-/// The median time in milliseconds of `reps` runs of `f`, and its (checked equal) result.
+/// The median time in milliseconds of `reps` runs of `f`, and its (checked equal) result,
+/// after one run that is not timed (a warm-up: the first run pays for fresh pages and cold
+/// caches).
 fn time<R: PartialEq + std::fmt::Debug>(reps: usize, mut f: impl FnMut() -> R) -> (f64, R) {
     let mut times = Vec::with_capacity(reps);
-    let mut result = None;
+    let mut result = Some(black_box(f()));
     for _ in 0..reps.max(1) {
         let start = Instant::now();
         let r = black_box(f());
