@@ -7,8 +7,11 @@
 //! while fewer than `k` are known); scan a leaf's run; push an internal node's children farthest
 //! first, so the nearest box is searched first and tightens the bound soonest. Before that, one
 //! walk down the nearest child at every level scans the node around the query and seeds the
-//! bound, so the search stacks only children that can still hold a neighbour; any node of at
-//! most `SCAN` points is scanned as a leaf (its run is contiguous), as kd-trees scan buckets.
+//! bound; the search then backtracks along that walk, deepest level first, stacking only the
+//! children beside it that can still hold a neighbour, and stops going up once the ball of the
+//! bound lies inside the box walked through. Any node of at most `SCAN` points is scanned as a
+//! leaf (its run is contiguous), as kd-trees scan buckets; for k = 1 the scan keeps the run's
+//! nearest point without a branch per point.
 //!
 //! Ties are broken by index in [`PointTree::points`] (Morton order): the answer is exactly the
 //! first `k` of all points within the maximum distance sorted by `(distance, index)`. A box whose
@@ -120,6 +123,22 @@ pub(crate) fn k_nearest<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
     // Scans a run, offering every point; returns the new bound.
     let scan_run = |best: &mut Best, run: core::ops::Range<usize>, mut bound: f64| {
         let start = run.start;
+        if k == 1 {
+            // Only the run's nearest point can be offered: find it without a branch per point
+            // (strictly nearer replaces, so the first of equals wins, as ties want).
+            let (mut near, mut at) = (f64::INFINITY, 0);
+            for (j, p) in points[run.clone()].iter().enumerate() {
+                let d = metric.distance(q, &p.map(Scalar::to_f64));
+                let nearer = d < near;
+                near = if nearer { d } else { near };
+                at = if nearer { j } else { at };
+            }
+            if !run.is_empty() && near <= bound {
+                best.offer(near, start + at);
+                bound = best.bound();
+            }
+            return bound;
+        }
         for (j, p) in points[run].iter().enumerate() {
             let d = metric.distance(q, &p.map(Scalar::to_f64));
             if d <= bound {
@@ -130,11 +149,14 @@ pub(crate) fn k_nearest<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
         bound
     };
     // Seed the bound: walk down to the nearest child at every level (the one holding `q` when
-    // it lies in the root box) and scan the first node small enough, so that the search below
-    // stacks only the children that can still hold a neighbour.
+    // it lies in the root box) and scan the first node small enough. The nodes walked through
+    // are kept: the rest of the search backtracks along them, as a kd-tree search does, instead
+    // of descending again from the root.
+    let mut path: SmallVec<[(I::Node, Aabb<f64, D>); 24]> = SmallVec::new();
     let seeded = {
         let (mut node, mut nb) = (root, b);
         loop {
+            path.push((node, nb));
             let run = index.run(node);
             let mut next: Option<(f64, I::Node, Aabb<f64, D>)> = None;
             let internal = run.len() > SCAN
@@ -151,40 +173,98 @@ pub(crate) fn k_nearest<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
         }
     };
     let first = best.bound();
-    let mut bound = scan_run(&mut best, seeded.clone(), first);
+    let mut bound = scan_run(&mut best, seeded, first);
     let mut stack: Pending<I::Node, D> = SmallVec::new();
-    stack.push((metric.box_distance(q, &b), root, b));
-    while let Some((lower, node, b)) = stack.pop() {
-        if lower > bound {
-            continue;
+    // Deepest first: the children of each path node beside the path, each searched in full
+    // before going up, until the ball of the bound lies inside the path node's box (no point
+    // outside it can then be within the bound).
+    for level in (0..path.len() - 1).rev() {
+        let (inner, inner_box) = path[level + 1];
+        if ball_inside(metric, q, bound, &inner_box) {
+            break;
         }
-        let run = index.run(node);
-        let before = stack.len();
-        let internal = run.len() > SCAN
-            && index.for_each_child_in(node, &b, |child, b| {
-                let d = metric.box_distance(q, b);
-                if d <= bound {
-                    let run = index.run(child);
-                    if run.len() <= SCAN {
-                        // It will be scanned if the bound still lets it: start the load now.
-                        prefetch_run(points, run);
-                    }
-                    // Insertion sort, farthest first: the nearest child is popped next.
-                    let mut at = stack.len();
-                    stack.push((d, child, *b));
-                    while at > before && stack[at - 1].0 < d {
-                        stack.swap(at - 1, at);
-                        at -= 1;
-                    }
-                }
-            });
-        // Nested runs that are equal belong to one node, and the walk above stops at the first
-        // node small enough on its path, as this search does: the seeded node is not rescanned.
-        if !internal && run != seeded {
-            bound = scan_run(&mut best, run, bound);
+        let (node, nb) = path[level];
+        // Siblings own disjoint, non-empty runs: the path child is the one starting where it does.
+        let skip = index.run(inner).start;
+        index.for_each_child_in(node, &nb, |child, cb| {
+            if index.run(child).start != skip {
+                push_nearer(index, points, &mut stack, 0, q, metric, bound, child, cb);
+            }
+        });
+        while let Some((lower, node, b)) = stack.pop() {
+            if lower > bound {
+                continue;
+            }
+            let run = index.run(node);
+            let before = stack.len();
+            let internal = run.len() > SCAN
+                && index.for_each_child_in(node, &b, |child, cb| {
+                    push_nearer(
+                        index, points, &mut stack, before, q, metric, bound, child, cb,
+                    );
+                });
+            if !internal {
+                bound = scan_run(&mut best, run, bound);
+            }
         }
     }
     best.list
+}
+
+/// Pushes `child` (with its box `cb`) on `stack` when its box is within `bound` of `q`, keeping
+/// the entries above `before` farthest first, so that the nearest is popped next; starts loading
+/// the run of a child small enough to be scanned.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn push_nearer<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
+    index: &I,
+    points: &[[I::Scalar; D]],
+    stack: &mut Pending<I::Node, D>,
+    before: usize,
+    q: &[f64; D],
+    metric: &M,
+    bound: f64,
+    child: I::Node,
+    cb: &Aabb<f64, D>,
+) {
+    let d = metric.box_distance(q, cb);
+    if d > bound {
+        return;
+    }
+    let run = index.run(child);
+    if run.len() <= SCAN {
+        // It will be scanned if the bound still lets it: start the load now.
+        prefetch_run(points, run);
+    }
+    // Insertion sort, farthest first.
+    let mut at = stack.len();
+    stack.push((d, child, *cb));
+    while at > before && stack[at - 1].0 < d {
+        stack.swap(at - 1, at);
+        at -= 1;
+    }
+}
+
+/// `true` when no point outside the closed box `b` can be within `bound` of `q` under `metric`:
+/// every such point lies in one of the 2D closed slabs beyond a face of `b` (a point on a face
+/// may belong to the neighbouring cell), and `box_distance` bounds each slab from below.
+fn ball_inside<M: Metric<D>, const D: usize>(
+    metric: &M,
+    q: &[f64; D],
+    bound: f64,
+    b: &Aabb<f64, D>,
+) -> bool {
+    (0..D).all(|a| {
+        let mut slab = Aabb {
+            min: [f64::NEG_INFINITY; D],
+            max: [f64::INFINITY; D],
+        };
+        slab.max[a] = b.min[a];
+        let below = metric.box_distance(q, &slab) > bound;
+        slab.max[a] = f64::INFINITY;
+        slab.min[a] = b.max[a];
+        below && metric.box_distance(q, &slab) > bound
+    })
 }
 
 impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
