@@ -160,10 +160,8 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
         p: &[S; D],
         max: f64,
     ) -> Result<Option<Neighbor<'_, S, T, D>>, QueryError> {
-        Ok(self
-            .k_nearest_by(p, 1, max, &SquaredEuclidean)?
-            .into_iter()
-            .next())
+        let found = self.index().nearest_by(p, max, &SquaredEuclidean)?;
+        Ok(found.map(|n| with_item(n, self.items())))
     }
 
     /// The `k` nearest points to `p` (squared Euclidean), sorted by distance, ties by index.

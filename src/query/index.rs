@@ -19,9 +19,12 @@ use crate::points::PointTree;
 use crate::tree::NodeId;
 use core::ops::Range;
 
+/// A neighbour found in index `I`.
+type NeighborIn<'a, I, const D: usize> =
+    Neighbor<'a, <I as SpatialIndex<D>>::Scalar, <I as SpatialIndex<D>>::Item, D>;
+
 /// The answer of [`SpatialIndex::k_nearest_by`].
-type Neighbors<'a, I, const D: usize> =
-    Vec<Neighbor<'a, <I as SpatialIndex<D>>::Scalar, <I as SpatialIndex<D>>::Item, D>>;
+type Neighbors<'a, I, const D: usize> = Vec<NeighborIn<'a, I, D>>;
 
 /// A tree of closed boxes over one array of points, each node owning a contiguous run of it.
 ///
@@ -135,6 +138,26 @@ pub trait SpatialIndex<const D: usize> {
             .into_iter()
             .map(|(d, i)| Neighbor::at(self, d, i))
             .collect())
+    }
+
+    /// The nearest point to `p` within distance `max` under `metric`, ties to the lower index
+    /// ([`PointTree::nearest_within`]'s engine): [`SpatialIndex::k_nearest_by`] for k = 1,
+    /// without allocating.
+    fn nearest_by<M: Metric<D>>(
+        &self,
+        p: &[Self::Scalar; D],
+        max: f64,
+        metric: &M,
+    ) -> Result<Option<NeighborIn<'_, Self, D>>, QueryError>
+    where
+        Self: Sized,
+    {
+        let q = p.map(Scalar::to_f64);
+        check_point(&q)?;
+        check_max(max)?;
+        Ok(k_nearest(self, &q, 1, max, metric)
+            .first()
+            .map(|&(d, i)| Neighbor::at(self, d, i)))
     }
 
     /// Every point within distance `max` of `p` under `metric`, nearest first, lazily

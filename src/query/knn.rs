@@ -54,11 +54,14 @@ impl<'a, S, T, const D: usize> Neighbor<'a, S, T, D> {
     }
 }
 
+/// The answer of [`k_nearest`]: held inline for k = 1, so that a nearest query allocates nothing.
+pub(crate) type Found = SmallVec<[(f64, usize); 1]>;
+
 /// The best `k` candidates so far, sorted by `(distance, index)`.
 struct Best {
     k: usize,
     max: f64,
-    list: Vec<(f64, usize)>,
+    list: Found,
 }
 
 impl Best {
@@ -107,11 +110,11 @@ pub(crate) fn k_nearest<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
     k: usize,
     max: f64,
     metric: &M,
-) -> Vec<(f64, usize)> {
+) -> Found {
     let mut best = Best {
         k,
         max,
-        list: Vec::with_capacity(k.min(index.points().len())),
+        list: SmallVec::with_capacity(k.min(index.points().len())),
     };
     if k == 0 {
         return best.list;
@@ -298,10 +301,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         p: &[S; D],
         max: f64,
     ) -> Result<Option<Neighbor<'_, S, T, D>>, QueryError> {
-        Ok(self
-            .k_nearest_by(p, 1, max, &SquaredEuclidean)?
-            .into_iter()
-            .next())
+        SpatialIndex::nearest_by(self, p, max, &SquaredEuclidean)
     }
 
     /// The `k` nearest points to `p` (squared Euclidean), sorted by distance, ties by index in
