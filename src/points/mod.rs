@@ -369,8 +369,8 @@ fn digit<const D: usize>(key: u64, level: u8) -> usize {
     ((key >> shift) as usize) & (Dim::<D>::CHILDREN - 1)
 }
 
-/// Runs up to this long are partitioned by counting their digits, longer ones by a binary search
-/// per child. Counting is branch-free and reads the run in order.
+/// Runs up to this long are partitioned in one pass over their digits, longer ones by a binary
+/// search per child. The pass is branch-free and reads the run in order.
 const LINEAR_PARTITION: u32 = 512;
 
 /// Gives each child of the just-split node `v` its part of `v`'s run `(s, e)`, which is sorted
@@ -384,14 +384,17 @@ fn partition_children<const D: usize>(
 ) {
     let level = tree.level(v);
     if e - s <= LINEAR_PARTITION {
-        // Short runs: count the digits in one branch-free pass (2^D <= 256 children).
-        let mut ends = [0u32; 256];
+        // Short runs: one pass in which each point sets the end of its digit's part to just
+        // after itself. The digits are sorted, so the last write is the part's end; plain stores
+        // (2^D <= 256 children), where counting would chain each increment to the one before.
+        let mut ends = [s; 256];
         for i in s..e {
-            ends[digit::<D>(key(i as usize), level)] += 1;
+            ends[digit::<D>(key(i as usize), level)] = i + 1;
         }
+        // A child without points ends where the one before it does.
         let mut at = s;
-        let ends = ends[..Dim::<D>::CHILDREN].iter().map(|&count| {
-            at += count;
+        let ends = ends[..Dim::<D>::CHILDREN].iter().map(|&end| {
+            at = at.max(end);
             at
         });
         runs.set_children(tree, v, s, ends);
