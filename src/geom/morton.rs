@@ -16,24 +16,9 @@
 #[inline]
 pub fn interleave<const D: usize>(coords: [u32; D], bits: u32) -> u64 {
     debug_assert!(bits as usize * D <= 64);
-    match D {
-        1 => mask(coords[0] as u64, bits),
-        2 => spread2(mask(coords[0] as u64, bits)) | (spread2(mask(coords[1] as u64, bits)) << 1),
-        3 => {
-            spread3(mask(coords[0] as u64, bits))
-                | (spread3(mask(coords[1] as u64, bits)) << 1)
-                | (spread3(mask(coords[2] as u64, bits)) << 2)
-        }
-        _ => {
-            let mut key = 0u64;
-            for j in 0..bits {
-                for (a, &c) in coords.iter().enumerate() {
-                    key |= (((c >> j) & 1) as u64) << (j as usize * D + a);
-                }
-            }
-            key
-        }
-    }
+    coords.iter().enumerate().fold(0, |key, (a, &c)| {
+        key | spread::<D>(mask(c as u64, bits)) << a
+    })
 }
 
 /// The low `64 / D` bits of `v` spread to every `D`-th bit from bit 0 (for D = 1, `v` itself):
