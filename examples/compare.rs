@@ -276,36 +276,39 @@ fn run<const D: usize>(
     // k-nearest.
     for k in [1usize, 10, 100] {
         let nz = NonZeroUsize::new(k).unwrap();
-        let (t_ours, ours) = time(a.reps, || {
-            let mut sum = 0.0;
+        // Both read each answer's item, as a caller would (kiddo copies it into its answer; a
+        // tie may give another item, so only the distances are compared).
+        let (t_ours, (ours, _)) = time(a.reps, || {
+            let (mut sum, mut items) = (0.0, 0u64);
             for q in queries {
                 if k == 1 {
-                    sum += tree.nearest(q).unwrap().map_or(0.0, |nn| nn.distance);
+                    let nn = tree.nearest(q).unwrap().unwrap();
+                    sum += nn.distance;
+                    items = items.wrapping_add(*nn.item);
                 } else {
-                    sum += tree
-                        .k_nearest(q, k)
-                        .unwrap()
-                        .iter()
-                        .map(|nn| nn.distance)
-                        .sum::<f64>();
+                    for nn in tree.k_nearest(q, k).unwrap() {
+                        sum += nn.distance;
+                        items = items.wrapping_add(*nn.item);
+                    }
                 }
             }
-            sum
+            (sum, items)
         });
-        let (t_kiddo, theirs) = time(a.reps, || {
-            let mut sum = 0.0;
+        let (t_kiddo, (theirs, _)) = time(a.reps, || {
+            let (mut sum, mut items) = (0.0, 0u64);
             for q in queries {
                 if k == 1 {
-                    sum += kd.nearest_one::<KiddoSq>(q).distance;
+                    let nn = kd.nearest_one::<KiddoSq>(q);
+                    sum += nn.distance;
+                    items = items.wrapping_add(nn.item);
                 } else {
-                    sum += kd
-                        .nearest_n::<KiddoSq>(q, nz)
-                        .iter()
-                        .map(|nn| nn.distance)
-                        .sum::<f64>();
+                    for nn in kd.nearest_n::<KiddoSq>(q, nz) {
+                        sum += nn.distance;
+                        items = items.wrapping_add(nn.item);
+                    }
                 }
             }
-            sum
+            (sum, items)
         });
         let (t_rstar, _) = time(a.reps, || {
             let mut sum = 0.0;

@@ -4,7 +4,9 @@
 //! distances and on half-space boundaries, with many duplicates; D = 1, 2, 3; f64, f32 and i32.
 //! Plus empty trees, k > n, bad input, the untested inside cells, and exercise 14.13's worst case.
 
-use orthtree::query::{Chebyshev, Manhattan, Metric, QueryError, SquaredEuclidean};
+use orthtree::query::{
+    Chebyshev, Manhattan, Metric, PointNode, QueryError, SpatialIndex, SquaredEuclidean,
+};
 use orthtree::{Aabb, Ball, HalfSpace, PointTree, Quadtree, Region, Relation, Scalar};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
@@ -474,4 +476,68 @@ fn ball_surface_and_plane_boundary_are_closed() {
         idx[1..].windows(2).all(|w| w[0] < w[1]),
         "ties by index: {idx:?}"
     );
+}
+
+/// The child of `node` with the nearest box, the first of equals: what
+/// `SpatialIndex::nearest_child` promises.
+fn nearest_child_by_boxes<M: Metric<D>, const D: usize>(
+    t: &PointTree<f64, usize, D>,
+    node: PointNode<D>,
+    bbox: &Aabb<f64, D>,
+    q: &[f64; D],
+    metric: &M,
+) -> Option<(PointNode<D>, Aabb<f64, D>)> {
+    let mut next: Option<(f64, PointNode<D>, Aabb<f64, D>)> = None;
+    t.for_each_child_in(node, bbox, |child, cb| {
+        let d = metric.box_distance(q, cb);
+        if next.as_ref().is_none_or(|n| d < n.0) {
+            next = Some((d, child, *cb));
+        }
+    });
+    next.map(|(_, child, cb)| (child, cb))
+}
+
+/// Walks down from the root by `nearest_child`, checking each step under `metric`.
+fn check_nearest_child_walk<M: Metric<D>, const D: usize>(
+    points: &[[f64; D]],
+    bucket: usize,
+    q: &[f64; D],
+    metric: &M,
+) {
+    let entries: Vec<([f64; D], usize)> = points.iter().enumerate().map(|(i, p)| (*p, i)).collect();
+    let t = PointTree::builder()
+        .bucket_size(bucket)
+        .build(&entries)
+        .unwrap();
+    let Some((mut node, mut bbox)) = t.root() else {
+        return;
+    };
+    loop {
+        let fast = t.nearest_child(node, &bbox, q, metric);
+        assert_eq!(fast, nearest_child_by_boxes(&t, node, &bbox, q, metric));
+        match fast {
+            Some((child, cb)) => (node, bbox) = (child, cb),
+            None => break,
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(config(64, 105))]
+    /// The point tree finds the child holding the query by comparing with the split lines;
+    /// queries on split lines, in empty children and outside the root box get the child the
+    /// box distances give (under Chebyshev, outside the box, equally near children abound).
+    #[test]
+    fn nearest_child_agrees_with_box_distances(
+        points2 in prop::collection::vec(grid_point::<2>(), 0..200),
+        points3 in prop::collection::vec(grid_point::<3>(), 0..200),
+        bucket in 1usize..4,
+        q2 in proptest::array::uniform2((-4i32..=20).prop_map(|j| j as f64 / 8.0)),
+        q3 in proptest::array::uniform3((-4i32..=20).prop_map(|j| j as f64 / 8.0)),
+    ) {
+        check_nearest_child_walk(&points2, bucket, &q2, &SquaredEuclidean);
+        check_nearest_child_walk(&points3, bucket, &q3, &SquaredEuclidean);
+        check_nearest_child_walk(&points2, bucket, &q2, &Chebyshev);
+        check_nearest_child_walk(&points3, bucket, &q3, &Chebyshev);
+    }
 }

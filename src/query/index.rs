@@ -76,6 +76,22 @@ pub trait SpatialIndex<const D: usize> {
         self.for_each_child(node, f)
     }
 
+    /// The child of `node` (whose closed box `bbox` the caller holds) to search first for
+    /// points near `q`: the non-empty child whose box is nearest under `metric`, the first of
+    /// equals, with its box; `None` for a leaf. The nearest-neighbour engines walk these down
+    /// from the root to seed their bound. The default bounds every child; an index that can
+    /// tell the child holding `q` directly may override it, returning the same child.
+    #[inline]
+    fn nearest_child<M: Metric<D>>(
+        &self,
+        node: Self::Node,
+        bbox: &Aabb<f64, D>,
+        q: &[f64; D],
+        metric: &M,
+    ) -> Option<(Self::Node, Aabb<f64, D>)> {
+        nearest_child_by_boxes(self, node, bbox, q, metric)
+    }
+
     /// The points in `region` with their items, lazily: the range engine
     /// ([`PointTree::query`]'s) on this index.
     fn query<R: Region<D>>(&self, region: R) -> Result<RegionIter<'_, Self, R, D>, QueryError>
@@ -175,6 +191,25 @@ pub trait SpatialIndex<const D: usize> {
     }
 }
 
+/// [`SpatialIndex::nearest_child`] by bounding every child: the first child whose box is nearest.
+#[inline]
+fn nearest_child_by_boxes<I: SpatialIndex<D> + ?Sized, M: Metric<D>, const D: usize>(
+    index: &I,
+    node: I::Node,
+    bbox: &Aabb<f64, D>,
+    q: &[f64; D],
+    metric: &M,
+) -> Option<(I::Node, Aabb<f64, D>)> {
+    let mut next: Option<(f64, I::Node, Aabb<f64, D>)> = None;
+    index.for_each_child_in(node, bbox, |child, cb| {
+        let d = metric.box_distance(q, cb);
+        if next.as_ref().is_none_or(|n| d < n.0) {
+            next = Some((d, child, *cb));
+        }
+    });
+    next.map(|(_, child, cb)| (child, cb))
+}
+
 /// A node of a [`PointTree`] as the query engines see it: its id, its cell and its run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PointNode<const D: usize> {
@@ -231,6 +266,54 @@ impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointTree<S, T, D> {
     ) -> bool {
         let bbox = self.geometry().cell_box(&node.cell);
         self.for_each_child_in(node, &bbox, f)
+    }
+
+    /// When `q` lies in the node's closed box, the child holding it is the nearest (distance 0)
+    /// and the first of those at 0 is the one the split convention gives `q` (a coordinate on a
+    /// split line goes to the lower child): one comparison per axis instead of a box distance
+    /// per child. Otherwise, or when that child is empty, the default.
+    #[inline]
+    fn nearest_child<M: Metric<D>>(
+        &self,
+        node: PointNode<D>,
+        bbox: &Aabb<f64, D>,
+        q: &[f64; D],
+        metric: &M,
+    ) -> Option<(PointNode<D>, Aabb<f64, D>)> {
+        let first = self.tree().child(node.id, 0)?;
+        if bbox.contains(q) {
+            let g = self.geometry();
+            let level = node.cell.level() + 1;
+            let c = node.cell.coords();
+            let mut child = Aabb { ..*bbox };
+            let mut i = 0;
+            for a in 0..D {
+                let mid = g.boundary(a, 2 * c[a] as u64 + 1, level);
+                if q[a] > mid {
+                    i |= 1 << a;
+                    child.min[a] = mid;
+                } else {
+                    child.max[a] = mid;
+                }
+            }
+            let ends = self.runs().block::<D>(first);
+            let start = node.start + if i == 0 { 0 } else { ends[i - 1] };
+            let end = node.start + ends[i];
+            if start < end {
+                let id = NodeId(first.0 + i as u32);
+                let cell = node.cell.child(i);
+                return Some((
+                    PointNode {
+                        id,
+                        cell,
+                        start,
+                        end,
+                    },
+                    child,
+                ));
+            }
+        }
+        nearest_child_by_boxes(self, node, bbox, q, metric)
     }
 
     #[inline]

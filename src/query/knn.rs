@@ -6,12 +6,14 @@
 //! stack; skip it if its box's lower bound exceeds the `k`-th distance (or the maximum distance
 //! while fewer than `k` are known); scan a leaf's run; push an internal node's children farthest
 //! first, so the nearest box is searched first and tightens the bound soonest. Before that, one
-//! walk down the nearest child at every level scans the node around the query and seeds the
-//! bound; the search then backtracks along that walk, deepest level first, stacking only the
-//! children beside it that can still hold a neighbour, and stops going up once the ball of the
-//! bound lies inside the box walked through. Any node of at most `SCAN` points is scanned as a
-//! leaf (its run is contiguous), as kd-trees scan buckets; for k = 1 the scan keeps the run's
-//! nearest point without a branch per point.
+//! walk down the nearest child at every level ([`SpatialIndex::nearest_child`]; the point tree
+//! compares the query with the split lines instead of bounding every child: 10^5 1-NN queries
+//! on 10^6 uniform points, 2D 59 -> 47 ms, 3D 101 -> 81 ms) scans the node around the query and
+//! seeds the bound; the search then backtracks along that walk, deepest level first, stacking
+//! only the children beside it that can still hold a neighbour, and stops going up once the
+//! ball of the bound lies inside the box walked through. Any node of at most `SCAN` points is
+//! scanned as a leaf (its run is contiguous), as kd-trees scan buckets; for k = 1 the scan keeps
+//! the run's nearest point without a branch per point.
 //!
 //! Ties are broken by index in [`PointTree::points`] (Morton order): the answer is exactly the
 //! first `k` of all points within the maximum distance sorted by `(distance, index)`. A box whose
@@ -127,18 +129,11 @@ pub(crate) fn k_nearest<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
     let scan_run = |best: &mut Best, run: core::ops::Range<usize>, mut bound: f64| {
         let start = run.start;
         if k == 1 {
-            // Only the run's nearest point can be offered: find it without a branch per point
-            // (strictly nearer replaces, so the first of equals wins, as ties want).
-            let (mut near, mut at) = (f64::INFINITY, 0);
-            for (j, p) in points[run.clone()].iter().enumerate() {
-                let d = metric.distance(q, &p.map(Scalar::to_f64));
-                let nearer = d < near;
-                near = if nearer { d } else { near };
-                at = if nearer { j } else { at };
-            }
-            if !run.is_empty() && near <= bound {
-                best.offer(near, start + at);
-                bound = best.bound();
+            if let Some((near, at)) = nearest_in(&points[run.clone()], q, metric) {
+                if near <= bound {
+                    best.offer(near, start + at);
+                    bound = best.bound();
+                }
             }
             return bound;
         }
@@ -161,20 +156,23 @@ pub(crate) fn k_nearest<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
         loop {
             path.push((node, nb));
             let run = index.run(node);
-            let mut next: Option<(f64, I::Node, Aabb<f64, D>)> = None;
-            let internal = run.len() > SCAN
-                && index.for_each_child_in(node, &nb, |child, cb| {
-                    let d = metric.box_distance(q, cb);
-                    if next.as_ref().is_none_or(|n| d < n.0) {
-                        next = Some((d, child, *cb));
-                    }
-                });
+            let next = if run.len() > SCAN {
+                index.nearest_child(node, &nb, q, metric)
+            } else {
+                None
+            };
             match next {
-                Some((_, child, cb)) if internal => (node, nb) = (child, cb),
-                _ => break run,
+                Some((child, cb)) => (node, nb) = (child, cb),
+                None => break run,
             }
         }
     };
+    // Ask for the seeded run's points at once, rather than miss after miss as the scan walks
+    // them, and for its items, which the caller reads and which sit in another array (most
+    // answers come from this run). A/B, 10^5 1-NN queries reading the item, 10^6 uniform
+    // points, medians: 2D 60.7 -> 50.3 ms, 3D 109 -> 89 ms.
+    prefetch_run(points, seeded.clone());
+    prefetch_run(index.items(), seeded.clone());
     let first = best.bound();
     let mut bound = scan_run(&mut best, seeded, first);
     let mut stack: Pending<I::Node, D> = SmallVec::new();
@@ -212,6 +210,26 @@ pub(crate) fn k_nearest<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
         }
     }
     best.list
+}
+
+/// The nearest of `points` to `q` (its distance and position), the first of equals; `None` for
+/// no point. Without a branch per point: strictly nearer replaces. (Four interleaved running
+/// minima, to break the chain of compare and select through every point, measured 1.2x
+/// slower: 2D 1-NN 41 -> 51 ms, 3D 71 -> 85.)
+#[inline(always)]
+fn nearest_in<S: Scalar, M: Metric<D>, const D: usize>(
+    points: &[[S; D]],
+    q: &[f64; D],
+    metric: &M,
+) -> Option<(f64, usize)> {
+    let (mut near, mut at) = (f64::INFINITY, 0);
+    for (j, p) in points.iter().enumerate() {
+        let d = metric.distance(q, &p.map(Scalar::to_f64));
+        let nearer = d < near;
+        near = if nearer { d } else { near };
+        at = if nearer { j } else { at };
+    }
+    (!points.is_empty()).then_some((near, at))
 }
 
 /// Pushes `child` (with its box `cb`) on `stack` when its box is within `bound` of `q`, keeping
