@@ -285,7 +285,7 @@ impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointTree<S, T, D> {
             let g = self.geometry();
             let level = node.cell.level() + 1;
             let c = node.cell.coords();
-            let mut child = Aabb { ..*bbox };
+            let mut child = *bbox;
             let mut i = 0;
             for a in 0..D {
                 let mid = g.boundary(a, 2 * c[a] as u64 + 1, level);
