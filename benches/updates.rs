@@ -5,6 +5,8 @@
 //!   then 1000 `remove`s of them (the tree is the same after every iteration); time per element
 //!   is one insert plus one remove. Each moves the points after its position (`update.rs`), so
 //!   it grows with n.
+//! - `updates/{dist}/dynamic/{n}`: the same on a `DynamicPointTree` (leaves in chunks with
+//!   slack): amortised O(depth), flat in n.
 //! - `updates/{dist}/extend/{n}`: one `extend_from_vec` of n / 10 new points (at least 1000)
 //!   into a clone of the tree, the clone not timed; time per inserted point
 //!   (`batch_update.rs`: one merge and one cut).
@@ -20,7 +22,7 @@ use std::time::Duration;
 
 use common::Distribution;
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
-use orthtree::{Aabb, PointTree};
+use orthtree::{Aabb, DynamicPointTree, PointTree};
 
 const SIZES: [usize; 4] = [1_000, 10_000, 100_000, 1_000_000];
 const BATCH: usize = 1000;
@@ -51,6 +53,17 @@ fn bench(c: &mut Criterion) {
                     }
                     for (i, q) in extra[..BATCH].iter().enumerate() {
                         black_box(tree.remove(q, &(i as u32)));
+                    }
+                })
+            });
+            let mut dynamic = DynamicPointTree::from(tree.clone());
+            g.bench_function(format!("dynamic/{n}"), |b| {
+                b.iter(|| {
+                    for (i, q) in extra[..BATCH].iter().enumerate() {
+                        dynamic.insert(*q, i as u32).unwrap();
+                    }
+                    for (i, q) in extra[..BATCH].iter().enumerate() {
+                        black_box(dynamic.remove(q, &(i as u32)));
                     }
                 })
             });

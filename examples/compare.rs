@@ -9,6 +9,13 @@
 //! cargo run --release --example compare -- --dim 3 --workload clustered   # one slice of it
 //! ```
 //!
+//! Then single updates, uniform points: `--queries` inserts of new points into a tree of N, then
+//! their removals, in microseconds per insert + remove, for orthtree's `PointTree` (dense runs:
+//! each update moves the points after it, so 1000 updates only), its `DynamicPointTree` (leaves
+//! in chunks with slack, amortised O(depth)), kiddo's mutable `KdTree` and rstar's `RTree`; and
+//! what the dynamic layout costs the queries (10-nearest and box, as above, against the
+//! `PointTree` holding the same points).
+//!
 //! With `--parallel` (feature `rayon`) it also prints the speed-up of `par_build` over `build`
 //! and of the batch `par_k_nearest` (k = 10) over one `k_nearest` call per query, on uniform
 //! points, with all of rayon's threads.
@@ -27,7 +34,7 @@ mod common;
 use common::Distribution;
 use kiddo::immutable::float::kdtree::ImmutableKdTree;
 use kiddo::SquaredEuclidean as KiddoSq;
-use orthtree::{Aabb, Ball, PointTree};
+use orthtree::{Aabb, Ball, DynamicPointTree, PointTree};
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
 use rstar::{RTree, AABB};
@@ -419,6 +426,18 @@ fn main() {
             ratio(r)
         );
     }
+    println!(
+        "\nsingle updates, uniform points: {} inserts into a tree of {} then their removals, median of {} runs, microseconds per insert + remove (PointTree: 1000 of each)\n",
+        a.queries, a.n, a.reps
+    );
+    println!("| dimension | PointTree | DynamicPointTree | kiddo KdTree | rstar RTree | DynamicPointTree / best rival |");
+    println!("| --- | ---: | ---: | ---: | ---: | ---: |");
+    if a.dim != Some(3) {
+        updates::<2>(&a);
+    }
+    if a.dim != Some(2) {
+        updates::<3>(&a);
+    }
     #[cfg(feature = "rayon")]
     if a.parallel {
         println!(
@@ -470,5 +489,131 @@ fn parallel<const D: usize>(a: &Args) {
     println!(
         "| uniform {D}D | 10-nearest | {serial:.1} | {par:.1} | {:.2} |",
         serial / par
+    );
+}
+
+/// Single inserts then removes of `--queries` new uniform points into trees of N: one row of
+/// microseconds per insert + remove; then the dynamic tree's 10-nearest and box queries beside
+/// the point tree's on the same points.
+fn updates<const D: usize>(a: &Args) {
+    let points = common::uniform::<D>(a.n, 1);
+    let new = common::uniform::<D>(a.queries, 5);
+    let entries: Vec<([f64; D], u64)> = points
+        .iter()
+        .enumerate()
+        .map(|(i, &p)| (p, i as u64))
+        .collect();
+    let root = Aabb::new([0.0; D], [1.0; D]).unwrap();
+    let built = PointTree::builder().root_box(root).build(&entries).unwrap();
+    let per_op = |ms: f64, ops: usize| ms * 1e3 / ops as f64;
+    let few = new.len().min(1000);
+    let mut dense = built.clone();
+    let (t_dense, _) = time(a.reps, || {
+        for (i, p) in new[..few].iter().enumerate() {
+            dense.insert(*p, i as u64).unwrap();
+        }
+        new[..few]
+            .iter()
+            .enumerate()
+            .filter(|&(i, p)| dense.remove(p, &(i as u64)))
+            .count()
+    });
+    let mut dynamic = DynamicPointTree::from(built.clone());
+    let (t_dynamic, _) = time(a.reps, || {
+        for (i, p) in new.iter().enumerate() {
+            dynamic.insert(*p, i as u64).unwrap();
+        }
+        new.iter()
+            .enumerate()
+            .filter(|&(i, p)| dynamic.remove(p, &(i as u64)))
+            .count()
+    });
+    let mut kiddo: kiddo::KdTree<f64, D> = kiddo::KdTree::with_capacity(a.n + new.len());
+    for (p, i) in &entries {
+        kiddo.add(p, *i);
+    }
+    let (t_kiddo, _) = time(a.reps, || {
+        for (i, p) in new.iter().enumerate() {
+            kiddo.add(p, (a.n + i) as u64);
+        }
+        new.iter()
+            .enumerate()
+            .map(|(i, p)| kiddo.remove(p, (a.n + i) as u64))
+            .sum::<usize>()
+    });
+    type Entry<const D: usize> = rstar::primitives::GeomWithData<[f64; D], u64>;
+    let mut rtree: RTree<Entry<D>> =
+        RTree::bulk_load(entries.iter().map(|&(p, i)| Entry::new(p, i)).collect());
+    let (t_rstar, _) = time(a.reps, || {
+        for (i, p) in new.iter().enumerate() {
+            rtree.insert(Entry::new(*p, (a.n + i) as u64));
+        }
+        new.iter()
+            .enumerate()
+            .filter(|&(i, p)| rtree.remove(&Entry::new(*p, (a.n + i) as u64)).is_some())
+            .count()
+    });
+    let (ours, k, r) = (
+        per_op(t_dynamic, new.len()),
+        per_op(t_kiddo, new.len()),
+        per_op(t_rstar, new.len()),
+    );
+    println!(
+        "| {D}D | {:.2} | {ours:.2} | {k:.2} | {r:.2} | {:.2} |",
+        per_op(t_dense, few),
+        ours / k.min(r)
+    );
+    // What the chunks cost the queries: the dynamic tree after the updates against the point
+    // tree, both holding the same points.
+    let queries = common::uniform::<D>(a.queries, 2);
+    let sum_knn = |f: &dyn Fn(&[f64; D]) -> u64| queries.iter().map(f).sum::<u64>();
+    let (t_pk, s1) = time(a.reps, || {
+        sum_knn(&|q| {
+            built
+                .k_nearest(q, 10)
+                .unwrap()
+                .iter()
+                .map(|n| *n.item)
+                .sum()
+        })
+    });
+    let (t_dk, s2) = time(a.reps, || {
+        sum_knn(&|q| {
+            dynamic
+                .k_nearest(q, 10)
+                .unwrap()
+                .iter()
+                .map(|n| *n.item)
+                .sum()
+        })
+    });
+    assert_eq!(s1, s2);
+    let side = (100.0 / a.n as f64).powf(1.0 / D as f64);
+    let boxes: Vec<Aabb<f64, D>> = queries
+        .iter()
+        .map(|q| Aabb::new(q.map(|x| x - side / 2.0), q.map(|x| x + side / 2.0)).unwrap())
+        .collect();
+    let (t_pb, b1) = time(a.reps, || {
+        boxes
+            .iter()
+            .map(|b| built.in_box(b).unwrap().map(|(_, &i)| i).sum::<u64>())
+            .sum::<u64>()
+    });
+    let (t_db, b2) = time(a.reps, || {
+        boxes
+            .iter()
+            .map(|b| dynamic.in_box(b).unwrap().map(|(_, &i)| i).sum::<u64>())
+            .sum::<u64>()
+    });
+    assert_eq!(b1, b2);
+    eprintln!(
+        "{D}D queries after the updates, ms: 10-nearest PointTree {t_pk:.1}, DynamicPointTree {t_dk:.1} ({:.2}x); box PointTree {t_pb:.1}, DynamicPointTree {t_db:.1} ({:.2}x)",
+        t_dk / t_pk,
+        t_db / t_pb
+    );
+    println!(
+        "<!-- {D}D queries: 10-nearest dynamic/point {:.2}, box dynamic/point {:.2} -->",
+        t_dk / t_pk,
+        t_db / t_pb
     );
 }

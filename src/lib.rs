@@ -41,8 +41,8 @@ pub use geom::{
 };
 pub use image::{ImageTree, RegionTree, VoxelTree};
 pub use points::{
-    Leaf, Leaves, Octree, PointTree, PointTreeBuilder, Quadtree, RootGeometry, ValidationError,
-    DEFAULT_BUCKET_SIZE,
+    DynamicPointTree, Leaf, Leaves, Octree, PointTree, PointTreeBuilder, Quadtree, RootGeometry,
+    ValidationError, DEFAULT_BUCKET_SIZE,
 };
 pub use query::{Ball, HalfSpace, Metric, Neighbor, QueryError, Region, Relation, SpatialIndex};
 pub use tree::{BalanceOptions, NodeId, PreOrder, SplitError, Tree};

@@ -6,24 +6,10 @@
 
 mod common;
 
+use common::updates::{apply, coords, initial, op, sorted_pairs, Op};
 use orthtree::{Aabb, Ball, Cell, Error, HalfSpace, PointTree};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
-
-/// One update; coordinates are grid indices 0..=8 on [0, 1] (so many lie on split lines and
-/// many repeat), items are small so (point, item) pairs repeat too.
-#[derive(Clone, Debug)]
-enum Op<const D: usize> {
-    Insert([u8; D], u8),
-    Remove([u8; D], u8),
-    RemovePoint([u8; D]),
-    /// Remove the stored pair at this position of the model (modulo its length).
-    RemoveStored(usize),
-}
-
-fn coords<const D: usize>(g: [u8; D]) -> [f64; D] {
-    g.map(|x| f64::from(x) / 8.0)
-}
 
 type Leaves<const D: usize> = Vec<(Cell<D>, Vec<([u64; D], u8)>)>;
 
@@ -41,15 +27,6 @@ fn leaf_structure<const D: usize>(t: &PointTree<f64, u8, D>) -> Leaves<D> {
             (l.cell, pts)
         })
         .collect()
-}
-
-type Pairs<const D: usize> = Vec<([u64; D], u8)>;
-
-/// Sorted (point bits, item) pairs.
-fn sorted_pairs<'a, const D: usize>(it: impl Iterator<Item = (&'a [f64; D], &'a u8)>) -> Pairs<D> {
-    let mut v: Pairs<D> = it.map(|(p, &i)| (p.map(f64::to_bits), i)).collect();
-    v.sort_unstable();
-    v
 }
 
 /// Box, ball and half-space queries whose boundaries pass through grid points, and k-nearest
@@ -107,39 +84,7 @@ fn run<const D: usize>(
     let mut model: Vec<([f64; D], u8)> = initial.iter().map(|&(g, i)| (coords(g), i)).collect();
     let mut t = b.build(&model).unwrap();
     for op in ops {
-        match op {
-            Op::Insert(g, i) => {
-                t.insert(coords(g), i).unwrap();
-                model.push((coords(g), i));
-            }
-            Op::Remove(g, i) => {
-                let p = coords(g);
-                let at = model.iter().position(|&(q, j)| q == p && j == i);
-                prop_assert_eq!(t.remove(&p, &i), at.is_some());
-                if let Some(at) = at {
-                    model.swap_remove(at);
-                }
-            }
-            Op::RemovePoint(g) => {
-                let p = coords(g);
-                let got = t.remove_point(&p);
-                match got {
-                    Some(i) => {
-                        let at = model.iter().position(|&(q, j)| q == p && j == i);
-                        prop_assert!(at.is_some(), "removed an item not stored at the point");
-                        model.swap_remove(at.unwrap());
-                    }
-                    None => prop_assert!(model.iter().all(|&(q, _)| q != p)),
-                }
-            }
-            Op::RemoveStored(k) => {
-                if model.is_empty() {
-                    continue;
-                }
-                let (p, i) = model.swap_remove(k % model.len());
-                prop_assert!(t.remove(&p, &i));
-            }
-        }
+        apply(&mut t, &mut model, op)?;
         if let Err(e) = t.validate() {
             return Err(TestCaseError::fail(format!("validate: {e}")));
         }
@@ -151,20 +96,6 @@ fn run<const D: usize>(
         check_queries(&t, &model)?;
     }
     Ok(())
-}
-
-fn op<const D: usize>() -> impl Strategy<Value = Op<D>> {
-    let g = || proptest::array::uniform::<_, D>(0u8..=8);
-    prop_oneof![
-        4 => (g(), 0u8..3).prop_map(|(g, i)| Op::Insert(g, i)),
-        1 => (g(), 0u8..3).prop_map(|(g, i)| Op::Remove(g, i)),
-        1 => g().prop_map(Op::RemovePoint),
-        2 => any::<usize>().prop_map(Op::RemoveStored),
-    ]
-}
-
-fn initial<const D: usize>() -> impl Strategy<Value = Vec<([u8; D], u8)>> {
-    proptest::collection::vec((proptest::array::uniform::<_, D>(0u8..=8), 0u8..3), 0..30)
 }
 
 proptest! {

@@ -246,7 +246,7 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
 
 /// `p` as `f64`, or the error naming it (as point `index`) when a coordinate is NaN or infinite,
 /// or outside `root` when one is given.
-pub(super) fn check_point<S: Scalar, const D: usize>(
+pub(crate) fn check_point<S: Scalar, const D: usize>(
     p: &[S; D],
     root: Option<&Aabb<f64, D>>,
     index: usize,

@@ -124,6 +124,37 @@ impl<const D: usize> RootGeometry<D> {
         }
     }
 
+    /// The middle boundary of `cell` on every axis: the sides its children share.
+    #[inline]
+    pub(crate) fn mids(&self, cell: &Cell<D>) -> [f64; D] {
+        let (level, c) = (cell.level() + 1, cell.coords());
+        core::array::from_fn(|a| self.boundary(a, 2 * c[a] as u64 + 1, level))
+    }
+
+    /// The child of `cell` (closed box `bbox`) holding `q` under the split convention (a
+    /// coordinate on a middle boundary goes to the lower child), with its closed box: one
+    /// comparison per axis. `q` is taken to lie in `bbox`.
+    #[inline]
+    pub(crate) fn child_holding(
+        &self,
+        cell: &Cell<D>,
+        bbox: &Aabb<f64, D>,
+        q: &[f64; D],
+    ) -> (usize, Aabb<f64, D>) {
+        let mid = self.mids(cell);
+        let mut child = *bbox;
+        let mut i = 0;
+        for a in 0..D {
+            if q[a] > mid[a] {
+                i |= 1 << a;
+                child.min[a] = mid[a];
+            } else {
+                child.max[a] = mid[a];
+            }
+        }
+        (i, child)
+    }
+
     /// The finest-level cell coordinate of `x` along `axis`: the `j` with `b(j) < x <= b(j + 1)`,
     /// clamped to the root cube (the first cell includes its lower boundary).
     ///
@@ -259,6 +290,33 @@ impl<const D: usize> RootGeometry<D> {
     /// The cell at `level` that holds `point` under the split convention.
     pub fn cell_of(&self, point: &[f64; D], level: u8) -> Cell<D> {
         Cell::from_aligned_key(self.key(point), level)
+    }
+}
+
+/// The closed box of child `i` of a cell with closed box `bbox` and middle boundaries `mid`
+/// ([`RootGeometry::mids`]): the parent's box gives the outer sides exactly
+/// (`boundary(2c, l + 1) == boundary(c, l)`).
+#[inline]
+pub(crate) fn child_box<const D: usize>(
+    bbox: &Aabb<f64, D>,
+    mid: &[f64; D],
+    i: usize,
+) -> Aabb<f64, D> {
+    Aabb {
+        min: core::array::from_fn(|a| {
+            if (i >> a) & 1 == 0 {
+                bbox.min[a]
+            } else {
+                mid[a]
+            }
+        }),
+        max: core::array::from_fn(|a| {
+            if (i >> a) & 1 == 0 {
+                mid[a]
+            } else {
+                bbox.max[a]
+            }
+        }),
     }
 }
 

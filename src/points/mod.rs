@@ -8,6 +8,7 @@
 mod batch_update;
 mod build;
 mod deep_geometry;
+mod dynamic;
 mod geometry;
 mod leaves;
 mod network;
@@ -17,7 +18,12 @@ mod radix;
 mod runs;
 mod update;
 
+pub(crate) use build::check_point;
 pub use build::{PointTreeBuilder, DEFAULT_BUCKET_SIZE};
+pub use dynamic::{
+    DynamicIndex, DynamicNearestIter, DynamicNode, DynamicPointTree, DynamicRegionIter,
+};
+pub(crate) use geometry::child_box;
 pub use geometry::RootGeometry;
 pub use leaves::{Leaf, Leaves};
 
@@ -364,7 +370,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
 
 /// The child index of the cell at `level + 1` holding the point whose finest Morton key is `key`.
 #[inline]
-fn digit<const D: usize>(key: u64, level: u8) -> usize {
+pub(crate) fn digit<const D: usize>(key: u64, level: u8) -> usize {
     let shift = D as u32 * (Cell::<D>::MAX_LEVEL - level - 1) as u32;
     ((key >> shift) as usize) & (Dim::<D>::CHILDREN - 1)
 }

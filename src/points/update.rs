@@ -203,7 +203,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
 
     /// Drops every split (balance's too) and splits again from the root: the tree a fresh build
     /// of the stored points gives. The points keep their order.
-    fn rebuild_canonical(&mut self) {
+    pub(super) fn rebuild_canonical(&mut self) {
         let geometry = self.geometry;
         self.recut(|points, i, _| geometry.scalar_key(&points[i]));
     }

@@ -15,7 +15,7 @@ use super::range::{for_each_in, scan_limit, QueryStats, RegionIter};
 use super::region::Region;
 use super::{check_max, check_point, QueryError};
 use crate::geom::{Aabb, Cell, Scalar};
-use crate::points::PointTree;
+use crate::points::{child_box, PointTree};
 use crate::tree::NodeId;
 use core::ops::Range;
 
@@ -29,7 +29,11 @@ type Neighbors<'a, I, const D: usize> = Vec<NeighborIn<'a, I, D>>;
 /// A tree of closed boxes over one array of points, each node owning a contiguous run of it.
 ///
 /// Contract: the run of a node is the union of its children's runs; every point of a node's run
-/// lies in the node's closed box (as `f64`); a node without children is a leaf.
+/// lies in the node's closed box (as `f64`); a node without children is a leaf. An index whose
+/// leaves keep their points apart (a [`crate::DynamicPointTree`]'s leaves are blocks with
+/// slack, anywhere in its array) sets [`SpatialIndex::NESTED_RUNS`] to `false`: then only
+/// leaves have runs (an inner node's is empty) and [`SpatialIndex::count`] counts a node's
+/// points.
 ///
 /// ```
 /// use orthtree::query::SpatialIndex;
@@ -48,7 +52,13 @@ pub trait SpatialIndex<const D: usize> {
     /// The payload stored with each point.
     type Item;
     /// A handle on a node, small and cheap to copy.
-    type Node: Copy;
+    type Node: Copy + PartialEq;
+
+    /// `true` when every node owns one contiguous run, the union of its children's (the
+    /// engines then scan a small inner node's run without descending, and report an inside
+    /// node's run whole); `false` when only leaves have runs (the engines then descend to the
+    /// leaves). Decided at compile time: the engines' other branch is not generated.
+    const NESTED_RUNS: bool = true;
 
     /// Every point, in the order the runs index.
     fn points(&self) -> &[[Self::Scalar; D]];
@@ -56,8 +66,15 @@ pub trait SpatialIndex<const D: usize> {
     fn items(&self) -> &[Self::Item];
     /// The root and its closed box; `None` when the index holds no point.
     fn root(&self) -> Option<(Self::Node, Aabb<f64, D>)>;
-    /// The indices of the node's points.
+    /// The indices of the node's points (of a leaf's only, when not
+    /// [`SpatialIndex::NESTED_RUNS`]: an inner node's run is then empty).
     fn run(&self, node: Self::Node) -> Range<usize>;
+
+    /// The number of points in the node's subtree; the default is its run's length.
+    #[inline]
+    fn count(&self, node: Self::Node) -> usize {
+        self.run(node).len()
+    }
     /// Calls `f` with every child whose run is not empty, and its closed box; returns `false`
     /// (calling nothing) for a leaf.
     fn for_each_child(&self, node: Self::Node, f: impl FnMut(Self::Node, &Aabb<f64, D>)) -> bool;
@@ -193,7 +210,7 @@ pub trait SpatialIndex<const D: usize> {
 
 /// [`SpatialIndex::nearest_child`] by bounding every child: the first child whose box is nearest.
 #[inline]
-fn nearest_child_by_boxes<I: SpatialIndex<D> + ?Sized, M: Metric<D>, const D: usize>(
+pub(crate) fn nearest_child_by_boxes<I: SpatialIndex<D> + ?Sized, M: Metric<D>, const D: usize>(
     index: &I,
     node: I::Node,
     bbox: &Aabb<f64, D>,
@@ -282,20 +299,7 @@ impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointTree<S, T, D> {
     ) -> Option<(PointNode<D>, Aabb<f64, D>)> {
         let first = self.tree().child(node.id, 0)?;
         if bbox.contains(q) {
-            let g = self.geometry();
-            let level = node.cell.level() + 1;
-            let c = node.cell.coords();
-            let mut child = *bbox;
-            let mut i = 0;
-            for a in 0..D {
-                let mid = g.boundary(a, 2 * c[a] as u64 + 1, level);
-                if q[a] > mid {
-                    i |= 1 << a;
-                    child.min[a] = mid;
-                } else {
-                    child.max[a] = mid;
-                }
-            }
+            let (i, child) = self.geometry().child_holding(&node.cell, bbox, q);
             let ends = self.runs().block::<D>(first);
             let start = node.start + if i == 0 { 0 } else { ends[i - 1] };
             let end = node.start + ends[i];
@@ -326,34 +330,14 @@ impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointTree<S, T, D> {
         let Some(first) = self.tree().child(node.id, 0) else {
             return false;
         };
-        // The parent's box gives the children's outer sides exactly (boundary(2c, l + 1) ==
-        // boundary(c, l)); only the middle boundary on each axis is computed.
-        let g = self.geometry();
-        let level = node.cell.level() + 1;
-        let c = node.cell.coords();
-        let mid: [f64; D] = core::array::from_fn(|a| g.boundary(a, 2 * c[a] as u64 + 1, level));
+        let mid = self.geometry().mids(&node.cell);
         let mut s = node.start;
         for (i, &end) in self.runs().block::<D>(first).iter().enumerate() {
             let e = node.start + end;
             if s == e {
                 continue;
             }
-            let b = Aabb {
-                min: core::array::from_fn(|a| {
-                    if (i >> a) & 1 == 0 {
-                        bbox.min[a]
-                    } else {
-                        mid[a]
-                    }
-                }),
-                max: core::array::from_fn(|a| {
-                    if (i >> a) & 1 == 0 {
-                        mid[a]
-                    } else {
-                        bbox.max[a]
-                    }
-                }),
-            };
+            let b = child_box(bbox, &mid, i);
             f(
                 PointNode {
                     id: NodeId(first.0 + i as u32),

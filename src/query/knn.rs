@@ -155,15 +155,14 @@ pub(crate) fn k_nearest<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
         let (mut node, mut nb) = (root, b);
         loop {
             path.push((node, nb));
-            let run = index.run(node);
-            let next = if run.len() > SCAN {
+            let next = if !I::NESTED_RUNS || index.count(node) > SCAN {
                 index.nearest_child(node, &nb, q, metric)
             } else {
                 None
             };
             match next {
                 Some((child, cb)) => (node, nb) = (child, cb),
-                None => break run,
+                None => break index.run(node),
             }
         }
     };
@@ -185,10 +184,16 @@ pub(crate) fn k_nearest<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
             break;
         }
         let (node, nb) = path[level];
-        // Siblings own disjoint, non-empty runs: the path child is the one starting where it does.
+        // Nested siblings own disjoint, non-empty runs: the path child is the one starting where
+        // it does (cheaper than comparing nodes).
         let skip = index.run(inner).start;
         index.for_each_child_in(node, &nb, |child, cb| {
-            if index.run(child).start != skip {
+            let on_path = if I::NESTED_RUNS {
+                index.run(child).start == skip
+            } else {
+                child == inner
+            };
+            if !on_path {
                 push_nearer(index, points, &mut stack, 0, q, metric, bound, child, cb);
             }
         });
@@ -196,16 +201,15 @@ pub(crate) fn k_nearest<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
             if lower > bound {
                 continue;
             }
-            let run = index.run(node);
             let before = stack.len();
-            let internal = run.len() > SCAN
+            let internal = (!I::NESTED_RUNS || index.count(node) > SCAN)
                 && index.for_each_child_in(node, &b, |child, cb| {
                     push_nearer(
                         index, points, &mut stack, before, q, metric, bound, child, cb,
                     );
                 });
             if !internal {
-                bound = scan_run(&mut best, run, bound);
+                bound = scan_run(&mut best, index.run(node), bound);
             }
         }
     }

@@ -27,15 +27,19 @@ mod metric;
 mod nearest_iter;
 pub mod range;
 mod region;
+mod slotted;
 
 #[cfg(feature = "rayon")]
 pub use batch::BatchError;
+pub(crate) use index::nearest_child_by_boxes;
 pub use index::{PointNode, SpatialIndex};
 pub use knn::Neighbor;
 pub use metric::{Chebyshev, Manhattan, Metric, SquaredEuclidean};
 pub use nearest_iter::NearestIter;
 pub use range::{QueryStats, RegionIter};
 pub use region::{Ball, HalfSpace, Region, Relation};
+pub(crate) use slotted::with_item;
+pub use slotted::{SlotNearestIter, SlotRegionIter};
 
 /// A query the crate refuses, naming what is wrong with it.
 ///

@@ -134,13 +134,15 @@ impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> Iterator for RegionIt
                 continue;
             }
             let (node, b, inside) = self.stack.pop()?;
-            let run = self.index.run(node);
             if inside {
-                self.run = run;
+                if !I::NESTED_RUNS && descend_inside(self.index, &mut self.stack, node, &b) {
+                    continue;
+                }
+                self.run = self.index.run(node);
                 continue;
             }
-            if run.len() <= scan_limit(D) {
-                self.pending = run;
+            if I::NESTED_RUNS && self.index.count(node) <= scan_limit(D) {
+                self.pending = self.index.run(node);
                 continue;
             }
             let (stack, index, region) = (&mut self.stack, self.index, &self.region);
@@ -148,7 +150,7 @@ impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> Iterator for RegionIt
                 push_child(stack, index, region, child, b, scan_limit(D), true);
             });
             if !internal {
-                self.pending = run;
+                self.pending = self.index.run(node);
             }
         }
     }
@@ -209,6 +211,17 @@ fn push_child<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
     stack.push((child, *b, inside));
 }
 
+/// Stacks every child of an inside inner `node` (box `b`) as inside; `false` for a leaf. For an
+/// index without [`SpatialIndex::NESTED_RUNS`], whose inner nodes have no run to report whole.
+fn descend_inside<I: SpatialIndex<D>, const D: usize>(
+    index: &I,
+    stack: &mut Stack<I::Node, D>,
+    node: I::Node,
+    b: &Aabb<f64, D>,
+) -> bool {
+    index.for_each_child_in(node, b, |child, cb| stack.push((child, *cb, true)))
+}
+
 /// Calls `report(i)` for every point index `i` in `region`; returns the work done. A crossing
 /// node with at most `scan` points has them tested without descending (0: only leaves are);
 /// `reads`: whether `report` reads the points and items it is given (see [`push_child`]).
@@ -231,20 +244,24 @@ pub(crate) fn for_each_in<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
     push_child(&mut stack, index, region, root, &b, scan, reads);
     let points = index.points();
     while let Some((node, b, inside)) = stack.pop() {
-        let run = index.run(node);
         if inside {
+            if !I::NESTED_RUNS && descend_inside(index, &mut stack, node, &b) {
+                continue;
+            }
+            let run = index.run(node);
             stats.count += run.len();
             run.for_each(&mut report);
             continue;
         }
         let mut visited = 0;
-        let internal = run.len() > scan
+        let internal = (!I::NESTED_RUNS || index.count(node) > scan)
             && index.for_each_child_in(node, &b, |child, b| {
                 visited += 1;
                 push_child(&mut stack, index, region, child, b, scan, reads);
             });
         stats.nodes_visited += visited;
         if !internal {
+            let run = index.run(node);
             stats.points_tested += run.len();
             for (c, chunk) in points[run.clone()].chunks(CHUNK).enumerate() {
                 let mut mask = contains_mask(region, chunk);

@@ -7,6 +7,7 @@
 #![allow(dead_code)]
 
 pub mod points;
+pub mod updates;
 
 use orthtree::{BalanceOptions, Cell, Connectivity, Direction, NodeId, Tree};
 use rand::rngs::SmallRng;
