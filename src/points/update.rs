@@ -14,9 +14,8 @@
 //! The storage is the bulk build's, unchanged: points and items in one `Vec` each, sorted by
 //! Morton key, each node owning a contiguous run (so `points()`, `node_points` and the runs the
 //! queries read keep their meaning after updates). The tree work of an update is O(depth) node
-//! visits plus O(2^D depth) for the splits or merges it causes, amortised O(depth) (a split or a
-//! merge of a leaf with at most bucket size + 1 points happens only after that many updates in
-//! its cell). The node runs change in O(2^D depth): each node records its run's end relative to
+//! visits plus, for the split or merge it may cause, O(bucket size + 2^D depth). The node runs
+//! change in O(2^D depth): each node records its run's end relative to
 //! its parent's start (`runs.rs`), so only the path and its later siblings move. Keeping the
 //! points contiguous adds one `memmove` of the points and items after the update's position:
 //! O(n) bytes moved, with a small constant, but not O(depth): about 15 us per update at
@@ -29,10 +28,11 @@
 //! in key order in an array of O(n) slots costs Θ(log² n) amortised moves per insert (a packed
 //! memory array meets it; Bulánek, Koucký and Saks, "Tight lower bounds for the online labeling
 //! problem", STOC 2012, show no array layout does better), and a gap needs a placeholder item,
-//! which a generic `T` (no `Default`, no `unsafe`) does not have. [`crate::CompressedTree`] gives
-//! O(depth) updates with the same queries: its points sit in slots in insertion order, and the
-//! Morton-ordered view its queries read is rebuilt (O(n), in two linear passes) at the first
-//! query after a batch of updates, which suits many updates between queries.
+//! which a generic `T` (no `Default`, no `unsafe`) does not have. For single updates between
+//! queries, convert to a [`crate::DynamicPointTree`] (`DynamicPointTree::from(tree)`): the same
+//! shape and queries, its leaves in chunks with slack and its items apart in slots, so that an
+//! update costs amortised O(depth) (0.4-0.6 us per insert and remove together at 10^6 points,
+//! `examples/compare.rs`).
 //!
 //! # Rules
 //! - The root box is fixed at build time: the given root box, or the enclosing cube of the first

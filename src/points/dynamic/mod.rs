@@ -18,17 +18,21 @@
 //! exactly when it holds more than the bucket size and is above the maximum depth.
 //!
 //! # Cost
-//! An insert descends to its leaf (O(depth), counting), appends to the leaf's chunk (O(1), or a
-//! move of the chunk to one twice its size: amortised O(1)), and splits the leaf while it is over
-//! the bucket size, which happens only after `bucket size` inserts into its cell (amortised
-//! O(2^D + bucket size / bucket size) = O(1) per insert; the new children get chunks of their
-//! own). A remove descends, takes the entry out (the chunk's last entry fills the hole; a chunk
-//! under a quarter full moves to one half its size), and merges the shallowest ancestor left
-//! with at most the bucket size into one leaf, again at most once per `bucket size` updates in
-//! a cell. Freed chunks are reused by size; once the free space exceeds the live space, the
-//! whole array is laid out again leaf by leaf in Morton order (O(n), after Ω(n) freed entries:
-//! amortised O(1)). Altogether O(depth) amortised per update, O(2^D depth) with merges' walks
-//! of a subtree.
+//! With the bucket size B and the dimension D fixed, every update costs amortised O(depth):
+//! - an insert descends to its leaf (O(depth), counting) and appends to the leaf's chunk: O(1),
+//!   or, when the chunk is full, a move to one twice its size (amortised O(1), as in a growing
+//!   `Vec`). A leaf then over B splits, its B + 1 entries going to chunks of its children, and
+//!   again below while they all fall in one child: O(B + 2^D depth) at worst;
+//! - a remove descends, takes the entry out (the chunk's last entry fills the hole; a chunk
+//!   under a quarter full moves to a smaller one, amortised O(1)), and merges the shallowest
+//!   ancestor left with B points into one leaf: O(B + 2^D depth) at worst;
+//! - freed chunks are reused by size; once the free space exceeds the live space, the whole
+//!   array is laid out again leaf by leaf in Morton order (O(n), after Ω(n) freed entries:
+//!   amortised O(1)).
+//!
+//! The shape cannot lag behind (it must be a fresh build's at every step), so inserting and
+//! removing one point at a cell holding B points splits and merges each time: O(B) per update,
+//! independent of n.
 //!
 //! # Queries
 //! The index ([`DynamicIndex`]) is a [`SpatialIndex`] without nested runs
@@ -38,9 +42,11 @@
 //! position in [`DynamicPointTree::items`]); k-nearest ties go by position in the chunk array
 //! (Morton order after a build or a compaction; deterministic for a given sequence of calls).
 //!
-//! Memory: per point, the point twice at most (a chunk is at least a quarter full, the array
-//! at most about twice its live chunks) plus 4 bytes of slot and 4 of position; per node 12
-//! bytes (count, chunk start and size).
+//! Memory, per point: the point and a 4-byte slot per chunk entry, and a 4-byte position. A
+//! build (and a compaction) leaves one entry per point; updates leave chunks between a quarter
+//! full and full (at most twice the entries once they have grown by inserts) and at most as
+//! many free entries as live ones. Per node: 12 bytes (count, chunk start and size) beside the
+//! topology.
 
 mod index;
 mod pool;
