@@ -208,6 +208,18 @@ pub trait SpatialIndex<const D: usize> {
     }
 }
 
+/// Whether the engines scan `node`'s run whole rather than descend: its run is contiguous
+/// ([`SpatialIndex::NESTED_RUNS`]) and holds at most `limit` points. (A leaf is scanned
+/// either way.)
+#[inline(always)]
+pub(crate) fn scans_whole<I: SpatialIndex<D>, const D: usize>(
+    index: &I,
+    node: I::Node,
+    limit: usize,
+) -> bool {
+    I::NESTED_RUNS && index.count(node) <= limit
+}
+
 /// [`SpatialIndex::nearest_child`] by bounding every child: the first child whose box is nearest.
 #[inline]
 pub(crate) fn nearest_child_by_boxes<I: SpatialIndex<D> + ?Sized, M: Metric<D>, const D: usize>(

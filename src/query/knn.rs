@@ -19,7 +19,7 @@
 //! first `k` of all points within the maximum distance sorted by `(distance, index)`. A box whose
 //! bound equals the `k`-th distance is still searched, so a tie cannot be lost.
 
-use super::index::SpatialIndex;
+use super::index::{scans_whole, SpatialIndex};
 use super::metric::{Metric, SquaredEuclidean};
 use super::QueryError;
 use crate::geom::{Aabb, Scalar};
@@ -155,7 +155,7 @@ pub(crate) fn k_nearest<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
         let (mut node, mut nb) = (root, b);
         loop {
             path.push((node, nb));
-            let next = if !I::NESTED_RUNS || index.count(node) > SCAN {
+            let next = if !scans_whole(index, node, SCAN) {
                 index.nearest_child(node, &nb, q, metric)
             } else {
                 None
@@ -184,16 +184,8 @@ pub(crate) fn k_nearest<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
             break;
         }
         let (node, nb) = path[level];
-        // Nested siblings own disjoint, non-empty runs: the path child is the one starting where
-        // it does (cheaper than comparing nodes).
-        let skip = index.run(inner).start;
         index.for_each_child_in(node, &nb, |child, cb| {
-            let on_path = if I::NESTED_RUNS {
-                index.run(child).start == skip
-            } else {
-                child == inner
-            };
-            if !on_path {
+            if child != inner {
                 push_nearer(index, points, &mut stack, 0, q, metric, bound, child, cb);
             }
         });
@@ -202,7 +194,7 @@ pub(crate) fn k_nearest<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
                 continue;
             }
             let before = stack.len();
-            let internal = (!I::NESTED_RUNS || index.count(node) > SCAN)
+            let internal = !scans_whole(index, node, SCAN)
                 && index.for_each_child_in(node, &b, |child, cb| {
                     push_nearer(
                         index, points, &mut stack, before, q, metric, bound, child, cb,

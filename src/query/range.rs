@@ -33,7 +33,7 @@
 //! `O(sqrt n + k)`; a quadtree's depth is bounded by the spread of the points (Lemma 14.1), not by
 //! their number.
 
-use super::index::SpatialIndex;
+use super::index::{scans_whole, SpatialIndex};
 use super::region::{Ball, HalfSpace, Region, Relation};
 use super::QueryError;
 use crate::geom::{Aabb, Scalar};
@@ -141,7 +141,7 @@ impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> Iterator for RegionIt
                 self.run = self.index.run(node);
                 continue;
             }
-            if I::NESTED_RUNS && self.index.count(node) <= scan_limit(D) {
+            if scans_whole(self.index, node, scan_limit(D)) {
                 self.pending = self.index.run(node);
                 continue;
             }
@@ -254,7 +254,7 @@ pub(crate) fn for_each_in<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
             continue;
         }
         let mut visited = 0;
-        let internal = (!I::NESTED_RUNS || index.count(node) > scan)
+        let internal = !scans_whole(index, node, scan)
             && index.for_each_child_in(node, &b, |child, b| {
                 visited += 1;
                 push_child(&mut stack, index, region, child, b, scan, reads);

@@ -45,18 +45,13 @@ impl<S: Scalar, T, const D: usize> DynamicPointTree<S, T, D> {
         if slot + 1 >= u32::MAX as usize {
             return Err(Error::TooManyPoints { len: slot + 1 });
         }
-        let key = self.index.geometry.scalar_key(&point);
-        let ix = &mut self.index;
-        let mut v = NodeId::ROOT;
-        loop {
-            ix.nodes[v.index()].count += 1;
-            match ix.tree.child(v, 0) {
-                Some(first) => v = NodeId(first.0 + digit::<D>(key, ix.tree.level(v)) as u32),
-                None => break,
-            }
+        let path = self.path(&point);
+        for &u in &path {
+            self.index.nodes[u.index()].count += 1;
         }
+        let v = *path.last().expect("the path holds the root");
         // The count already includes the new entry: make room for it, then write it.
-        let d = ix.nodes[v.index()];
+        let d = self.index.nodes[v.index()];
         if d.count > d.cap {
             self.relocate(v, cap_for(d.count), d.count - 1);
         }
@@ -91,15 +86,9 @@ impl<S: Scalar, T, const D: usize> DynamicPointTree<S, T, D> {
         if !self.domain.contains(&point.map(Scalar::to_f64)) {
             return None;
         }
-        let key = self.index.geometry.scalar_key(point);
+        let path = self.path(point);
+        let v = *path.last().expect("the path holds the root");
         let ix = &self.index;
-        let mut path = Path::new();
-        let mut v = NodeId::ROOT;
-        path.push(v);
-        while let Some(first) = ix.tree.child(v, 0) {
-            v = NodeId(first.0 + digit::<D>(key, ix.tree.level(v)) as u32);
-            path.push(v);
-        }
         let d = ix.nodes[v.index()];
         let (points, slots) = (&ix.pool.points, &ix.pool.slots);
         let at = (d.start..d.start + d.count).find(|&e| {
@@ -134,6 +123,20 @@ impl<S: Scalar, T, const D: usize> DynamicPointTree<S, T, D> {
         }
         self.compact_if_sparse();
         Some(item)
+    }
+
+    /// The nodes from the root to the leaf whose cell holds `point`.
+    fn path(&self, point: &[S; D]) -> Path {
+        let ix = &self.index;
+        let key = ix.geometry.scalar_key(point);
+        let mut path = Path::new();
+        let mut v = NodeId::ROOT;
+        path.push(v);
+        while let Some(first) = ix.tree.child(v, 0) {
+            v = NodeId(first.0 + digit::<D>(key, ix.tree.level(v)) as u32);
+            path.push(v);
+        }
+        path
     }
 
     /// Moves the entry at pool position `from` to `to` (its slot's position follows).
