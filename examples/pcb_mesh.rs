@@ -63,6 +63,9 @@ fn parse() -> Result<Args, String> {
 
 fn read_board(args: &Args) -> Result<(Board, String), String> {
     let Some(path) = &args.board else {
+        if args.size.is_some() {
+            return Err("--size needs a board file (the built-in board has its own size)".into());
+        }
         return Ok((sample_board(), "built-in sample board".into()));
     };
     orthtree::io::read_board_file(path, args.size)

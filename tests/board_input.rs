@@ -381,12 +381,12 @@ fn too_few_vertices_names_component_and_line() {
             line: Some(6)
         }
     );
-    let poly = "3 2 0 0\n1 0 0\n2 4 0\n3 0 4\n1 0\n1 3 3\n";
+    let poly = "1 2 0 0\n1 3 3\n1 0\n1 1 1\n";
     assert_eq!(
         read_poly(poly, Some(8)).unwrap_err(),
         BoardError::TooFewVertices {
             component: 1,
-            line: Some(6)
+            line: Some(4)
         }
     );
 }
@@ -917,8 +917,8 @@ fn poly_parse_errors_name_the_line() {
         ),
         (
             "3 2 0 0\n1 0 0\n2 4 0\n3 0 4\n3 0\n1 1 2\n2 2 3\n",
-            7,
-            "end of input",
+            5,
+            "the segment count is 3, but the input ends after 2 segment lines",
         ),
         ("3 2 0 0\n1 0 0\n2 4 0\n3 0 4\n", 4, "end of input"),
         ("", 1, "end of input"),
@@ -940,10 +940,10 @@ fn poly_parse_errors_name_the_line() {
 
 #[test]
 fn poly_numbering_comments_markers_and_size() {
-    // ids from 0, comments everywhere, attributes and markers, holes and regions ignored
+    // ids from 0, comments everywhere, attributes and markers, empty holes and regions
     let poly = "# a board\n\n4 2 1 1   # header\n0 1 1 0.5 7\n1 5 1 0.5 7  # vertex 1\n\
                 2 5 5 0.5 7\n3 1 5 0.5 7\n# segments\n4 1\n0 0 1 3\n1 1 2 3\n2 2 3 3\n3 3 0 3\n\
-                1\n1 2 2\n1\n1 3 3 1.0 0.5\n";
+                0\n0\n";
     let b = read_poly(poly, None).unwrap();
     assert_eq!(b.size(), 8); // inferred: the largest coordinate is 5
     assert_eq!(outlines(&b), vec![vec![[1, 1], [5, 1], [5, 5], [1, 5]]]);
@@ -951,12 +951,36 @@ fn poly_numbering_comments_markers_and_size() {
         b.components()[0].lines,
         vec![Some(10), Some(11), Some(12), Some(13)]
     );
-    // `# size U` wins over the caller's size, which wins over the inferred one
+    // a hole or a regional attribute is refused, naming its line
+    let holes = poly.replace("0\n0\n", "1\n1 2 2\n0\n");
+    assert_eq!(
+        read_poly(&holes, None).unwrap_err(),
+        BoardError::HolesNotSupported { line: 14, count: 1 }
+    );
+    let regions = poly.replace("0\n0\n", "0\n1\n1 3 3 1.0 0.5\n");
+    assert_eq!(
+        read_poly(&regions, None).unwrap_err(),
+        BoardError::RegionsNotSupported { line: 15, count: 1 }
+    );
+    // `# size U` and the caller's size must agree; the caller's size wins over the inferred one
     let with_size = format!("# size 64\n{poly}");
-    assert_eq!(read_poly(&with_size, Some(16)).unwrap().size(), 64);
+    assert_eq!(read_poly(&with_size, Some(64)).unwrap().size(), 64);
+    assert_eq!(
+        read_poly(&with_size, Some(16)).unwrap_err(),
+        BoardError::SizeMismatch {
+            file: 64,
+            line: 1,
+            caller: 16
+        }
+    );
     assert_eq!(read_poly(poly, Some(16)).unwrap().size(), 16);
-    // an ordinary comment starting with "size" is just a comment
+    // a comment starting with the word "size" must be a size line; other words are comments
     let other = format!("# size of the board: large\n{poly}");
+    assert!(matches!(
+        read_poly(&other, None),
+        Err(BoardError::Parse { line: 1, .. })
+    ));
+    let other = format!("# sizes are in units of 0.1 mm\n{poly}");
     assert_eq!(read_poly(&other, None).unwrap().size(), 8);
     // `3.0` is read as 3; coordinates exactly on a power of two give that power
     let poly = "3 2 0 0\n1 0.0 0\n2 4. 0\n3 0 4.000\n3 0\n1 1 2\n2 2 3\n3 3 1\n";
@@ -1000,10 +1024,12 @@ fn text_format_parse_errors_and_size() {
         64
     );
     assert_eq!(
-        read_board_text("size 16\n1 1 5 1 5 5\n", Some(64))
-            .unwrap()
-            .size(),
-        16
+        read_board_text("size 16\n1 1 5 1 5 5\n", Some(64)).unwrap_err(),
+        BoardError::SizeMismatch {
+            file: 16,
+            line: 1,
+            caller: 64
+        }
     );
     // no components at all is a valid (empty) board
     assert_eq!(text("size 4\n").unwrap().components().len(), 0);

@@ -1,12 +1,110 @@
 //! [`read_board_file`]: a board for the mesher from a file, in the format its name says
-//! (Triangle's `.poly`, else the plain text of [`super::board_text`]), with errors that name the
-//! file.
+//! (Triangle's `.poly`, or the plain text of [`super::board_text`] for `.txt`, in any case), with
+//! errors that name the file; [`BoardFormat`] reads either format from bytes or from any
+//! [`Read`].
 
 use crate::mesh::{Board, BoardError};
+use std::io::Read;
 use std::path::{Path, PathBuf};
+
+/// The two board file formats.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BoardFormat {
+    /// Triangle's `.poly` ([`super::poly`]).
+    Poly,
+    /// The plain text format, one component per line ([`super::board_text`]).
+    Text,
+}
+
+impl BoardFormat {
+    /// The format a file name says: `.poly` or `.txt`, the extension compared without regard to
+    /// case (`.POLY`, `.Txt`); `None` for any other name.
+    ///
+    /// ```
+    /// use orthtree::io::BoardFormat;
+    /// assert_eq!(BoardFormat::from_path("a/B.POLY"), Some(BoardFormat::Poly));
+    /// assert_eq!(BoardFormat::from_path("board.Txt"), Some(BoardFormat::Text));
+    /// assert_eq!(BoardFormat::from_path("board.node"), None);
+    /// assert_eq!(BoardFormat::from_path("poly"), None);
+    /// ```
+    pub fn from_path(path: impl AsRef<Path>) -> Option<BoardFormat> {
+        let extension = path.as_ref().extension()?.to_str()?;
+        if extension.eq_ignore_ascii_case("poly") {
+            Some(BoardFormat::Poly)
+        } else if extension.eq_ignore_ascii_case("txt") {
+            Some(BoardFormat::Text)
+        } else {
+            None
+        }
+    }
+
+    /// Reads a board in this format from bytes; `size` is the caller's choice of U, which must
+    /// agree with a size the file gives.
+    ///
+    /// # Errors
+    ///
+    /// Those of [`super::poly::read_poly_bytes`] or [`super::board_text::read_board_text_bytes`].
+    ///
+    /// # Complexity
+    ///
+    /// O(n + E log E) time and O(n) memory for n bytes and E edges.
+    pub fn read_bytes(self, bytes: &[u8], size: Option<i64>) -> Result<Board, BoardError> {
+        match self {
+            BoardFormat::Poly => super::poly::read_poly_bytes(bytes, size),
+            BoardFormat::Text => super::board_text::read_board_text_bytes(bytes, size),
+        }
+    }
+
+    /// Reads a board in this format from `reader` to its end (memory bounded by the bytes read),
+    /// as [`BoardFormat::read_bytes`].
+    ///
+    /// # Errors
+    ///
+    /// [`BoardReadError::Io`] when reading fails, [`BoardReadError::Board`] for a board that is
+    /// refused.
+    ///
+    /// ```
+    /// use orthtree::io::BoardFormat;
+    /// let board = BoardFormat::Text.read(&b"size 16\n4 4  8 4  8 8\n"[..], None).unwrap();
+    /// assert_eq!(board.components().len(), 1);
+    /// ```
+    pub fn read(self, mut reader: impl Read, size: Option<i64>) -> Result<Board, BoardReadError> {
+        let mut bytes = Vec::new();
+        reader.read_to_end(&mut bytes).map_err(BoardReadError::Io)?;
+        self.read_bytes(&bytes, size).map_err(BoardReadError::Board)
+    }
+}
+
+/// Why a board could not be read from a [`Read`].
+#[derive(Debug)]
+pub enum BoardReadError {
+    /// Reading failed.
+    Io(std::io::Error),
+    /// The bytes are not a valid board.
+    Board(BoardError),
+}
+
+impl core::fmt::Display for BoardReadError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            BoardReadError::Io(error) => write!(f, "reading the board: {error}"),
+            BoardReadError::Board(error) => write!(f, "{error}"),
+        }
+    }
+}
+
+impl std::error::Error for BoardReadError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            BoardReadError::Io(error) => Some(error),
+            BoardReadError::Board(error) => Some(error),
+        }
+    }
+}
 
 /// A board file that could not be read or is not a valid board.
 #[derive(Debug)]
+#[non_exhaustive]
 pub enum BoardFileError {
     /// The file could not be read.
     Io {
@@ -22,6 +120,11 @@ pub enum BoardFileError {
         /// What is wrong.
         error: BoardError,
     },
+    /// The file's name ends neither in `.poly` nor in `.txt`.
+    UnknownFormat {
+        /// The file.
+        path: PathBuf,
+    },
 }
 
 impl core::fmt::Display for BoardFileError {
@@ -29,6 +132,12 @@ impl core::fmt::Display for BoardFileError {
         match self {
             BoardFileError::Io { path, error } => write!(f, "{}: {error}", path.display()),
             BoardFileError::Board { path, error } => write!(f, "{}: {error}", path.display()),
+            BoardFileError::UnknownFormat { path } => write!(
+                f,
+                "{}: unknown board format: the name must end in .poly (Triangle's format) or \
+                 .txt (one component per line), in any case",
+                path.display()
+            ),
         }
     }
 }
@@ -38,36 +147,50 @@ impl std::error::Error for BoardFileError {
         match self {
             BoardFileError::Io { error, .. } => Some(error),
             BoardFileError::Board { error, .. } => Some(error),
+            BoardFileError::UnknownFormat { .. } => None,
         }
     }
 }
 
-/// Reads the board in `path`: [`super::poly::read_poly`] for a name ending in `.poly`, else
-/// [`super::board_text::read_board_text`]; `size` overrides the board size the file gives.
+/// Reads the board in `path`, in the format its name says ([`BoardFormat::from_path`]); `size`
+/// is the caller's choice of U, which must agree with a size the file gives.
+///
+/// # Errors
+///
+/// [`BoardFileError::UnknownFormat`] for a name ending neither in `.poly` nor in `.txt`
+/// (checked before the file is opened), [`BoardFileError::Io`] when the file cannot be read, and
+/// [`BoardFileError::Board`] with the reader's error (see [`BoardFormat::read_bytes`]).
+///
+/// # Complexity
+///
+/// O(n + E log E) time and O(n) memory for a file of n bytes and E edges.
 ///
 /// ```
 /// use orthtree::io::read_board_file;
 /// let dir = std::env::temp_dir().join("orthtree-doc-board");
 /// std::fs::create_dir_all(&dir).unwrap();
-/// let path = dir.join("b.txt");
+/// let path = dir.join("b.TXT");
 /// std::fs::write(&path, "size 16\n4 4  8 4  8 8  4 8\n").unwrap();
 /// assert_eq!(read_board_file(&path, None).unwrap().components().len(), 1);
+/// assert_eq!(read_board_file(&path, Some(16)).unwrap().size(), 16);
+/// let conflict = read_board_file(&path, Some(32)).unwrap_err();
+/// assert!(conflict.to_string().contains("the file gives board size 16"));
 /// let missing = read_board_file(dir.join("none.poly"), None).unwrap_err();
 /// assert!(missing.to_string().contains("none.poly"));
 /// ```
 pub fn read_board_file(path: impl AsRef<Path>, size: Option<i64>) -> Result<Board, BoardFileError> {
     let path = path.as_ref();
-    let text = std::fs::read_to_string(path).map_err(|error| BoardFileError::Io {
+    let format = BoardFormat::from_path(path).ok_or_else(|| BoardFileError::UnknownFormat {
+        path: path.to_path_buf(),
+    })?;
+    let bytes = std::fs::read(path).map_err(|error| BoardFileError::Io {
         path: path.to_path_buf(),
         error,
     })?;
-    let board = if path.extension().is_some_and(|e| e == "poly") {
-        super::poly::read_poly(&text, size)
-    } else {
-        super::board_text::read_board_text(&text, size)
-    };
-    board.map_err(|error| BoardFileError::Board {
-        path: path.to_path_buf(),
-        error,
-    })
+    format
+        .read_bytes(&bytes, size)
+        .map_err(|error| BoardFileError::Board {
+            path: path.to_path_buf(),
+            error,
+        })
 }

@@ -9,12 +9,17 @@
 //! (4, 4) (8, 4) (8, 8)        # a triangle: parentheses and commas are optional
 //! ```
 //!
-//! - `#` starts a comment, anywhere on a line; blank lines are ignored.
+//! - `#` starts a comment, anywhere on a line; blank lines are skipped. A UTF-8 byte-order mark
+//!   at the start is skipped, lines end at `\n`, `\r\n` or `\r`, and the text must be UTF-8.
 //! - `size U` (at most once, anywhere) gives the board's side U, a power of two from 1 to 2^30.
-//!   Without it U is the caller's choice (the `size` argument), else the smallest power of two at
-//!   least the largest coordinate (at least 1, at most 2^30).
+//!   The caller's `size`, when given too, must be the same (else
+//!   [`BoardError::SizeMismatch`]); a size that is not a power of two from 1 to 2^30 is refused
+//!   wherever it comes from. Given by neither, U is the smallest power of two at least the
+//!   largest coordinate (at least 1, at most 2^30).
 //! - Every other line is one component: its vertices in order, as integer `x y` pairs (`3.0` is
-//!   read as 3; `3.5` is refused). `(`, `)` and `,` count as spaces. The outline closes by itself,
+//!   read as 3; `3.5` is refused). Spaces, tabs, `(`, `)` and `,` separate fields; any other
+//!   byte belongs to a field, so `3\u{a0}4` is one field and refused (messages show such
+//!   characters escaped, and cut a long field short). The outline closes by itself,
 //!   from the last vertex back to the first; a last vertex equal to the first is dropped. Either
 //!   orientation is accepted, and vertices between collinear edges are allowed (both are
 //!   normalised away).
@@ -43,66 +48,105 @@
 //! );
 //! ```
 
-use super::poly::{board_size, parse_coordinate};
+use super::board_syntax::{parse_coordinate, parse_error, resolve_size, Lines, Quoted};
 use crate::mesh::{Board, BoardError, Component, Point};
 use core::fmt::Write;
 
-/// Reads a board in the text format of the module doc; `size` is the caller's choice of U, used
-/// when the text has no `size` line.
+/// Reads a board in the text format of the module doc; `size` is the caller's choice of U, which
+/// must agree with a `size` line in the text.
 ///
-/// Errors: [`BoardError::Parse`] naming the line for a field that is not an integer, an odd
-/// number of coordinates, or a bad or repeated `size` line; otherwise any error of
-/// [`Board::new`], naming the component's line.
+/// # Errors
 ///
-/// Complexity: O(n + E log E) for n bytes of text and E edges.
+/// As [`read_board_text_bytes`].
+///
+/// # Complexity
+///
+/// O(n + E log E) time and O(n) memory for n bytes of text and E edges.
 pub fn read_board_text(text: &str, size: Option<i64>) -> Result<Board, BoardError> {
+    read_board_text_bytes(text.as_bytes(), size)
+}
+
+/// Reads a board in the text format of the module doc from bytes; `size` is the caller's choice
+/// of U, which must agree with a `size` line in the text.
+///
+/// # Errors
+///
+/// - [`BoardError::InvalidUtf8`] naming the line and byte offset of bytes that are not UTF-8;
+/// - [`BoardError::Parse`] naming the line for a field that is not an integer (quoted, escaped
+///   and cut short), an odd number of coordinates, a line of only separators, or a bad, invalid
+///   or repeated `size` line;
+/// - [`BoardError::SizeNotPowerOfTwo`] for an invalid `size`, [`BoardError::SizeMismatch`] when it
+///   differs from the text's;
+/// - otherwise any error of [`Board::new`], naming the component's line.
+///
+/// # Complexity
+///
+/// O(n + E log E) time and O(n) memory for n bytes and E edges.
+pub fn read_board_text_bytes(bytes: &[u8], size: Option<i64>) -> Result<Board, BoardError> {
     let mut size_line: Option<(i64, usize)> = None;
     let mut components = Vec::new();
-    for (i, raw) in text.lines().enumerate() {
-        let line = i + 1;
-        let content = raw.split_once('#').map_or(raw, |(content, _)| content);
-        let content = content.replace(['(', ')', ','], " ");
-        let fields: Vec<&str> = content.split_whitespace().collect();
-        let Some(&first) = fields.first() else {
+    for line in Lines::new(bytes) {
+        let line = line?;
+        let number = line.number;
+        let mut fields = line
+            .content
+            .split([' ', '\t', '(', ')', ','])
+            .filter(|f| !f.is_empty());
+        let Some(first) = fields.next() else {
+            if line.content.contains(['(', ')', ',']) {
+                return Err(parse_error(
+                    number,
+                    "a line of only `(`, `)` and `,` holds no coordinates",
+                ));
+            }
             continue;
         };
         if first.eq_ignore_ascii_case("size") {
-            let u = match fields[1..] {
-                [value] => value.parse::<i64>().ok(),
+            let u = match (fields.next(), fields.next()) {
+                (Some(value), None) => value.parse::<i64>().ok(),
                 _ => None,
             }
-            .ok_or_else(|| parse_error(line, "expected `size U` with an integer U"))?;
+            .ok_or_else(|| {
+                parse_error(
+                    number,
+                    format!(
+                        "expected `size U` with an integer U, found {}",
+                        Quoted(line.content.trim())
+                    ),
+                )
+            })?;
             if let Some((_, earlier)) = size_line {
                 return Err(parse_error(
-                    line,
+                    number,
                     format!("a second size line (the first is line {earlier})"),
                 ));
             }
-            size_line = Some((u, line));
+            size_line = Some((u, number));
             continue;
         }
-        if fields.len() % 2 != 0 {
-            return Err(parse_error(
-                line,
-                format!(
-                    "{} coordinates: a component is a list of x y pairs",
-                    fields.len()
-                ),
-            ));
-        }
-        let mut outline: Vec<Point> = Vec::with_capacity(fields.len() / 2);
-        for pair in fields.chunks_exact(2) {
-            let x = parse_coordinate(pair[0]).map_err(|m| parse_error(line, m))?;
-            let y = parse_coordinate(pair[1]).map_err(|m| parse_error(line, m))?;
+        let mut outline: Vec<Point> = Vec::new();
+        let mut fields = core::iter::once(first).chain(fields);
+        while let Some(x) = fields.next() {
+            let Some(y) = fields.next() else {
+                return Err(parse_error(
+                    number,
+                    format!(
+                        "{} coordinates: a component is a list of x y pairs",
+                        2 * outline.len() + 1
+                    ),
+                ));
+            };
+            let x = parse_coordinate(x).map_err(|m| parse_error(number, m))?;
+            let y = parse_coordinate(y).map_err(|m| parse_error(number, m))?;
             outline.push([x, y]);
         }
         if outline.len() > 1 && outline.first() == outline.last() {
             outline.pop();
         }
-        let lines = vec![Some(line); outline.len()];
+        let lines = vec![Some(number); outline.len()];
         components.push(Component { outline, lines });
     }
-    let size = board_size(size_line.map(|(u, _)| u), size, &components);
+    let size = resolve_size(size_line, size, &components)?;
     Board::new(size, components)
 }
 
@@ -125,11 +169,4 @@ pub fn write_board_text(board: &Board) -> String {
         out.push('\n');
     }
     out
-}
-
-fn parse_error(line: usize, message: impl Into<String>) -> BoardError {
-    BoardError::Parse {
-        line,
-        message: message.into(),
-    }
 }

@@ -9,9 +9,11 @@
 //! - [`pbm`]: 2D region trees as PBM bitmaps (P1 and P4); `png` (behind the `png`
 //!   feature) the same as PNG; [`svg::image_tree_svg`] draws a region tree's leaves.
 //! - [`board_text`]: a board for the mesher as plain text, one component per line (read and
-//!   write); [`read_board_file`] reads either format from a file.
+//!   write); [`read_board_file`] reads either format from a file, [`BoardFormat`] from bytes or
+//!   any reader.
 
 mod board_file;
+mod board_syntax;
 pub mod board_text;
 pub mod gmsh;
 pub mod pbm;
@@ -22,5 +24,5 @@ pub mod svg;
 pub mod triangle;
 pub mod vtk;
 
-pub use board_file::{read_board_file, BoardFileError};
+pub use board_file::{read_board_file, BoardFileError, BoardFormat, BoardReadError};
 pub use svg::{mesh_svg, point_tree_svg, Style, Svg};

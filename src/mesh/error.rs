@@ -121,6 +121,47 @@ pub enum BoardError {
         /// The input line of its last segment.
         line: Option<usize>,
     },
+    /// The board's side is given both by the file and by the caller, differently.
+    SizeMismatch {
+        /// The size the file gives.
+        file: i64,
+        /// The line that gives it.
+        line: usize,
+        /// The size the caller gives.
+        caller: i64,
+    },
+    /// A vertex of a `.poly` file lies on no segment.
+    UnusedVertex {
+        /// The vertex id, as numbered in the file.
+        vertex: i64,
+        /// Its input line.
+        line: usize,
+    },
+    /// A `.poly` file lists holes, which are not supported yet.
+    HolesNotSupported {
+        /// The line of the hole count.
+        line: usize,
+        /// The hole count.
+        count: usize,
+    },
+    /// A `.poly` file lists regional attributes, which are not supported (the mesh's regions
+    /// are its components).
+    RegionsNotSupported {
+        /// The line of the regional attribute count.
+        line: usize,
+        /// The count.
+        count: usize,
+    },
+    /// The input is not valid UTF-8.
+    InvalidUtf8 {
+        /// The input line (from 1).
+        line: usize,
+        /// The byte offset, from 0 at the start of the input, of the first byte that is not
+        /// UTF-8.
+        offset: usize,
+        /// That byte.
+        byte: u8,
+    },
 }
 
 /// A coordinate given in half units, written as a decimal: 5 as `2.5`, -3 as `-1.5`, 4 as `2`.
@@ -245,6 +286,32 @@ impl core::fmt::Display for BoardError {
                 "{}: its segments do not close into a loop (no segment continues from the last \
                  one)",
                 place(component, None, line)
+            ),
+            BoardError::SizeMismatch { file, line, caller } => write!(
+                f,
+                "line {line}: the file gives board size {file}, but the caller asks for size \
+                 {caller}; give one of them, or the same in both"
+            ),
+            BoardError::UnusedVertex { vertex, line } => write!(
+                f,
+                "line {line}: vertex {vertex} is on no segment; every vertex must join two \
+                 segments of one loop"
+            ),
+            BoardError::HolesNotSupported { line, count } => write!(
+                f,
+                "line {line}: the file lists {count} hole(s); holes are not supported yet (each \
+                 loop of segments is a solid component, so a hole would be meshed as part of \
+                 the component around it)"
+            ),
+            BoardError::RegionsNotSupported { line, count } => write!(
+                f,
+                "line {line}: the file lists {count} regional attribute(s); these are not \
+                 supported (the regions of the mesh are the board and its components)"
+            ),
+            BoardError::InvalidUtf8 { line, offset, byte } => write!(
+                f,
+                "line {line} (byte offset {offset}): byte 0x{byte:02x} is not valid UTF-8; a \
+                 board file must be UTF-8 text"
             ),
         }
     }
