@@ -183,7 +183,7 @@ fn message_for(field: &str) -> Vec<String> {
 fn invisible_characters_are_shown_escaped() {
     for (field, shown) in [
         ("3\0", "`3\\0`"),
-        ("\03", "`\\03`"),
+        ("\u{0}3", "`\\03`"),
         ("3\u{a0}", "`3\\u{a0}`"),
         ("\u{200b}3", "`\\u{200b}3`"),
         ("3\u{7}", "`3\\u{7}`"),

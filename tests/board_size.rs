@@ -8,8 +8,7 @@ use orthtree::io::poly::read_poly;
 use orthtree::io::read_board_file;
 use orthtree::mesh::{Board, BoardError};
 
-/// A one-square board in both formats, with `size_line` (e.g. `# size 16` or `size 16`) first
-/// when given; the size line is line 1.
+/// A one-square board in each format, with a size line (`# size U`, `size U`) first when given.
 fn poly(size: Option<i64>) -> String {
     let head = size.map_or(String::new(), |u| format!("# size {u}\n"));
     format!("{head}4 2 0 0\n1 1 1\n2 3 1\n3 3 3\n4 1 3\n4 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n0\n")
@@ -21,8 +20,10 @@ fn text(size: Option<i64>) -> String {
 }
 
 type Reader = fn(&str, Option<i64>) -> Result<Board, BoardError>;
+/// Makes a file, with a size line when given one.
+type Maker = fn(Option<i64>) -> String;
 
-const READERS: [(&str, fn(Option<i64>) -> String, Reader); 2] =
+const READERS: [(&str, Maker, Reader); 2] =
     [("poly", poly, read_poly), ("text", text, read_board_text)];
 
 const INVALID: [i64; 9] = [0, -1, -16, 3, 6, 48, 1 << 31, i64::MAX, i64::MIN];
