@@ -353,7 +353,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         &self,
         b: &Aabb<S, D>,
     ) -> Result<RegionIter<'_, PointTree<S, T, D>, Aabb<f64, D>, D>, QueryError> {
-        self.query(b.to_f64())
+        self.query(super::query_box(b)?)
     }
 
     /// The points at Euclidean distance at most `radius` from `center` ([`Ball`]).
@@ -371,7 +371,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         center: &[S; D],
         radius: f64,
     ) -> Result<RegionIter<'_, PointTree<S, T, D>, Ball<D>, D>, QueryError> {
-        self.query(Ball::new(center.map(Scalar::to_f64), radius)?)
+        self.query(Ball::new(super::query_point(center)?, radius)?)
     }
 
     /// The points `x` with `normal . x <= offset` ([`HalfSpace`]).

@@ -146,7 +146,7 @@ macro_rules! slot_queries {
                 &self,
                 b: &$crate::Aabb<S, D>,
             ) -> Result<$region_iter<'_, S, T, $crate::Aabb<f64, D>, D>, $crate::QueryError> {
-                self.query(b.to_f64())
+                self.query($crate::query::query_box(b)?)
             }
 
             /// The points at Euclidean distance at most `radius` from `center`.
@@ -157,10 +157,7 @@ macro_rules! slot_queries {
                 center: &[S; D],
                 radius: f64,
             ) -> Result<$region_iter<'_, S, T, $crate::Ball<D>, D>, $crate::QueryError> {
-                self.query($crate::Ball::new(
-                    center.map($crate::Scalar::to_f64),
-                    radius,
-                )?)
+                self.query($crate::Ball::new($crate::query::query_point(center)?, radius)?)
             }
 
             /// The points `x` with `normal . x <= offset`.
