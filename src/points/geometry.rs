@@ -83,7 +83,11 @@ impl<const D: usize> RootGeometry<D> {
         if !(side >= 0.0 && side.is_finite()) {
             return Err(AabbError::InvalidSide { side: side.into() });
         }
-        Ok(Self::from_halves(min.map(half_down), side.abs() * 0.5))
+        // Half the side rounded up: halving an odd subnormal side rounds, and the cube must
+        // not shrink below `side`.
+        let half = side.abs() * 0.5;
+        let half = if 2.0 * half < side { half.next_up() } else { half };
+        Ok(Self::from_halves(min.map(half_down), half))
     }
 
     fn from_halves(half_lo: [f64; D], half_side: f64) -> Self {
