@@ -32,7 +32,10 @@ fn grid_points(seed: u64, n: usize) -> Vec<([f64; 2], usize)> {
     let mut r = common::rng(seed);
     (0..n)
         .map(|i| {
-            let p = [r.gen_range(0..=32) as f64 / 8.0, r.gen_range(0..=32) as f64 / 8.0];
+            let p = [
+                r.gen_range(0..=32) as f64 / 8.0,
+                r.gen_range(0..=32) as f64 / 8.0,
+            ];
             (p, i)
         })
         .collect()
@@ -235,7 +238,10 @@ fn approx_nearest_eps() {
             for eps in ODD.into_iter().chain([1e154, 1e155, 1e300, 0.5]) {
                 let found = s.approx_nearest(&q, eps);
                 if eps.is_nan() || eps < 0.0 {
-                    assert_eq!(found.err(), Some(QueryError::InvalidEpsilon { value: eps.into() }));
+                    assert_eq!(
+                        found.err(),
+                        Some(QueryError::InvalidEpsilon { value: eps.into() })
+                    );
                     continue;
                 }
                 let n = found.unwrap().0.expect("a point on a non-empty tree");
@@ -262,8 +268,14 @@ fn root_boxes_and_cubes() {
             max[axis] = x;
             let want = AabbError::NonFinite { axis };
             assert_eq!(Aabb::new([-f64::MAX; 2], max), Err(want));
-            let root = Aabb { min: [-f64::MAX; 2], max };
-            let err = PointTreeBuilder::new().root_box(root).build(&e).unwrap_err();
+            let root = Aabb {
+                min: [-f64::MAX; 2],
+                max,
+            };
+            let err = PointTreeBuilder::new()
+                .root_box(root)
+                .build(&e)
+                .unwrap_err();
             assert_eq!(err, Error::InvalidRootBox(want));
             let mut min = [0.0; 2];
             min[axis] = x;
@@ -271,7 +283,9 @@ fn root_boxes_and_cubes() {
         }
         assert_eq!(
             RootGeometry::<2>::try_new([0.0; 2], x),
-            Err(AabbError::InvalidSide { side: FloatBits::from(x) })
+            Err(AabbError::InvalidSide {
+                side: FloatBits::from(x)
+            })
         );
     }
     assert!(RootGeometry::<2>::try_new([0.0; 2], -1.0).is_err());

@@ -112,7 +112,7 @@ impl<S: Scalar, const D: usize> CompressedTree<S, (), D> {
 impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
     /// Builds over the smallest enclosing cube of the points, cloning the items.
     ///
-    /// Errors: a NaN or infinite coordinate (naming the point and axis); too many points.
+    /// Errors: a NaN, infinite or inexact coordinate (an integer `f64` cannot hold) (naming the point and axis); too many points.
     pub fn new(entries: &[([S; D], T)]) -> Result<Self, Error>
     where
         T: Clone,
@@ -213,7 +213,7 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
 
     /// The deepest node whose cell holds `point`, walking down from the root: O(depth).
     ///
-    /// Errors: a NaN or infinite coordinate, or one outside [`CompressedTree::domain`].
+    /// Errors: a NaN, infinite or inexact coordinate (an integer `f64` cannot hold), or one outside [`CompressedTree::domain`].
     ///
     /// ```
     /// use orthtree::CompressedTree;

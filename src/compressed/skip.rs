@@ -180,7 +180,7 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
     /// The deepest node of level 0 whose cell holds `point`, found from the top level down:
     /// expected O(log n) nodes visited ([`Location::touched`]).
     ///
-    /// Errors: a NaN or infinite coordinate, or one outside the domain.
+    /// Errors: a NaN, infinite or inexact coordinate (an integer `f64` cannot hold), or one outside the domain.
     pub fn locate(&self, point: &[S; D]) -> Result<Location<D>, Error> {
         let key = self.base.query_key(point)?;
         let mut touched = 0;

@@ -86,7 +86,11 @@ impl<const D: usize> RootGeometry<D> {
         // Half the side rounded up: halving an odd subnormal side rounds, and the cube must
         // not shrink below `side`.
         let half = side.abs() * 0.5;
-        let half = if 2.0 * half < side { half.next_up() } else { half };
+        let half = if 2.0 * half < side {
+            half.next_up()
+        } else {
+            half
+        };
         Ok(Self::from_halves(min.map(half_down), half))
     }
 

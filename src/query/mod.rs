@@ -14,10 +14,13 @@
 //! a contiguous run of points per node. [`PointTree`](crate::PointTree) is one; the compressed
 //! quadtree can be another.
 //!
-//! Coordinates are compared as `f64` ([`Scalar::to_f64`](crate::Scalar::to_f64), exact for
-//! `f32`, `f64` and integers up to 32 bits), and every region's cell test is computed so that it
-//! agrees with its point test: a query returns exactly the points its region's
-//! [`Region::contains`] accepts.
+//! Coordinates are compared as `f64` ([`Scalar::to_f64`](crate::Scalar::to_f64)), exactly: a query
+//! point, ball centre or box corner that `f64` cannot hold (a 64-bit integer such as 2^53 + 1) is
+//! refused with [`QueryError::Inexact`], as the trees refuse such points. Every region's cell test
+//! is computed so that it agrees with its point test: a query returns exactly the points its
+//! region's [`Region::contains`] accepts. Distances are `f64` arithmetic and round; squared
+//! Euclidean distances beyond `f64::MAX` (points more than about 1.3e154 apart) are infinite and
+//! tie, broken by index.
 
 #[cfg(feature = "rayon")]
 mod batch;
@@ -179,7 +182,7 @@ pub(crate) fn check_point<const D: usize>(p: &[f64; D]) -> Result<(), QueryError
     }
 }
 
-/// Checks a maximum distance: not negative, not NaN (infinity means no limit).
+/// Checks a maximum distance: not negative, not NaN (infinity means no limit, -0.0 is 0).
 pub(crate) fn check_max(max: f64) -> Result<(), QueryError> {
     if max >= 0.0 {
         Ok(())

@@ -344,6 +344,9 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
 
     /// The points in the closed box `b` ([`PointTree::query`] with an [`Aabb`]).
     ///
+    /// Errors: a NaN bound ([`QueryError::NanBound`]); an integer corner `f64` cannot hold
+    /// ([`QueryError::Inexact`]). Infinite float bounds are open-ended.
+    ///
     /// ```
     /// use orthtree::{Aabb, PointTree};
     /// let t = PointTree::new(&[([1i32, 1], 'a'), ([5, 5], 'b')]).unwrap();
@@ -358,7 +361,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
 
     /// The points at Euclidean distance at most `radius` from `center` ([`Ball`]).
     ///
-    /// Errors: a non-finite centre, a negative or NaN radius.
+    /// Errors: a non-finite or inexact centre, a negative or NaN radius.
     ///
     /// ```
     /// use orthtree::Quadtree;

@@ -151,7 +151,7 @@ macro_rules! slot_queries {
 
             /// The points at Euclidean distance at most `radius` from `center`.
             ///
-            /// Errors: a non-finite centre, a negative or NaN radius.
+            /// Errors: a non-finite or inexact centre, a negative or NaN radius.
             pub fn in_ball(
                 &self,
                 center: &[S; D],
@@ -174,7 +174,7 @@ macro_rules! slot_queries {
 
             /// The nearest point to `p` (squared Euclidean distance); `None` for an empty tree.
             ///
-            /// Errors: a NaN or infinite coordinate in `p`.
+            /// Errors: a NaN, infinite or inexact coordinate (an integer `f64` cannot hold) in `p`.
             pub fn nearest(
                 &self,
                 p: &[S; D],
@@ -227,7 +227,7 @@ macro_rules! slot_queries {
 
             /// The `k` nearest points to `p` at distance at most `max` under `metric`.
             ///
-            /// Errors: a non-finite `p`; a negative or NaN `max`.
+            /// Errors: a non-finite or inexact `p`; a negative or NaN `max`.
             pub fn k_nearest_by<M: $crate::Metric<D>>(
                 &self,
                 p: &[S; D],
