@@ -22,6 +22,17 @@ pub enum Error {
         /// The bad coordinate.
         value: f64,
     },
+    /// Input point `index` has, on `axis`, an integer that `f64` cannot hold exactly (a 64-bit
+    /// integer beyond 2^53 that is not a multiple of the `f64` spacing there; see
+    /// [`crate::Scalar::converts_exactly`]).
+    InexactCoordinate {
+        /// Position of the point in the input.
+        index: usize,
+        /// The axis holding the bad coordinate.
+        axis: usize,
+        /// The coordinate.
+        value: i128,
+    },
     /// Input point `index` lies outside the root box on `axis`.
     OutsideRootBox {
         /// Position of the point in the input.
@@ -39,6 +50,13 @@ pub enum Error {
         axis: usize,
         /// The bad coordinate.
         value: f64,
+    },
+    /// A query point has, on `axis`, an integer that `f64` cannot hold exactly.
+    QueryInexact {
+        /// The axis holding the bad coordinate.
+        axis: usize,
+        /// The coordinate.
+        value: i128,
     },
     /// A query point lies outside the root box on `axis`.
     QueryOutsideRootBox {
@@ -67,6 +85,30 @@ pub enum Error {
     },
 }
 
+/// The end of every message about an integer coordinate `f64` cannot hold.
+pub(crate) const INEXACT: &str =
+    "has no exact f64 (beyond 2^53 only multiples of the f64 spacing are exact)";
+
+impl Error {
+    /// The error for input point `index` failing the point check on `axis`.
+    pub(crate) fn bad_input(index: usize, axis: usize, fault: crate::geom::Fault) -> Self {
+        match fault {
+            crate::geom::Fault::NotFinite(value) => {
+                Error::NonFiniteCoordinate { index, axis, value }
+            }
+            crate::geom::Fault::Inexact(value) => Error::InexactCoordinate { index, axis, value },
+        }
+    }
+
+    /// The error for a query point failing the point check on `axis`.
+    pub(crate) fn bad_query(axis: usize, fault: crate::geom::Fault) -> Self {
+        match fault {
+            crate::geom::Fault::NotFinite(value) => Error::QueryNotFinite { axis, value },
+            crate::geom::Fault::Inexact(value) => Error::QueryInexact { axis, value },
+        }
+    }
+}
+
 impl core::fmt::Display for Error {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
@@ -76,6 +118,10 @@ impl core::fmt::Display for Error {
                     "point {index}: coordinate {value} on axis {axis} is not finite"
                 )
             }
+            Error::InexactCoordinate { index, axis, value } => write!(
+                f,
+                "point {index}: coordinate {value} on axis {axis} {INEXACT}"
+            ),
             Error::OutsideRootBox {
                 index,
                 axis,
@@ -90,6 +136,12 @@ impl core::fmt::Display for Error {
                 write!(
                     f,
                     "query point: coordinate {value} on axis {axis} is not finite"
+                )
+            }
+            Error::QueryInexact { axis, value } => {
+                write!(
+                    f,
+                    "query point: coordinate {value} on axis {axis} {INEXACT}"
                 )
             }
             Error::QueryOutsideRootBox {

@@ -381,14 +381,17 @@ fn subnormal_minimum_lies_in_the_root_cube() {
     extreme(&[[just_above_min_positive, 0.5], [1.0, 0.5]]);
 }
 
-/// 64-bit integers convert to f64 with rounding (monotone), 8- and 16-bit ones exactly.
+/// 64-bit integers at their extremes: those `f64` holds exactly build and validate; the others
+/// (`i64::MAX`, `u64::MAX`, odd values beyond 2^53) are refused, naming the point and axis. 8- and
+/// 16-bit integers convert exactly.
 #[test]
 fn integer_extremes_build_and_validate() {
+    let top = i64::MAX - 1023; // the largest i64 an f64 holds
     let e = [
-        ([i64::MIN, i64::MAX], 0usize),
-        ([i64::MAX, i64::MAX - 1], 1),
+        ([i64::MIN, top], 0usize),
+        ([top, top - 1024], 1),
         ([0, 0], 2),
-        ([i64::MAX - 1, i64::MAX], 3),
+        ([top - 1024, top], 3),
         ([-1, 1], 4),
     ];
     for bucket in [1, 2] {
@@ -399,10 +402,22 @@ fn integer_extremes_build_and_validate() {
         check_points(&t, &e, None);
         check_all(&t, &e);
     }
+    for (bad, index, axis) in [([i64::MIN, i64::MAX], 0, 1), ([i64::MAX - 1, 0], 1, 0)] {
+        let mut e = e;
+        e[index].0 = bad;
+        assert_eq!(
+            PointTree::new(&e).unwrap_err(),
+            Error::InexactCoordinate {
+                index,
+                axis,
+                value: bad[axis] as i128
+            }
+        );
+    }
     let e = [
-        ([u64::MAX], 0usize),
+        ([u64::MAX - 2047], 0usize),
         ([0], 1),
-        ([u64::MAX - 1], 2),
+        ([u64::MAX - 4095], 2),
         ([1 << 63], 3),
     ];
     let t = PointTreeBuilder::<u64, 1>::new()
@@ -410,6 +425,22 @@ fn integer_extremes_build_and_validate() {
         .build(&e)
         .unwrap();
     check_all(&t, &e);
+    for bad in [u64::MAX, u64::MAX - 1, (1 << 63) + 1] {
+        let mut e = e;
+        e[2].0 = [bad];
+        let err = PointTree::new(&e).unwrap_err();
+        assert_eq!(
+            err,
+            Error::InexactCoordinate {
+                index: 2,
+                axis: 0,
+                value: bad as i128
+            }
+        );
+        assert!(err
+            .to_string()
+            .contains(&format!("point 2: coordinate {bad} on axis 0")));
+    }
     let e: Vec<([u8; 3], usize)> = (0..=255u8)
         .map(|i| ([i, 255 - i, i / 2], usize::from(i)))
         .collect();

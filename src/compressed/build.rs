@@ -72,7 +72,7 @@ impl<S: Scalar, const D: usize> CompressedTreeBuilder<S, D> {
 
     /// Builds from (point, item) pairs, cloning the items.
     ///
-    /// Errors: a NaN or infinite coordinate, a point outside the root box (naming the point,
+    /// Errors: a NaN, infinite or inexact coordinate (an integer `f64` cannot hold), a point outside the root box (naming the point,
     /// axis and value), an invalid root box, too many points.
     pub fn build<T: Clone>(
         &self,

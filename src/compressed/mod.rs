@@ -112,7 +112,7 @@ impl<S: Scalar, const D: usize> CompressedTree<S, (), D> {
 impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
     /// Builds over the smallest enclosing cube of the points, cloning the items.
     ///
-    /// Errors: a NaN or infinite coordinate (naming the point and axis); too many points.
+    /// Errors: a NaN, infinite or inexact coordinate (an integer `f64` cannot hold) (naming the point and axis); too many points.
     pub fn new(entries: &[([S; D], T)]) -> Result<Self, Error>
     where
         T: Clone,
@@ -213,7 +213,7 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
 
     /// The deepest node whose cell holds `point`, walking down from the root: O(depth).
     ///
-    /// Errors: a NaN or infinite coordinate, or one outside [`CompressedTree::domain`].
+    /// Errors: a NaN, infinite or inexact coordinate (an integer `f64` cannot hold), or one outside [`CompressedTree::domain`].
     ///
     /// ```
     /// use orthtree::CompressedTree;
@@ -239,39 +239,32 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
         }
     }
 
-    /// The finest key of a query point, checked finite and inside the domain.
+    /// The finest key of a query point, checked ([`crate::validate_point`]) and inside the
+    /// domain.
     pub(crate) fn query_key(&self, point: &[S; D]) -> Result<DeepKey<D>, Error> {
-        let p = point.map(Scalar::to_f64);
-        match check(&p, self.domain()) {
-            Err(Bad::NotFinite(axis)) => Err(Error::QueryNotFinite {
-                axis,
-                value: p[axis],
-            }),
-            Err(Bad::Outside(axis)) => Err(Error::QueryOutsideRootBox {
+        let p = crate::geom::exact_point(point).map_err(|(axis, f)| Error::bad_query(axis, f))?;
+        match outside(&p, self.domain()) {
+            Some(axis) => Err(Error::QueryOutsideRootBox {
                 axis,
                 value: p[axis],
                 interval: (self.domain().min[axis], self.domain().max[axis]),
             }),
-            Ok(()) => Ok(self.geometry().deep_key(&p)),
+            None => Ok(self.geometry().deep_key(&p)),
         }
     }
 
     /// The finest key of a point to insert as number `index`, checked like the build's input.
     pub(crate) fn input_key(&self, point: &[S; D], index: usize) -> Result<DeepKey<D>, Error> {
-        let p = point.map(Scalar::to_f64);
-        match check(&p, self.domain()) {
-            Err(Bad::NotFinite(axis)) => Err(Error::NonFiniteCoordinate {
-                index,
-                axis,
-                value: p[axis],
-            }),
-            Err(Bad::Outside(axis)) => Err(Error::OutsideRootBox {
+        let p = crate::geom::exact_point(point)
+            .map_err(|(axis, f)| Error::bad_input(index, axis, f))?;
+        match outside(&p, self.domain()) {
+            Some(axis) => Err(Error::OutsideRootBox {
                 index,
                 axis,
                 value: p[axis],
                 interval: (self.domain().min[axis], self.domain().max[axis]),
             }),
-            Ok(()) => Ok(self.geometry().deep_key(&p)),
+            None => Ok(self.geometry().deep_key(&p)),
         }
     }
 
@@ -337,17 +330,7 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
     }
 }
 
-enum Bad {
-    NotFinite(usize),
-    Outside(usize),
-}
-
-fn check<const D: usize>(p: &[f64; D], domain: &Aabb<f64, D>) -> Result<(), Bad> {
-    if let Some(axis) = p.iter().position(|x| !x.is_finite()) {
-        return Err(Bad::NotFinite(axis));
-    }
-    match (0..D).find(|&a| !(domain.min[a] <= p[a] && p[a] <= domain.max[a])) {
-        Some(axis) => Err(Bad::Outside(axis)),
-        None => Ok(()),
-    }
+/// The first axis on which `p` lies outside `domain`.
+fn outside<const D: usize>(p: &[f64; D], domain: &Aabb<f64, D>) -> Option<usize> {
+    (0..D).find(|&a| !(domain.min[a] <= p[a] && p[a] <= domain.max[a]))
 }

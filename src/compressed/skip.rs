@@ -180,7 +180,7 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
     /// The deepest node of level 0 whose cell holds `point`, found from the top level down:
     /// expected O(log n) nodes visited ([`Location::touched`]).
     ///
-    /// Errors: a NaN or infinite coordinate, or one outside the domain.
+    /// Errors: a NaN, infinite or inexact coordinate (an integer `f64` cannot hold), or one outside the domain.
     pub fn locate(&self, point: &[S; D]) -> Result<Location<D>, Error> {
         let key = self.base.query_key(point)?;
         let mut touched = 0;
@@ -261,25 +261,32 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
 
     /// A point whose distance to `p` is at most `(1 + eps)` times the nearest's (Euclidean), and
     /// the number of nodes the search visited; `None` for an empty tree. `eps = 0` gives the
-    /// exact nearest point.
+    /// exact nearest point (and so does `-0.0`); an infinite or huge `eps` (for which
+    /// `(1 + eps)^2` overflows) accepts any point, the first found.
     ///
-    /// Errors: a non-finite `p`; `eps` negative or NaN ([`QueryError::InvalidEpsilon`]).
+    /// Errors: a non-finite `p` or an integer coordinate `f64` cannot hold; `eps` negative or
+    /// NaN ([`QueryError::InvalidEpsilon`]).
     pub fn approx_nearest(
         &self,
         p: &[S; D],
         eps: f64,
     ) -> Result<(Option<Neighbor<'_, S, T, D>>, usize), QueryError> {
-        let q = p.map(Scalar::to_f64);
-        if let Some(axis) = q.iter().position(|x| !x.is_finite()) {
-            return Err(QueryError::NotFinite {
-                axis,
-                value: q[axis].into(),
-            });
-        }
+        let q = crate::query::query_point(p)?;
         if eps.is_nan() || eps < 0.0 {
             return Err(QueryError::InvalidEpsilon { value: eps.into() });
         }
+        // A box is searched while its distance is at most best / (1 + eps)^2. The factor is 0
+        // for an eps so large (above about 1.3e154, or infinite) that (1 + eps)^2 overflows:
+        // then any point will do, and the bound is 0 once one is found. While none is found the
+        // bound is infinite, never `infinity * 0`.
         let shrink = 1.0 / ((1.0 + eps) * (1.0 + eps));
+        let bound = |best: f64| {
+            if best == f64::INFINITY {
+                best
+            } else {
+                best * shrink
+            }
+        };
         let index = self.base.index();
         let (points, slots) = (index.points(), index.items());
         let m = SquaredEuclidean;
@@ -290,13 +297,13 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
             heap.push(Pending(m.box_distance(&q, &b), root, b));
         }
         while let Some(Pending(d, v, b)) = heap.pop() {
-            if d > best.0 * shrink {
+            if d > bound(best.0) {
                 break;
             }
             visited += 1;
             let leaf = !index.for_each_child_in(v, &b, |c, cb| {
                 let cd = m.box_distance(&q, cb);
-                if cd <= best.0 * shrink {
+                if cd <= bound(best.0) {
                     heap.push(Pending(cd, c, *cb));
                 }
             });

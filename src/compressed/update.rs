@@ -116,11 +116,10 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
         if !t.is_leaf(leaf) || t.node(leaf).cell.anchor() != *key {
             return None;
         }
-        let same = |a: &[S; D]| (0..D).all(|i| a[i].to_f64() == point[i].to_f64());
         let s = self
             .index
             .leaf_slots(leaf)
-            .find(|&s| same(&self.index.points[s]) && accept(&self.items[s]))?;
+            .find(|&s| self.index.points[s] == *point && accept(&self.items[s]))?;
         let removed = self.index.remove_slot(s);
         let item = self.items.swap_remove(s);
         Some((item, if removed == NIL { NIL } else { leaf }))

@@ -32,6 +32,19 @@ pub enum AabbError {
         /// The offending axis.
         axis: usize,
     },
+    /// A cube's side ([`crate::RootGeometry::try_new`]) that is NaN, infinite or negative.
+    InvalidSide {
+        /// The side given (compared by its bits: NaN equals itself).
+        side: super::FloatBits,
+    },
+    /// A corner on this axis is an integer that `f64` cannot hold exactly
+    /// ([`Scalar::converts_exactly`]).
+    Inexact {
+        /// The offending axis.
+        axis: usize,
+        /// The coordinate.
+        value: i128,
+    },
 }
 
 impl core::fmt::Display for AabbError {
@@ -41,6 +54,14 @@ impl core::fmt::Display for AabbError {
                 write!(f, "box coordinate on axis {axis} is not finite")
             }
             AabbError::Inverted { axis } => write!(f, "box has min > max on axis {axis}"),
+            AabbError::InvalidSide { side } => {
+                write!(f, "cube side {} is not finite and non-negative", side.get())
+            }
+            AabbError::Inexact { axis, value } => write!(
+                f,
+                "box coordinate {value} on axis {axis} {}",
+                crate::error::INEXACT
+            ),
         }
     }
 }
@@ -73,13 +94,48 @@ impl<S: Scalar, const D: usize> Aabb<S, D> {
         (0..D).all(|a| self.min[a] <= other.max[a] && other.min[a] <= self.max[a])
     }
 
-    /// `max - min` along `axis`.
+    /// `max - min` along `axis`, computed in `f64` (so that no integer box overflows its type:
+    /// `i32::MIN..=i32::MAX` is 2^32 - 1 wide); infinite when the difference of two floats
+    /// exceeds `f64::MAX` (a box from `-f64::MAX` to `f64::MAX`), rounded like any `f64`
+    /// subtraction.
+    ///
+    /// ```
+    /// use orthtree::Aabb;
+    /// assert_eq!(Aabb::new([i32::MIN], [i32::MAX]).unwrap().extent(0), 4294967295.0);
+    /// assert_eq!(Aabb::new([-f64::MAX], [f64::MAX]).unwrap().extent(0), f64::INFINITY);
+    /// ```
     #[inline]
-    pub fn extent(&self, axis: usize) -> S {
-        self.max[axis] - self.min[axis]
+    pub fn extent(&self, axis: usize) -> f64 {
+        self.max[axis].to_f64() - self.min[axis].to_f64()
     }
 
-    /// The box converted to `f64` coordinates.
+    /// The box converted to `f64` coordinates exactly: an error when a corner is not finite
+    /// ([`AabbError::NonFinite`]) or is an integer `f64` cannot hold ([`AabbError::Inexact`]),
+    /// naming the first such axis (the check of [`crate::validate_point`] on both corners).
+    ///
+    /// ```
+    /// use orthtree::{Aabb, AabbError};
+    /// let b = Aabb { min: [0i64, 0], max: [1 << 53, (1 << 53) + 1] };
+    /// assert_eq!(b.to_exact_f64(), Err(AabbError::Inexact { axis: 1, value: (1 << 53) + 1 }));
+    /// let b = Aabb { min: [0i64, 0], max: [1 << 53, (1 << 53) + 2] };
+    /// assert_eq!(b.to_exact_f64().unwrap().max[1], 2f64.powi(53) + 2.0);
+    /// ```
+    pub fn to_exact_f64(&self) -> Result<Aabb<f64, D>, AabbError> {
+        for axis in 0..D {
+            for c in [self.min[axis], self.max[axis]] {
+                if !c.converts_exactly() {
+                    return Err(match crate::geom::fault(c) {
+                        crate::geom::Fault::NotFinite(_) => AabbError::NonFinite { axis },
+                        crate::geom::Fault::Inexact(value) => AabbError::Inexact { axis, value },
+                    });
+                }
+            }
+        }
+        Ok(self.to_f64())
+    }
+
+    /// The box converted to `f64` coordinates (rounded for integers `f64` cannot hold:
+    /// [`Aabb::to_exact_f64`] refuses those).
     pub fn to_f64(&self) -> Aabb<f64, D> {
         Aabb {
             min: self.min.map(Scalar::to_f64),

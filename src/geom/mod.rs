@@ -6,6 +6,7 @@ mod aabb;
 mod cell;
 pub mod deep;
 mod direction;
+mod float_bits;
 pub mod morton;
 mod scalar;
 
@@ -14,4 +15,6 @@ pub use cell::Cell;
 pub(crate) use cell::Dim;
 pub use deep::{DeepCell, DeepKey};
 pub use direction::{Connectivity, Direction};
+pub use float_bits::FloatBits;
+pub(crate) use scalar::{exact_point, fault, Fault};
 pub use scalar::{validate_point, Scalar};

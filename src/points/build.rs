@@ -220,7 +220,7 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
             return Err(Error::TooManyPoints { len: n });
         }
         match &self.root {
-            Some(root) => Ok(Some(Aabb::new(root.min, root.max)?.to_f64())),
+            Some(root) => Ok(Some(Aabb::new(root.min, root.max)?.to_exact_f64()?)),
             None => Ok(None),
         }
     }
@@ -244,21 +244,16 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
     }
 }
 
-/// `p` as `f64`, or the error naming it (as point `index`) when a coordinate is NaN or infinite,
+/// `p` as `f64`, or the error naming it (as point `index`) when a coordinate is NaN, infinite or
+/// an integer `f64` cannot hold,
 /// or outside `root` when one is given.
 pub(crate) fn check_point<S: Scalar, const D: usize>(
     p: &[S; D],
     root: Option<&Aabb<f64, D>>,
     index: usize,
 ) -> Result<[f64; D], Error> {
-    if let Err(axis) = crate::geom::validate_point(p) {
-        return Err(Error::NonFiniteCoordinate {
-            index,
-            axis,
-            value: p[axis].to_f64(),
-        });
-    }
-    let p = p.map(Scalar::to_f64);
+    let p = crate::geom::exact_point(p)
+        .map_err(|(axis, fault)| Error::bad_input(index, axis, fault))?;
     if let Some(root) = root {
         if let Some(axis) = (0..D).find(|&a| !(root.min[a] <= p[a] && p[a] <= root.max[a])) {
             return Err(Error::OutsideRootBox {

@@ -14,7 +14,7 @@
 //! The 64 levels of [`DeepCell`](crate::DeepCell)s, for the compressed trees, continue these
 //! lines below level 32 (`deep_geometry.rs`: [`RootGeometry::deep_coordinate`]).
 
-use crate::geom::{Aabb, Cell, Scalar};
+use crate::geom::{Aabb, AabbError, Cell, Scalar};
 
 /// How many points [`RootGeometry::keys_into`] quantises at a time.
 const LANES: usize = 8;
@@ -46,10 +46,52 @@ pub struct RootGeometry<const D: usize> {
 impl<const D: usize> RootGeometry<D> {
     pub(super) const FINEST: u32 = Cell::<D>::MAX_LEVEL as u32;
 
-    /// The cube with lower corner `min` and side `side` (finite, non-negative).
+    /// The cube with lower corner `min` and side `side` (finite, non-negative; `-0.0` is 0).
+    /// Its far side may round to infinity (`min` near `f64::MAX`); the boundaries strictly
+    /// inside stay finite.
+    ///
+    /// # Panics
+    ///
+    /// When a coordinate of `min` or `side` is not finite, or `side` is negative:
+    /// [`RootGeometry::try_new`] returns the error instead.
     pub fn new(min: [f64; D], side: f64) -> Self {
-        debug_assert!(side >= 0.0 && side.is_finite());
-        Self::from_halves(min.map(half_down), side * 0.5)
+        match Self::try_new(min, side) {
+            Ok(g) => g,
+            Err(e) => panic!("RootGeometry::new: {e}"),
+        }
+    }
+
+    /// [`RootGeometry::new`], or an error naming the first non-finite axis of `min`
+    /// ([`AabbError::NonFinite`]) or the bad side ([`AabbError::InvalidSide`]).
+    ///
+    /// ```
+    /// use orthtree::{AabbError, RootGeometry};
+    /// assert!(RootGeometry::<2>::try_new([0.0, 1.0], 2.0).is_ok());
+    /// assert_eq!(
+    ///     RootGeometry::<2>::try_new([0.0, f64::NAN], 2.0),
+    ///     Err(AabbError::NonFinite { axis: 1 })
+    /// );
+    /// assert!(matches!(
+    ///     RootGeometry::<2>::try_new([0.0, 0.0], -1.0),
+    ///     Err(AabbError::InvalidSide { .. })
+    /// ));
+    /// ```
+    pub fn try_new(min: [f64; D], side: f64) -> Result<Self, AabbError> {
+        if let Some(axis) = min.iter().position(|x| !x.is_finite()) {
+            return Err(AabbError::NonFinite { axis });
+        }
+        if !(side >= 0.0 && side.is_finite()) {
+            return Err(AabbError::InvalidSide { side: side.into() });
+        }
+        // Half the side rounded up: halving an odd subnormal side rounds, and the cube must
+        // not shrink below `side`.
+        let half = side.abs() * 0.5;
+        let half = if 2.0 * half < side {
+            half.next_up()
+        } else {
+            half
+        };
+        Ok(Self::from_halves(min.map(half_down), half))
     }
 
     fn from_halves(half_lo: [f64; D], half_side: f64) -> Self {

@@ -218,13 +218,11 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
 
     /// The leaf whose cell holds `point` under the split convention. O(depth).
     ///
-    /// Errors: a coordinate that is NaN or infinite, or outside [`PointTree::domain`].
+    /// Errors: a coordinate that is NaN, infinite or an integer `f64` cannot hold
+    /// ([`Error::QueryInexact`]), or outside [`PointTree::domain`].
     pub fn locate(&self, point: &[S; D]) -> Result<NodeId, Error> {
-        let p = point.map(Scalar::to_f64);
+        let p = crate::geom::exact_point(point).map_err(|(axis, f)| Error::bad_query(axis, f))?;
         for (axis, &value) in p.iter().enumerate() {
-            if !value.is_finite() {
-                return Err(Error::QueryNotFinite { axis, value });
-            }
             let interval = (self.domain.min[axis], self.domain.max[axis]);
             if !(interval.0 <= value && value <= interval.1) {
                 return Err(Error::QueryOutsideRootBox {

@@ -13,7 +13,7 @@ use super::metric::Metric;
 use super::nearest_iter::NearestIter;
 use super::range::{for_each_in, scan_limit, QueryStats, RegionIter};
 use super::region::Region;
-use super::{check_max, check_point, QueryError};
+use super::{check_max, query_point, QueryError};
 use crate::geom::{Aabb, Cell, Scalar};
 use crate::points::{child_box, PointTree};
 use crate::tree::NodeId;
@@ -164,8 +164,7 @@ pub trait SpatialIndex<const D: usize> {
     where
         Self: Sized,
     {
-        let q = p.map(Scalar::to_f64);
-        check_point(&q)?;
+        let q = query_point(p)?;
         check_max(max)?;
         Ok(k_nearest(self, &q, k, max, metric)
             .into_iter()
@@ -185,8 +184,7 @@ pub trait SpatialIndex<const D: usize> {
     where
         Self: Sized,
     {
-        let q = p.map(Scalar::to_f64);
-        check_point(&q)?;
+        let q = query_point(p)?;
         check_max(max)?;
         Ok(k_nearest(self, &q, 1, max, metric)
             .first()
@@ -204,7 +202,7 @@ pub trait SpatialIndex<const D: usize> {
     where
         Self: Sized,
     {
-        NearestIter::new(self, p.map(Scalar::to_f64), max, metric)
+        NearestIter::new(self, query_point(p)?, max, metric)
     }
 }
 

@@ -288,7 +288,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// The nearest point to `p` (squared Euclidean distance); `None` for an empty tree. Ties go to
     /// the point first in [`PointTree::points`].
     ///
-    /// Errors: a NaN or infinite coordinate in `p`.
+    /// Errors: a NaN, infinite or inexact coordinate (an integer `f64` cannot hold) in `p`.
     ///
     /// ```
     /// use orthtree::Quadtree;
@@ -302,7 +302,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
 
     /// The nearest point to `p` at squared distance at most `max`; `None` if there is none.
     ///
-    /// Errors: a non-finite `p`; a negative or NaN `max`.
+    /// Errors: a non-finite or inexact `p`; a negative or NaN `max`.
     ///
     /// ```
     /// use orthtree::Quadtree;
@@ -321,7 +321,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// The `k` nearest points to `p` (squared Euclidean), sorted by distance, ties by index in
     /// [`PointTree::points`]. Fewer when the tree holds fewer; empty for `k = 0` or an empty tree.
     ///
-    /// Errors: a NaN or infinite coordinate in `p`.
+    /// Errors: a NaN, infinite or inexact coordinate (an integer `f64` cannot hold) in `p`.
     ///
     /// ```
     /// use orthtree::Quadtree;
@@ -359,7 +359,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// The `k` nearest points to `p` at distance at most `max` (inclusive; `f64::INFINITY` for no
     /// limit) under `metric`, sorted by distance then index.
     ///
-    /// Errors: a non-finite `p`; a negative or NaN `max`.
+    /// Errors: a non-finite or inexact `p`; a negative or NaN `max`.
     ///
     /// ```
     /// use orthtree::{query::{Chebyshev, Manhattan}, Quadtree};

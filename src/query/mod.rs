@@ -14,10 +14,13 @@
 //! a contiguous run of points per node. [`PointTree`](crate::PointTree) is one; the compressed
 //! quadtree can be another.
 //!
-//! Coordinates are compared as `f64` ([`Scalar::to_f64`](crate::Scalar::to_f64), exact for
-//! `f32`, `f64` and integers up to 32 bits), and every region's cell test is computed so that it
-//! agrees with its point test: a query returns exactly the points its region's
-//! [`Region::contains`] accepts.
+//! Coordinates are compared as `f64` ([`Scalar::to_f64`](crate::Scalar::to_f64)), exactly: a query
+//! point, ball centre or box corner that `f64` cannot hold (a 64-bit integer such as 2^53 + 1) is
+//! refused with [`QueryError::Inexact`], as the trees refuse such points. Every region's cell test
+//! is computed so that it agrees with its point test: a query returns exactly the points its
+//! region's [`Region::contains`] accepts. Distances are `f64` arithmetic and round; squared
+//! Euclidean distances beyond `f64::MAX` (points more than about 1.3e154 apart) are infinite and
+//! tie, broken by index.
 
 #[cfg(feature = "rayon")]
 mod batch;
@@ -29,6 +32,7 @@ pub mod range;
 mod region;
 mod slotted;
 
+pub use crate::geom::FloatBits;
 #[cfg(feature = "rayon")]
 pub use batch::BatchError;
 pub(crate) use index::nearest_child_by_boxes;
@@ -62,6 +66,14 @@ pub enum QueryError {
         /// The bad coordinate (compare its bits: NaN is not equal to itself).
         value: FloatBits,
     },
+    /// A query point, ball centre or box corner has, on `axis`, an integer that `f64` cannot
+    /// hold exactly ([`Scalar::converts_exactly`](crate::Scalar::converts_exactly)).
+    Inexact {
+        /// The axis holding the bad coordinate.
+        axis: usize,
+        /// The coordinate.
+        value: i128,
+    },
     /// A box bound on `axis` is NaN (infinite bounds are allowed).
     NanBound {
         /// The axis holding the bad bound.
@@ -92,29 +104,6 @@ pub enum QueryError {
     },
 }
 
-/// An `f64` compared by its bits, so that errors holding NaN still compare equal to themselves.
-///
-/// ```
-/// use orthtree::query::FloatBits;
-/// assert_eq!(FloatBits::from(f64::NAN), FloatBits::from(f64::NAN));
-/// assert_eq!(FloatBits::from(-1.5).get(), -1.5);
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct FloatBits(u64);
-
-impl FloatBits {
-    /// The value.
-    pub fn get(self) -> f64 {
-        f64::from_bits(self.0)
-    }
-}
-
-impl From<f64> for FloatBits {
-    fn from(x: f64) -> Self {
-        FloatBits(x.to_bits())
-    }
-}
-
 impl core::fmt::Display for QueryError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
@@ -122,6 +111,11 @@ impl core::fmt::Display for QueryError {
                 f,
                 "query coordinate {} on axis {axis} is not finite",
                 value.get()
+            ),
+            QueryError::Inexact { axis, value } => write!(
+                f,
+                "query coordinate {value} on axis {axis} {}",
+                crate::error::INEXACT
             ),
             QueryError::NanBound { axis } => write!(f, "box bound on axis {axis} is NaN"),
             QueryError::InvalidRadius { radius } => {
@@ -143,6 +137,40 @@ impl core::fmt::Display for QueryError {
 
 impl std::error::Error for QueryError {}
 
+/// A query point (or ball centre) in `f64`, exactly: an error naming the first axis that fails
+/// [`crate::validate_point`].
+#[inline]
+pub(crate) fn query_point<S: crate::Scalar, const D: usize>(
+    p: &[S; D],
+) -> Result<[f64; D], QueryError> {
+    crate::geom::exact_point(p).map_err(|(axis, fault)| match fault {
+        crate::geom::Fault::NotFinite(v) => QueryError::NotFinite {
+            axis,
+            value: v.into(),
+        },
+        crate::geom::Fault::Inexact(value) => QueryError::Inexact { axis, value },
+    })
+}
+
+/// A query box in `f64`: infinite float bounds pass (a NaN is refused by the box's
+/// [`Region::validate`]), an integer `f64` cannot hold exactly is refused
+/// ([`QueryError::Inexact`]), naming the first such axis.
+pub(crate) fn query_box<S: crate::Scalar, const D: usize>(
+    b: &crate::Aabb<S, D>,
+) -> Result<crate::Aabb<f64, D>, QueryError> {
+    for axis in 0..D {
+        for c in [b.min[axis], b.max[axis]] {
+            match c.integer_value() {
+                Some(value) if !c.converts_exactly() => {
+                    return Err(QueryError::Inexact { axis, value });
+                }
+                _ => {}
+            }
+        }
+    }
+    Ok(b.to_f64())
+}
+
 /// Checks a query point: every coordinate finite.
 pub(crate) fn check_point<const D: usize>(p: &[f64; D]) -> Result<(), QueryError> {
     match p.iter().position(|x| !x.is_finite()) {
@@ -154,7 +182,7 @@ pub(crate) fn check_point<const D: usize>(p: &[f64; D]) -> Result<(), QueryError
     }
 }
 
-/// Checks a maximum distance: not negative, not NaN (infinity means no limit).
+/// Checks a maximum distance: not negative, not NaN (infinity means no limit, -0.0 is 0).
 pub(crate) fn check_max(max: f64) -> Result<(), QueryError> {
     if max >= 0.0 {
         Ok(())

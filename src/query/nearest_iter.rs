@@ -132,7 +132,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// Every point, nearest to `p` first (squared Euclidean), lazily: taking `k` of them costs
     /// about what [`PointTree::k_nearest`] does, without knowing `k` in advance.
     ///
-    /// Errors: a NaN or infinite coordinate in `p`.
+    /// Errors: a NaN, infinite or inexact coordinate (an integer `f64` cannot hold) in `p`.
     ///
     /// ```
     /// use orthtree::Quadtree;
@@ -169,7 +169,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// [`PointTree::nearest_iter`] under `metric`, up to distance `max` (`f64::INFINITY` for no
     /// limit).
     ///
-    /// Errors: a non-finite `p`; a negative or NaN `max`.
+    /// Errors: a non-finite or inexact `p`; a negative or NaN `max`.
     ///
     /// ```
     /// use orthtree::{query::Manhattan, Quadtree};

@@ -344,6 +344,9 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
 
     /// The points in the closed box `b` ([`PointTree::query`] with an [`Aabb`]).
     ///
+    /// Errors: a NaN bound ([`QueryError::NanBound`]); an integer corner `f64` cannot hold
+    /// ([`QueryError::Inexact`]). Infinite float bounds are open-ended.
+    ///
     /// ```
     /// use orthtree::{Aabb, PointTree};
     /// let t = PointTree::new(&[([1i32, 1], 'a'), ([5, 5], 'b')]).unwrap();
@@ -353,12 +356,12 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         &self,
         b: &Aabb<S, D>,
     ) -> Result<RegionIter<'_, PointTree<S, T, D>, Aabb<f64, D>, D>, QueryError> {
-        self.query(b.to_f64())
+        self.query(super::query_box(b)?)
     }
 
     /// The points at Euclidean distance at most `radius` from `center` ([`Ball`]).
     ///
-    /// Errors: a non-finite centre, a negative or NaN radius.
+    /// Errors: a non-finite or inexact centre, a negative or NaN radius.
     ///
     /// ```
     /// use orthtree::Quadtree;
@@ -371,7 +374,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         center: &[S; D],
         radius: f64,
     ) -> Result<RegionIter<'_, PointTree<S, T, D>, Ball<D>, D>, QueryError> {
-        self.query(Ball::new(center.map(Scalar::to_f64), radius)?)
+        self.query(Ball::new(super::query_point(center)?, radius)?)
     }
 
     /// The points `x` with `normal . x <= offset` ([`HalfSpace`]).

@@ -113,8 +113,15 @@ impl<const D: usize> Region<D> for Aabb<f64, D> {
     }
 }
 
-/// The closed ball of points whose squared Euclidean distance to `center` is at most
-/// `radius * radius` (both computed in `f64`, axis by axis in order).
+/// The closed ball of points at Euclidean distance at most `radius` from `center`.
+///
+/// Computed in `f64`, axis by axis in order, on offsets scaled by the power of two `s` that
+/// brings the radius near 1: a point is in when `sum ((p_a - c_a) s)^2 <= (radius s)^2`. The
+/// scaling is exact, so this is the plain squared comparison wherever that does not overflow or
+/// underflow, and stays right where it would: a radius of `1e200` does not take in a point at
+/// `1e201` (both squares would be infinite), and a radius of `1e-300` leaves out a point at
+/// `1e-200` (both squares would be 0). An infinite radius holds everything, a radius of 0 (or
+/// -0.0) only the centre; a NaN or negative radius and a non-finite centre are refused.
 ///
 /// ```
 /// use orthtree::query::{Ball, Region};
@@ -122,6 +129,11 @@ impl<const D: usize> Region<D> for Aabb<f64, D> {
 /// assert!(b.contains(&[3.0, 4.0])); // on the sphere: closed
 /// assert!(!b.contains(&[3.0, 4.5]));
 /// assert!(Ball::new([0.0, 0.0], -1.0).is_err());
+/// let huge = Ball::new([0.0, 0.0], 1e200).unwrap();
+/// assert!(huge.contains(&[6e199, 8e199]) && !huge.contains(&[1e201, 0.0]));
+/// let tiny = Ball::new([0.0, 0.0], 1e-300).unwrap();
+/// assert!(tiny.contains(&[6e-301, 8e-301]) && !tiny.contains(&[1e-200, 0.0]));
+/// assert!(Ball::new([0.0, 0.0], f64::INFINITY).unwrap().contains(&[f64::MAX, -f64::MAX]));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ball<const D: usize> {
@@ -138,15 +150,30 @@ impl<const D: usize> Ball<D> {
         b.validate()?;
         Ok(b)
     }
+
+    /// The scale `s` (a power of two between 2^-1022 and 2^1022, exact to multiply by) and
+    /// `(radius s)^2`: `s` puts a normal radius in [1, 2), and is 2^1022 for 0 and subnormal
+    /// radii, so that no nonzero offset scales to 0.
+    #[inline]
+    fn scaled_radius(&self) -> (f64, f64) {
+        let biased = ((self.radius.to_bits() >> 52) & 0x7ff).clamp(1, 2045);
+        let s = f64::from_bits((2046 - biased) << 52);
+        let r = self.radius * s;
+        (s, r * r)
+    }
 }
 
 impl<const D: usize> Region<D> for Ball<D> {
     #[inline]
     fn classify(&self, cell: &Aabb<f64, D>) -> Relation {
-        let r2 = self.radius * self.radius;
+        if self.radius == f64::INFINITY {
+            return Relation::Inside;
+        }
+        let (s, r2) = self.scaled_radius();
         let (mut near, mut far) = (0.0, 0.0);
         for a in 0..D {
             let c = self.center[a];
+            // the offsets to the box's sides, as `p - c` rounds for a point there
             let (dl, dh) = (c - cell.min[a], cell.max[a] - c);
             // Nearest and farthest offsets along this axis (0 when c lies in the interval).
             let n = if dl < 0.0 {
@@ -157,6 +184,7 @@ impl<const D: usize> Region<D> for Ball<D> {
                 0.0
             };
             let f = dl.abs().max(dh.abs());
+            let (n, f) = (n * s, f * s);
             near += n * n;
             far += f * f;
         }
@@ -170,12 +198,16 @@ impl<const D: usize> Region<D> for Ball<D> {
     }
     #[inline]
     fn contains(&self, p: &[f64; D]) -> bool {
+        if self.radius == f64::INFINITY {
+            return true;
+        }
+        let (s, r2) = self.scaled_radius();
         let mut d2 = 0.0;
         for a in 0..D {
-            let d = p[a] - self.center[a];
+            let d = (p[a] - self.center[a]) * s;
             d2 += d * d;
         }
-        d2 <= self.radius * self.radius
+        d2 <= r2
     }
     fn validate(&self) -> Result<(), QueryError> {
         super::check_point(&self.center)?;
@@ -189,14 +221,25 @@ impl<const D: usize> Region<D> for Ball<D> {
     }
 }
 
-/// The closed half-space `normal . x <= offset` (the dot product computed in `f64`, axis by axis
-/// in order). A zero normal gives everything (offset >= 0) or nothing.
+/// The closed half-space `normal . x <= offset`.
+///
+/// Computed in `f64`, axis by axis in order, with the normal and the offset scaled by the power
+/// of two `s` that puts `sum |normal_a| s` in [1/4, 1/2): a point is in when
+/// `sum (normal_a s) x_a <= offset s`. Scaled so, no product or partial sum can overflow for
+/// finite coordinates, so a normal such as `[1e300, -1e300]` or points near `f64::MAX` never
+/// make `inf - inf`: the answer is the rounded dot product's, with rounding about 4 times
+/// coarser than plain `f64` for products in the subnormal range. A zero normal gives
+/// everything (offset >= 0) or nothing; an offset of `+inf` everything, `-inf` nothing.
 ///
 /// ```
 /// use orthtree::query::{HalfSpace, Region};
 /// let left = HalfSpace::new([1.0, 0.0], 0.5).unwrap(); // x <= 0.5
 /// assert!(left.contains(&[0.5, 7.0]));
 /// assert!(!left.contains(&[0.6, 0.0]));
+/// // x <= y, with a normal whose products would overflow unscaled
+/// let below = HalfSpace::new([1e300, -1e300], 0.0).unwrap();
+/// assert!(below.contains(&[1e10, 1e10]) && !below.contains(&[f64::MAX, 1.0]));
+/// assert!(below.contains(&[f64::MAX, f64::MAX]));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HalfSpace<const D: usize> {
@@ -213,22 +256,49 @@ impl<const D: usize> HalfSpace<D> {
         h.validate()?;
         Ok(h)
     }
+
+    /// The normal and offset scaled by `s` (see the type's doc): exact but in the subnormal
+    /// range. A zero normal is left as it is.
+    #[inline]
+    fn scaled(&self) -> ([f64; D], f64) {
+        // The sum of magnitudes, scaled down first so that it cannot overflow (D <= 8).
+        let t: f64 = self.normal.iter().map(|n| n.abs() * (-16f64).exp2()).sum();
+        if t == 0.0 || !t.is_finite() {
+            return (self.normal, self.offset);
+        }
+        // t in [2^e, 2^(e+1)): the sum lies in [2^(e+16), 2^(e+17)), and s = 2^-(e+18).
+        let e = ((t.to_bits() >> 52) & 0x7ff).max(1) as i32 - 1023;
+        let s = pow2(-(e + 18));
+        (self.normal.map(|n| n * s), self.offset * s)
+    }
+}
+
+/// 2^k for k in -1074..=1023, exactly (subnormal below -1022).
+#[inline]
+fn pow2(k: i32) -> f64 {
+    if k >= -1022 {
+        f64::from_bits(((k + 1023) as u64) << 52)
+    } else {
+        f64::from_bits(1u64 << (k + 1074))
+    }
 }
 
 impl<const D: usize> Region<D> for HalfSpace<D> {
     #[inline]
     fn classify(&self, cell: &Aabb<f64, D>) -> Relation {
+        let (normal, offset) = self.scaled();
         let (mut low, mut high) = (0.0, 0.0);
         for a in 0..D {
-            let n = self.normal[a];
+            let n = normal[a];
             let (x, y) = (n * cell.min[a], n * cell.max[a]);
-            // n * x is monotone in x for a fixed n, so the corners give the extremes.
+            // n * x is monotone in x for a fixed n, so the corners give the extremes (a NaN
+            // from 0 * inf, at an infinite cell side, is skipped by min and max).
             low += x.min(y);
             high += x.max(y);
         }
-        if low > self.offset {
+        if low > offset {
             Relation::Outside
-        } else if high <= self.offset {
+        } else if high <= offset {
             Relation::Inside
         } else {
             Relation::Crossing
@@ -236,11 +306,12 @@ impl<const D: usize> Region<D> for HalfSpace<D> {
     }
     #[inline]
     fn contains(&self, p: &[f64; D]) -> bool {
+        let (normal, offset) = self.scaled();
         let mut s = 0.0;
         for a in 0..D {
-            s += self.normal[a] * p[a];
+            s += normal[a] * p[a];
         }
-        s <= self.offset
+        s <= offset
     }
     fn validate(&self) -> Result<(), QueryError> {
         if let Some(axis) = self.normal.iter().position(|x| !x.is_finite()) {

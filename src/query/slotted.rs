@@ -146,21 +146,18 @@ macro_rules! slot_queries {
                 &self,
                 b: &$crate::Aabb<S, D>,
             ) -> Result<$region_iter<'_, S, T, $crate::Aabb<f64, D>, D>, $crate::QueryError> {
-                self.query(b.to_f64())
+                self.query($crate::query::query_box(b)?)
             }
 
             /// The points at Euclidean distance at most `radius` from `center`.
             ///
-            /// Errors: a non-finite centre, a negative or NaN radius.
+            /// Errors: a non-finite or inexact centre, a negative or NaN radius.
             pub fn in_ball(
                 &self,
                 center: &[S; D],
                 radius: f64,
             ) -> Result<$region_iter<'_, S, T, $crate::Ball<D>, D>, $crate::QueryError> {
-                self.query($crate::Ball::new(
-                    center.map($crate::Scalar::to_f64),
-                    radius,
-                )?)
+                self.query($crate::Ball::new($crate::query::query_point(center)?, radius)?)
             }
 
             /// The points `x` with `normal . x <= offset`.
@@ -177,7 +174,7 @@ macro_rules! slot_queries {
 
             /// The nearest point to `p` (squared Euclidean distance); `None` for an empty tree.
             ///
-            /// Errors: a NaN or infinite coordinate in `p`.
+            /// Errors: a NaN, infinite or inexact coordinate (an integer `f64` cannot hold) in `p`.
             pub fn nearest(
                 &self,
                 p: &[S; D],
@@ -230,7 +227,7 @@ macro_rules! slot_queries {
 
             /// The `k` nearest points to `p` at distance at most `max` under `metric`.
             ///
-            /// Errors: a non-finite `p`; a negative or NaN `max`.
+            /// Errors: a non-finite or inexact `p`; a negative or NaN `max`.
             pub fn k_nearest_by<M: $crate::Metric<D>>(
                 &self,
                 p: &[S; D],
