@@ -14,6 +14,7 @@
 mod board_file;
 pub mod board_text;
 pub mod gmsh;
+mod limits;
 pub mod pbm;
 #[cfg(feature = "png")]
 pub mod png;
@@ -23,4 +24,5 @@ pub mod triangle;
 pub mod vtk;
 
 pub use board_file::{read_board_file, BoardFileError};
+pub use limits::{LimitError, Limits};
 pub use svg::{mesh_svg, point_tree_svg, Style, Svg};
