@@ -94,7 +94,7 @@ fn image(w: u32, h: u32, seed: u64) -> ImageTree {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 600, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: 2000, ..ProptestConfig::default() })]
 
     #[test]
     fn pbm_random_bytes(tail in proptest::collection::vec(any::<u8>(), 0..64), magic in 0usize..3) {

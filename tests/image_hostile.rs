@@ -66,7 +66,10 @@ fn limits_name_the_size_and_the_limit() {
         let e = pbm::from_bytes_with_limits(&bytes, small_file).unwrap_err();
         assert!(matches!(
             e,
-            PbmError::Limit(LimitError::Bytes { what: "the file", .. })
+            PbmError::Limit(LimitError::Bytes {
+                what: "the file",
+                ..
+            })
         ));
         let exact = Limits {
             max_pixels: 60_000,
@@ -77,7 +80,10 @@ fn limits_name_the_size_and_the_limit() {
     // a checkerboard needs a node per pixel: the byte limit stops the tree, not the machine
     let mut board = b"P4\n1024 1024\n".to_vec();
     for y in 0..1024 {
-        board.extend(std::iter::repeat_n(if y % 2 == 0 { 0xaa } else { 0x55 }, 128));
+        board.extend(std::iter::repeat_n(
+            if y % 2 == 0 { 0xaa } else { 0x55 },
+            128,
+        ));
     }
     let tight = Limits {
         max_bytes: 300_000,
@@ -107,55 +113,187 @@ fn the_p4_header_ends_with_exactly_one_whitespace_byte() {
     }
     // CR LF after the height: the LF is raster, the real byte is trailing data
     let e = err(b"P4\n8 1\r\n\x81");
-    assert!(matches!(e, PbmError::TrailingData { offset: 8, bytes: 1, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            PbmError::TrailingData {
+                offset: 8,
+                bytes: 1,
+                ..
+            }
+        ),
+        "{e}"
+    );
     // a comment after the delimiting whitespace is raster too
     let e = err(b"P4\n8 1\n# c\n\x81");
-    assert!(matches!(e, PbmError::TrailingData { offset: 8, bytes: 4, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            PbmError::TrailingData {
+                offset: 8,
+                bytes: 4,
+                ..
+            }
+        ),
+        "{e}"
+    );
     // no whitespace at all after the height
     let e = err(b"P4\n8 1\x81");
-    assert!(matches!(e, PbmError::MissingWhitespace { after: "height", offset: 6, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            PbmError::MissingWhitespace {
+                after: "height",
+                offset: 6,
+                ..
+            }
+        ),
+        "{e}"
+    );
     assert!(e.to_string().contains("\\x81"), "{e}");
     // a second image after the first
     let e = err(b"P4\n8 1\n\x81P4\n8 1\n\x81");
-    assert!(matches!(e, PbmError::TrailingData { offset: 8, bytes: 8, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            PbmError::TrailingData {
+                offset: 8,
+                bytes: 8,
+                ..
+            }
+        ),
+        "{e}"
+    );
 }
 
 #[test]
 fn the_header_grammar_is_followed_exactly() {
     // no whitespace after the magic number: not a 4-wide P1
     let e = err(b"P14 4\n0000\n0000\n0000\n0000\n");
-    assert!(matches!(e, PbmError::MissingWhitespace { after: "magic number", offset: 2, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            PbmError::MissingWhitespace {
+                after: "magic number",
+                offset: 2,
+                ..
+            }
+        ),
+        "{e}"
+    );
     let e = err(b"P1 4x4\n");
-    assert!(matches!(e, PbmError::MissingWhitespace { after: "width", offset: 4, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            PbmError::MissingWhitespace {
+                after: "width",
+                offset: 4,
+                ..
+            }
+        ),
+        "{e}"
+    );
     let e = err(b"P1 4 4x\n");
-    assert!(matches!(e, PbmError::MissingWhitespace { after: "height", offset: 6, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            PbmError::MissingWhitespace {
+                after: "height",
+                offset: 6,
+                ..
+            }
+        ),
+        "{e}"
+    );
     let e = err(b"P1 4294967296 1\n0");
-    assert!(matches!(e, PbmError::BadHeader { field: "width", offset: 3, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            PbmError::BadHeader {
+                field: "width",
+                offset: 3,
+                ..
+            }
+        ),
+        "{e}"
+    );
     let e = err(b"P1 -3 1\n0");
-    assert!(matches!(e, PbmError::BadHeader { field: "width", offset: 3, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            PbmError::BadHeader {
+                field: "width",
+                offset: 3,
+                ..
+            }
+        ),
+        "{e}"
+    );
     let e = err(b"P1 3 0\n");
-    assert!(matches!(e, PbmError::BadHeader { field: "height", offset: 5, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            PbmError::BadHeader {
+                field: "height",
+                offset: 5,
+                ..
+            }
+        ),
+        "{e}"
+    );
     // CR-only line ends count as lines
     let e = err(b"P1\r2\r2\r01\r0x\r");
-    assert!(matches!(e, PbmError::BadPixel { line: 5, offset: 11, found: b'x' }), "{e}");
+    assert!(
+        matches!(
+            e,
+            PbmError::BadPixel {
+                line: 5,
+                offset: 11,
+                found: b'x'
+            }
+        ),
+        "{e}"
+    );
     // P1: trailing whitespace and comments are fine, anything else is not
     assert_eq!(pbm::from_bytes(b"P1 2 1\n01\n# end\n\n").unwrap().len(), 1);
     let e = err(b"P1 2 1\n01\n1");
-    assert!(matches!(e, PbmError::TrailingData { offset: 10, bytes: 1, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            PbmError::TrailingData {
+                offset: 10,
+                bytes: 1,
+                ..
+            }
+        ),
+        "{e}"
+    );
     let e = err(b"P1 2 1\n01\nP1 2 1\n01\n");
-    assert!(matches!(e, PbmError::TrailingData { offset: 10, .. }), "{e}");
+    assert!(
+        matches!(e, PbmError::TrailingData { offset: 10, .. }),
+        "{e}"
+    );
 }
 
 #[test]
 fn messages_escape_invisible_bytes_and_cut_long_fields() {
     let e = err(b"\0\x07rest");
-    assert_eq!(e.to_string(), "PBM byte 0: starts with \"\\x00\\x07\", expected \"P1\" or \"P4\"");
+    assert_eq!(
+        e.to_string(),
+        "PBM byte 0: starts with \"\\x00\\x07\", expected \"P1\" or \"P4\""
+    );
     let e = err(b"P1 2 2\n0\x001\n");
-    assert_eq!(e.to_string(), "PBM line 2, byte 8: pixel is \"\\x00\", expected 0 or 1");
+    assert_eq!(
+        e.to_string(),
+        "PBM line 2, byte 8: pixel is \"\\x00\", expected 0 or 1"
+    );
     let mut long = b"P1 ".to_vec();
     long.extend(std::iter::repeat_n(b'z', 100_000));
     let message = err(&long).to_string();
-    assert!(message.len() < 200 && message.contains("zzz..."), "{message}");
+    assert!(
+        message.len() < 200 && message.contains("zzz..."),
+        "{message}"
+    );
     let mut huge_number = b"P1 ".to_vec();
     huge_number.extend(std::iter::repeat_n(b'9', 100_000));
     let message = err(&huge_number).to_string();
@@ -167,22 +305,42 @@ fn ball_parameters_are_refused_as_ball_new_refuses_them() {
     let extent = [64, 64];
     for radius in [f64::NAN, -1.0, -1e-300, f64::NEG_INFINITY] {
         let e = ImageTree::from_ball(extent, [32.0, 32.0], radius).unwrap_err();
-        assert!(matches!(e, ImageError::InvalidRadius { .. }), "{radius}: {e}");
+        assert!(
+            matches!(e, ImageError::InvalidRadius { .. }),
+            "{radius}: {e}"
+        );
         assert!(orthtree::query::Ball::new([32.0, 32.0], radius).is_err());
     }
     for (axis, value) in [(0, f64::NAN), (1, f64::INFINITY), (0, f64::NEG_INFINITY)] {
         let mut centre = [32.0, 32.0];
         centre[axis] = value;
         let e = ImageTree::from_ball(extent, centre, 5.0).unwrap_err();
-        assert!(matches!(e, ImageError::InvalidCentre { axis: a, .. } if a == axis), "{e}");
+        assert!(
+            matches!(e, ImageError::InvalidCentre { axis: a, .. } if a == axis),
+            "{e}"
+        );
     }
     // accepted: zero (and negative zero) radius, infinite radius, huge values without overflow
     let origin = ImageTree::from_ball(extent, [0.5, 0.5], -0.0).unwrap();
     assert_eq!(origin.len(), 1);
-    assert_eq!(ImageTree::from_ball(extent, [1e300, -1e300], f64::INFINITY).unwrap().len(), 64 * 64);
-    assert!(ImageTree::from_ball(extent, [1e300, 0.0], 1e299).unwrap().is_empty());
-    assert_eq!(ImageTree::from_ball(extent, [1e300, 0.0], 2e300).unwrap().len(), 64 * 64);
-    assert!(ImageTree::from_ball(extent, [-1e200, 0.0], 1e199).unwrap().is_empty());
+    assert_eq!(
+        ImageTree::from_ball(extent, [1e300, -1e300], f64::INFINITY)
+            .unwrap()
+            .len(),
+        64 * 64
+    );
+    assert!(ImageTree::from_ball(extent, [1e300, 0.0], 1e299)
+        .unwrap()
+        .is_empty());
+    assert_eq!(
+        ImageTree::from_ball(extent, [1e300, 0.0], 2e300)
+            .unwrap()
+            .len(),
+        64 * 64
+    );
+    assert!(ImageTree::from_ball(extent, [-1e200, 0.0], 1e199)
+        .unwrap()
+        .is_empty());
     // far but finite: the pixel-exact answer at the scale of the image
     let far = ImageTree::from_ball(extent, [1e6, 32.0], 1e6 - 10.0).unwrap();
     let dense = ImageTree::from_fn(extent, |[x, y]| {
@@ -209,7 +367,8 @@ fn inverted_boxes_are_refused_naming_box_and_axis() {
     );
     assert!(e.to_string().contains("box 1") && e.to_string().contains("axis 1"));
     // empty (lo == hi) and beyond-the-extent boxes are fine: nothing, and cut off
-    let t = ImageTree::from_boxes([8, 8], &[([3, 3], [3, 7]), ([6, 6], [u32::MAX, u32::MAX])]).unwrap();
+    let t =
+        ImageTree::from_boxes([8, 8], &[([3, 3], [3, 7]), ([6, 6], [u32::MAX, u32::MAX])]).unwrap();
     assert_eq!(t.len(), 4);
 }
 
@@ -247,7 +406,9 @@ fn images_no_pbm_can_hold_are_not_written() {
         let t = ImageTree::empty(extent).unwrap();
         for format in [PbmFormat::Plain, PbmFormat::Raw] {
             let e = pbm::to_bytes(&t, format).unwrap_err();
-            assert!(matches!(e, PbmError::EmptyImage { width, height } if [width, height] == extent));
+            assert!(
+                matches!(e, PbmError::EmptyImage { width, height } if [width, height] == extent)
+            );
             let path = dir.join("empty.pbm");
             assert!(pbm::write(&t, &path, format).is_err());
             assert!(!path.exists(), "no file is left behind");
@@ -257,7 +418,10 @@ fn images_no_pbm_can_hold_are_not_written() {
     for extent in [[1, 1], [1, 77], [77, 1], [64, 65]] {
         let t = ImageTree::from_fn(extent, |[x, y]| (x ^ y) % 3 == 0).unwrap();
         for format in [PbmFormat::Plain, PbmFormat::Raw] {
-            assert_eq!(pbm::from_bytes(&pbm::to_bytes(&t, format).unwrap()).unwrap(), t);
+            assert_eq!(
+                pbm::from_bytes(&pbm::to_bytes(&t, format).unwrap()).unwrap(),
+                t
+            );
         }
     }
     std::fs::remove_dir_all(dir).unwrap();

@@ -220,17 +220,17 @@ impl fmt::Display for ImageError {
                 write!(f, "ball radius {radius} is not a non-negative number")
             }
             ImageError::InvalidCentre { axis, value } => {
-                write!(f, "ball centre has {value} on axis {axis}, expected a finite number")
+                write!(
+                    f,
+                    "ball centre has {value} on axis {axis}, expected a finite number"
+                )
             }
             ImageError::InvertedBox {
                 index,
                 axis,
                 lo,
                 hi,
-            } => write!(
-                f,
-                "box {index} has lo {lo} above hi {hi} on axis {axis}"
-            ),
+            } => write!(f, "box {index} has lo {lo} above hi {hi} on axis {axis}"),
         }
     }
 }

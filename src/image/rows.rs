@@ -294,7 +294,8 @@ impl RowBuilder {
                         let sub = from[child].take();
                         out.nodes.extend_from_slice(sub);
                     } else {
-                        out.nodes.push(if bit(&band.black, cx) { BLACK } else { WHITE });
+                        out.nodes
+                            .push(if bit(&band.black, cx) { BLACK } else { WHITE });
                     }
                 }
                 out.ends.push(out.nodes.len());
@@ -333,7 +334,10 @@ impl RegionTree<2> {
     /// t.for_each_row(|y, words| -> Result<(), ()> { rows.push((y, words[0])); Ok(()) }).unwrap();
     /// assert_eq!(rows, [(0, 0), (1, 0b01110), (2, 0)]);
     /// ```
-    pub fn for_each_row<E>(&self, mut row: impl FnMut(u32, &[u64]) -> Result<(), E>) -> Result<(), E> {
+    pub fn for_each_row<E>(
+        &self,
+        mut row: impl FnMut(u32, &[u64]) -> Result<(), E>,
+    ) -> Result<(), E> {
         let [width, height] = self.extent;
         let k = self.depth;
         let mut levels: Vec<LevelRow> = (0..=k).map(|_| LevelRow::default()).collect();
@@ -421,10 +425,20 @@ mod tests {
     #[test]
     fn rows_round_trip_against_the_dense_forms() {
         let mut seed = 7u64;
-        for (w, h) in [(1, 1), (1, 9), (9, 1), (64, 64), (65, 3), (130, 77), (200, 129)] {
+        for (w, h) in [
+            (1, 1),
+            (1, 9),
+            (9, 1),
+            (64, 64),
+            (65, 3),
+            (130, 77),
+            (200, 129),
+        ] {
             for density in [0u64, 3, 50, 97, 100] {
                 let t = ImageTree::from_fn([w, h], |[x, y]| {
-                    seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                    seed = seed
+                        .wrapping_mul(6364136223846793005)
+                        .wrapping_add(1442695040888963407);
                     // blocks of 4 x 4 so that the tree has big leaves too
                     let _ = (x, y);
                     (seed >> 33) % 100 < density
@@ -433,7 +447,9 @@ mod tests {
                 let again = rebuild(&t);
                 assert_eq!(again, t, "{w} x {h}, density {density}");
                 assert!(again.is_canonical());
-                let disc = ImageTree::from_ball([w, h], [w as f64 / 2.0, 0.3 * h as f64], 0.4 * w as f64).unwrap();
+                let disc =
+                    ImageTree::from_ball([w, h], [w as f64 / 2.0, 0.3 * h as f64], 0.4 * w as f64)
+                        .unwrap();
                 assert_eq!(rebuild(&disc), disc);
                 let mut dense = Vec::new();
                 disc.for_each_row(|_, words| -> Result<(), ()> {
@@ -449,12 +465,27 @@ mod tests {
     #[test]
     fn row_counts_and_lengths_are_checked() {
         let mut b = RowBuilder::new([10, 2]).unwrap();
-        assert!(matches!(b.push_row(&[0, 0]), Err(ImageError::BitmapLength { expected: 1, found: 2 })));
+        assert!(matches!(
+            b.push_row(&[0, 0]),
+            Err(ImageError::BitmapLength {
+                expected: 1,
+                found: 2
+            })
+        ));
         b.push_row(&[1]).unwrap();
         let early = RowBuilder::new([10, 2]).unwrap().finish();
-        assert!(matches!(early, Err(ImageError::MissingRows { height: 2, found: 0 })));
+        assert!(matches!(
+            early,
+            Err(ImageError::MissingRows {
+                height: 2,
+                found: 0
+            })
+        ));
         b.push_row(&[1]).unwrap();
-        assert!(matches!(b.push_row(&[1]), Err(ImageError::TooManyRows { height: 2 })));
+        assert!(matches!(
+            b.push_row(&[1]),
+            Err(ImageError::TooManyRows { height: 2 })
+        ));
         assert_eq!(b.finish().unwrap().len(), 2);
     }
 
@@ -464,7 +495,11 @@ mod tests {
         let mut b = RowBuilder::new([256, 256]).unwrap().max_bytes(4096);
         let mut outcome = Ok(());
         for y in 0..256u32 {
-            let pattern = if y % 2 == 0 { 0x5555_5555_5555_5555 } else { 0xaaaa_aaaa_aaaa_aaaa };
+            let pattern = if y % 2 == 0 {
+                0x5555_5555_5555_5555
+            } else {
+                0xaaaa_aaaa_aaaa_aaaa
+            };
             outcome = b.push_row(&[pattern; 4]);
             if outcome.is_err() {
                 break;

@@ -138,7 +138,10 @@ impl fmt::Display for PbmError {
         match self {
             PbmError::Io(e) => write!(f, "PBM: {e}"),
             PbmError::BadMagic { found } => {
-                write!(f, "PBM byte 0: starts with \"{found}\", expected \"P1\" or \"P4\"")
+                write!(
+                    f,
+                    "PBM byte 0: starts with \"{found}\", expected \"P1\" or \"P4\""
+                )
             }
             PbmError::BadHeader {
                 field,

@@ -130,7 +130,11 @@ fn threshold(data: &[u8], channels: usize, words: &mut [u64]) {
             _ => {
                 let lum =
                     0.2126 * f64::from(p[0]) + 0.7152 * f64::from(p[1]) + 0.0722 * f64::from(p[2]);
-                let alpha = if channels == 4 { f64::from(p[3]) } else { 255.0 };
+                let alpha = if channels == 4 {
+                    f64::from(p[3])
+                } else {
+                    255.0
+                };
                 over_white(lum, alpha) < 128.0
             }
         };
@@ -168,9 +172,7 @@ fn read_from<R: BufRead + Seek>(input: R, limits: Limits) -> Result<ImageTree, P
         ("the deinterlaced 1-bit image", gathered),
     ] {
         used = used.saturating_add(bytes);
-        limits
-            .check_bytes(what, used)
-            .map_err(PngError::Limit)?;
+        limits.check_bytes(what, used).map_err(PngError::Limit)?;
     }
     let mut b = RowBuilder::new([w, h])
         .map_err(PngError::Image)?
@@ -237,11 +239,16 @@ pub fn write_to(tree: &ImageTree, depth: PngDepth, out: impl Write) -> Result<()
         line.clear();
         match depth {
             PngDepth::One => line.extend(
-                (0..(w as usize).div_ceil(8)).map(|i| !((words[i / 8] >> (8 * (i % 8))) as u8).reverse_bits()),
+                (0..(w as usize).div_ceil(8))
+                    .map(|i| !((words[i / 8] >> (8 * (i % 8))) as u8).reverse_bits()),
             ),
-            PngDepth::Eight => line.extend(
-                (0..w as usize).map(|x| if (words[x / 64] >> (x % 64)) & 1 == 1 { 0 } else { 255 }),
-            ),
+            PngDepth::Eight => line.extend((0..w as usize).map(|x| {
+                if (words[x / 64] >> (x % 64)) & 1 == 1 {
+                    0
+                } else {
+                    255
+                }
+            })),
         }
         stream.write_all(&line)
     })
@@ -289,5 +296,9 @@ pub fn write(tree: &ImageTree, path: impl AsRef<Path>, depth: PngDepth) -> Resul
             height: h,
         });
     }
-    write_to(tree, depth, std::fs::File::create(path).map_err(PngError::Io)?)
+    write_to(
+        tree,
+        depth,
+        std::fs::File::create(path).map_err(PngError::Io)?,
+    )
 }

@@ -5,9 +5,9 @@
 
 use super::format::num;
 use super::{Style, Svg, DEFAULT_WIDTH_PX};
-use std::io::{BufWriter, Write};
 use crate::geom::Aabb;
 use crate::image::{Block, ImageTree};
+use std::io::{BufWriter, Write};
 
 /// The plane box of a block, row 0 at the top of a cube of side `side`.
 fn block_box(b: &Block<2>, side: f64) -> Aabb<f64, 2> {
