@@ -4,7 +4,12 @@
 //! cargo run --release --example image_ops -- A B --op and|or|xor|sub --out C
 //! cargo run --release --example image_ops -- A --op not --out C
 //! cargo run --release --example image_ops            # built-in disc and ring
+//! cargo run --release --example image_ops -- --help
 //! ```
+//!
+//! The output may also be an `.svg` (a picture of the tree's leaves). Every bad argument, file or
+//! pair of images of different sizes ends with a message and exit status 1 (2 for usage
+//! errors), never a panic.
 //!
 //! Files are PBM (`.pbm`), or PNG (`.png`) when built with `--features png`, chosen by extension.
 //! Prints node counts, pixel counts and times. With no arguments it makes a disc and a ring on a
@@ -13,16 +18,16 @@
 
 use orthtree::image::{BoolOp, ImageTree};
 use orthtree::io::pbm::{self, PbmFormat};
-use orthtree::io::svg::image_tree_svg;
+use orthtree::io::svg::write_image_tree_svg;
 use std::error::Error;
 use std::path::Path;
 use std::time::Instant;
 
 fn read(path: &str) -> Result<ImageTree, Box<dyn Error>> {
     match extension(path).as_str() {
-        "pbm" => Ok(pbm::read(path)?),
+        "pbm" => Ok(pbm::read(path).map_err(|e| format!("{path}: {e}"))?),
         #[cfg(feature = "png")]
-        "png" => Ok(orthtree::io::png::read(path)?),
+        "png" => Ok(orthtree::io::png::read(path).map_err(|e| format!("{path}: {e}"))?),
         other => Err(format!(
             "{path}: unsupported extension {other:?} (pbm{})",
             png_hint()
@@ -31,17 +36,27 @@ fn read(path: &str) -> Result<ImageTree, Box<dyn Error>> {
     }
 }
 
+const USAGE: &str = "usage: image_ops A [B] --op and|or|xor|sub|not --out C
+       image_ops            (the built-in disc and ring demo)
+  A, B   input images: .pbm, or .png when built with --features png
+  --op   and, or, xor, sub (two images of one size) or not (one image)
+  --out  the result: .pbm, .png (with the feature) or .svg (a picture of the tree)";
+
 fn write(tree: &ImageTree, path: &str) -> Result<(), Box<dyn Error>> {
     match extension(path).as_str() {
-        "pbm" => Ok(pbm::write(tree, path, PbmFormat::Raw)?),
+        "pbm" => Ok(pbm::write(tree, path, PbmFormat::Raw).map_err(|e| format!("{path}: {e}"))?),
+        "svg" => {
+            let file = std::fs::File::create(path).map_err(|e| format!("{path}: {e}"))?;
+            write_image_tree_svg(tree, file).map_err(|e| format!("{path}: {e}"))?;
+            Ok(())
+        }
         #[cfg(feature = "png")]
-        "png" => Ok(orthtree::io::png::write(
-            tree,
-            path,
-            orthtree::io::png::PngDepth::One,
-        )?),
+        "png" => Ok(
+            orthtree::io::png::write(tree, path, orthtree::io::png::PngDepth::One)
+                .map_err(|e| format!("{path}: {e}"))?,
+        ),
         other => Err(format!(
-            "{path}: unsupported extension {other:?} (pbm{})",
+            "{path}: unsupported extension {other:?} (pbm, svg{})",
             png_hint()
         )
         .into()),
@@ -76,19 +91,19 @@ fn describe(name: &str, t: &ImageTree) {
 
 fn combine(a: &ImageTree, b: Option<&ImageTree>, op: &str) -> Result<ImageTree, Box<dyn Error>> {
     let start = Instant::now();
-    let result = match (op, b) {
-        ("not", None) => a.complement(),
-        (_, None) => return Err(format!("--op {op} needs two images").into()),
-        (_, Some(b)) => {
-            let op = match op {
-                "and" => BoolOp::And,
-                "or" => BoolOp::Or,
-                "xor" => BoolOp::Xor,
-                "sub" => BoolOp::Sub,
-                _ => return Err(format!("unknown --op {op} (and, or, xor, sub, not)").into()),
-            };
-            a.try_combine(b, op)?
-        }
+    let binary = match op {
+        "and" => Some(BoolOp::And),
+        "or" => Some(BoolOp::Or),
+        "xor" => Some(BoolOp::Xor),
+        "sub" => Some(BoolOp::Sub),
+        "not" => None,
+        _ => return Err(Usage(format!("unknown --op {op:?} (and, or, xor, sub, not)")).into()),
+    };
+    let result = match (binary, b) {
+        (None, None) => a.complement(),
+        (None, Some(_)) => return Err(Usage("--op not takes one image".into()).into()),
+        (Some(_), None) => return Err(Usage(format!("--op {op} needs two images")).into()),
+        (Some(op), Some(b)) => a.try_combine(b, op)?,
     };
     println!("{op:>8}: {:.3} ms", start.elapsed().as_secs_f64() * 1e3);
     Ok(result)
@@ -100,13 +115,24 @@ fn run(args: &[String]) -> Result<(), Box<dyn Error>> {
     let mut it = args.iter();
     while let Some(a) = it.next() {
         match a.as_str() {
-            "--op" => op = it.next().cloned(),
-            "--out" => out = it.next().cloned(),
+            "--op" | "--out" => {
+                let Some(value) = it.next() else {
+                    return Err(Usage(format!("{a} needs a value")).into());
+                };
+                if a == "--op" {
+                    op = Some(value.clone());
+                } else {
+                    out = Some(value.clone());
+                }
+            }
+            flag if flag.starts_with("--") => {
+                return Err(Usage(format!("unknown option {flag}")).into())
+            }
             _ => files.push(a.clone()),
         }
     }
     let (Some(op), Some(out), 1..=2) = (op, out, files.len()) else {
-        return Err("usage: image_ops A [B] --op and|or|xor|sub|not --out C".into());
+        return Err(Usage("give one or two images, --op and --out".into()).into());
     };
     let start = Instant::now();
     let trees = files
@@ -149,16 +175,35 @@ fn demo() -> Result<(), Box<dyn Error>> {
         write(&result, "image_ops.png")?;
         println!("wrote image_ops.png");
     }
-    std::fs::write("image_ops.svg", image_tree_svg(&result))?;
+    write(&result, "image_ops.svg")?;
     println!("wrote image_ops.svg");
     Ok(())
 }
 
+/// A mistake in the arguments (exit status 2, with the usage).
+#[derive(Debug)]
+struct Usage(String);
+
+impl std::fmt::Display for Usage {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}\n{USAGE}", self.0)
+    }
+}
+
+impl Error for Usage {}
+
 fn main() {
-    let args: Vec<String> = std::env::args().skip(1).collect();
+    let args: Vec<String> = std::env::args_os()
+        .skip(1)
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect();
+    if args.iter().any(|a| a == "--help" || a == "-h") {
+        println!("{USAGE}");
+        return;
+    }
     let outcome = if args.is_empty() { demo() } else { run(&args) };
     if let Err(e) = outcome {
         eprintln!("image_ops: {e}");
-        std::process::exit(1);
+        std::process::exit(if e.is::<Usage>() { 2 } else { 1 });
     }
 }

@@ -10,7 +10,7 @@ proptest! {
     fn round_trips(w in 1u32..40, h in 1u32..40, seed in any::<u64>()) {
         let t = ImageTree::from_fn([w, h], |[x, y]| (u64::from(x * 31 + y * 17) ^ seed) % 3 == 0).unwrap();
         for format in [PbmFormat::Plain, PbmFormat::Raw] {
-            let back = pbm::from_bytes(&pbm::to_bytes(&t, format)).unwrap();
+            let back = pbm::from_bytes(&pbm::to_bytes(&t, format).unwrap()).unwrap();
             prop_assert_eq!(&back, &t);
             prop_assert_eq!(back.extent(), [w, h]);
         }
@@ -49,44 +49,54 @@ fn malformed_files_name_what_and_where() {
         err(b"P1\n\nx 1\n0"),
         PbmError::BadHeader {
             field: "width",
-            line: 3
+            line: 3,
+            offset: 4,
+            ..
         }
     ));
     assert!(matches!(
         err(b"P1\n3\n"),
         PbmError::BadHeader {
             field: "height",
-            line: 3
+            line: 3,
+            offset: 5,
+            ..
         }
     ));
     assert!(matches!(
         err(b"P1 0 1\n"),
         PbmError::BadHeader {
             field: "width",
-            line: 1
+            line: 1,
+            offset: 3,
+            ..
         }
     ));
     assert!(matches!(
         err(b"P1 2 2\n01\n0"),
         PbmError::Truncated {
-            at: 3,
+            offset: 11,
+            line: 3,
             expected: 4,
-            found: 3
+            found: 3,
+            unit: "pixels"
         }
     ));
     assert!(matches!(
         err(b"P1 2 2\n01\n02"),
         PbmError::BadPixel {
             line: 3,
-            found: '2'
+            offset: 11,
+            found: b'2'
         }
     ));
     assert!(matches!(
         err(b"P4 9 2\n\x00\x00\x00"),
         PbmError::Truncated {
-            at: 10,
+            offset: 10,
             expected: 4,
-            found: 3
+            found: 3,
+            ..
         }
     ));
     assert!(matches!(err(b"P1 4294967295 1\n"), PbmError::Image(_)));

@@ -164,18 +164,34 @@ impl<const D: usize> RegionTree<D> {
         })
     }
 
-    /// The union of boxes `lo .. hi` (half-open, in pixels; empty boxes are ignored, parts beyond
-    /// the extent are cut off). O(n b) for b boxes and an n-node result.
+    /// The union of boxes `lo .. hi` (half-open, in pixels; a box with `lo == hi` on an axis
+    /// holds no pixel, parts beyond the extent are cut off). O(n b) for b boxes and an n-node
+    /// result.
+    ///
+    /// # Errors
+    /// [`ImageError::InvertedBox`] naming the box and axis where `lo > hi`;
+    /// [`ImageError::TooLarge`] for an extent beyond [`RegionTree::MAX_DEPTH`].
     ///
     /// ```
     /// use orthtree::image::ImageTree;
     /// let t = ImageTree::from_boxes([16, 16], &[([0, 0], [8, 8]), ([4, 4], [12, 12])]).unwrap();
     /// assert_eq!(t.len(), 64 + 64 - 16);
+    /// assert!(ImageTree::from_boxes([16, 16], &[([0, 5], [8, 4])]).is_err()); // 5 > 4
     /// ```
     pub fn from_boxes(
         extent: [u32; D],
         boxes: &[([u32; D], [u32; D])],
     ) -> Result<Self, ImageError> {
+        for (index, (lo, hi)) in boxes.iter().enumerate() {
+            if let Some(axis) = (0..D).find(|&a| lo[a] > hi[a]) {
+                return Err(ImageError::InvertedBox {
+                    index,
+                    axis,
+                    lo: lo[axis],
+                    hi: hi[axis],
+                });
+            }
+        }
         Self::from_region(extent, |min, side| {
             let mut partial = false;
             for (lo, hi) in boxes {
@@ -206,14 +222,48 @@ impl<const D: usize> RegionTree<D> {
     ///     dx * dx + dy * dy <= 400.0
     /// }).unwrap();
     /// assert_eq!(t, dense);
+    /// assert!(ImageTree::from_ball([64, 64], [32.0, 32.0], f64::NAN).is_err());
+    /// assert!(ImageTree::from_ball([64, 64], [32.0, 32.0], -1.0).is_err());
+    /// assert_eq!(ImageTree::from_ball([8, 8], [0.0, 1e300], f64::INFINITY).unwrap().len(), 64);
     /// ```
+    ///
+    /// A radius of `+inf` covers every pixel; `-0.0` is `0`. Huge finite values do not overflow:
+    /// the distances are computed scaled by a power of two (exactly), so a centre at `1e300` with
+    /// a radius of `1e299` is still told apart from one with a radius of `2e300`.
+    ///
+    /// # Errors
+    /// [`ImageError::InvalidCentre`] for a NaN or infinite coordinate (naming the axis),
+    /// [`ImageError::InvalidRadius`] for a NaN or negative radius, as
+    /// [`Ball::new`](crate::query::Ball::new) refuses them.
     pub fn from_ball(extent: [u32; D], centre: [f64; D], radius: f64) -> Result<Self, ImageError> {
-        let r2 = radius * radius;
+        if let Some(axis) = (0..D).find(|&a| !centre[a].is_finite()) {
+            return Err(ImageError::InvalidCentre {
+                axis,
+                value: centre[axis],
+            });
+        }
+        if radius.is_nan() || radius < 0.0 {
+            return Err(ImageError::InvalidRadius { radius });
+        }
+        // Scale every length by a power of two (exact) so that no square overflows: pixel
+        // coordinates are below 2^32, and 2^500 squared times D is far below f64::MAX.
+        let largest = centre
+            .iter()
+            .map(|c| c.abs())
+            .chain(radius.is_finite().then_some(radius))
+            .fold(f64::from(u32::MAX), f64::max);
+        let scale = if largest > 2f64.powi(500) {
+            2f64.powi(500 - largest.log2().ceil() as i32)
+        } else {
+            1.0
+        };
+        let centre = centre.map(|c| c * scale);
+        let r2 = (radius * scale) * (radius * scale);
         Self::from_region(extent, |min, side| {
             let (mut near, mut far) = (0.0, 0.0);
             for a in 0..D {
-                let lo = f64::from(min[a]) + 0.5;
-                let hi = f64::from(min[a]) + f64::from(side) - 0.5;
+                let lo = (f64::from(min[a]) + 0.5) * scale;
+                let hi = (f64::from(min[a]) + f64::from(side) - 0.5) * scale;
                 let (dlo, dhi) = ((lo - centre[a]).abs(), (hi - centre[a]).abs());
                 let n = if centre[a] < lo || centre[a] > hi {
                     dlo.min(dhi)

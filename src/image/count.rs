@@ -3,7 +3,7 @@
 //! writing nodes. O(n1 + n2) time, O(k) space, no allocation beyond a fixed stack.
 
 use super::ops::{subtree_end, BoolOp, Unary};
-use super::{RegionTree, BLACK, INTERNAL};
+use super::{ImageError, RegionTree, BLACK, INTERNAL};
 
 /// The number of black pixels in the subtree starting at `start`, a node at `level` of a tree of
 /// depth `depth`, and the subtree's end.
@@ -132,9 +132,67 @@ impl<const D: usize> RegionTree<D> {
     /// }
     /// ```
     pub fn combine_len(&self, other: &Self, op: BoolOp) -> u64 {
-        self.check_same_size(other)
-            .unwrap_or_else(|e| panic!("{e}"));
-        combine_len::<D>(&self.nodes, &other.nodes, self.depth, op)
+        self.try_combine_len(other, op)
+            .unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// The number of black pixels of `op(self, other)`, building nothing. O(n1 + n2).
+    ///
+    /// # Errors
+    /// [`ImageError::SizeMismatch`] naming both extents if they differ.
+    ///
+    /// ```
+    /// use orthtree::image::{BoolOp, ImageError, ImageTree};
+    /// let a = ImageTree::full([8, 8]).unwrap();
+    /// assert_eq!(a.try_combine_len(&a, BoolOp::And), Ok(64));
+    /// let b = ImageTree::full([8, 9]).unwrap();
+    /// let err = a.try_combine_len(&b, BoolOp::And).unwrap_err();
+    /// assert_eq!(err, ImageError::SizeMismatch { left: vec![8, 8], right: vec![8, 9] });
+    /// ```
+    pub fn try_combine_len(&self, other: &Self, op: BoolOp) -> Result<u64, ImageError> {
+        self.check_same_size(other)?;
+        Ok(combine_len::<D>(&self.nodes, &other.nodes, self.depth, op))
+    }
+
+    /// [`RegionTree::intersection_len`], or [`ImageError::SizeMismatch`] if the extents differ.
+    ///
+    /// # Errors
+    /// [`ImageError::SizeMismatch`] naming both extents.
+    pub fn try_intersection_len(&self, other: &Self) -> Result<u64, ImageError> {
+        self.try_combine_len(other, BoolOp::And)
+    }
+
+    /// [`RegionTree::union_len`], or [`ImageError::SizeMismatch`] if the extents differ.
+    ///
+    /// # Errors
+    /// [`ImageError::SizeMismatch`] naming both extents.
+    pub fn try_union_len(&self, other: &Self) -> Result<u64, ImageError> {
+        self.try_combine_len(other, BoolOp::Or)
+    }
+
+    /// [`RegionTree::difference_len`], or [`ImageError::SizeMismatch`] if the extents differ.
+    ///
+    /// # Errors
+    /// [`ImageError::SizeMismatch`] naming both extents.
+    pub fn try_difference_len(&self, other: &Self) -> Result<u64, ImageError> {
+        self.try_combine_len(other, BoolOp::Sub)
+    }
+
+    /// [`RegionTree::symmetric_difference_len`], or [`ImageError::SizeMismatch`] if the extents
+    /// differ.
+    ///
+    /// # Errors
+    /// [`ImageError::SizeMismatch`] naming both extents.
+    pub fn try_symmetric_difference_len(&self, other: &Self) -> Result<u64, ImageError> {
+        self.try_combine_len(other, BoolOp::Xor)
+    }
+
+    /// [`RegionTree::is_disjoint`], or [`ImageError::SizeMismatch`] if the extents differ.
+    ///
+    /// # Errors
+    /// [`ImageError::SizeMismatch`] naming both extents.
+    pub fn try_is_disjoint(&self, other: &Self) -> Result<bool, ImageError> {
+        Ok(self.try_intersection_len(other)? == 0)
     }
 
     /// The number of black pixels of `self & other`, building nothing.

@@ -72,10 +72,12 @@ mod count;
 mod iter;
 mod operators;
 mod ops;
+mod rows;
 
 pub use build::Coverage;
 pub use iter::{Block, Blocks};
 pub use ops::BoolOp;
+pub use rows::RowBuilder;
 
 use core::fmt;
 
@@ -111,7 +113,7 @@ pub type ImageTree = RegionTree<2>;
 pub type VoxelTree = RegionTree<3>;
 
 /// What can go wrong when building or combining region trees.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum ImageError {
     /// The two operands of a Boolean operation have different extents.
@@ -143,6 +145,49 @@ pub enum ImageError {
         /// What is wrong there.
         reason: &'static str,
     },
+    /// Building the tree would hold more bytes than the budget allows
+    /// ([`RowBuilder::max_bytes`]).
+    MemoryLimit {
+        /// The bytes it would hold (at least).
+        needed: u64,
+        /// The budget.
+        limit: u64,
+    },
+    /// A row was pushed into a [`RowBuilder`] past the image's height.
+    TooManyRows {
+        /// The height.
+        height: u32,
+    },
+    /// A [`RowBuilder`] was finished before every row was pushed.
+    MissingRows {
+        /// The height.
+        height: u32,
+        /// The rows pushed.
+        found: u32,
+    },
+    /// A ball's radius is NaN or negative.
+    InvalidRadius {
+        /// The radius given.
+        radius: f64,
+    },
+    /// A ball's centre has a NaN or infinite coordinate.
+    InvalidCentre {
+        /// The axis.
+        axis: usize,
+        /// The coordinate given.
+        value: f64,
+    },
+    /// A box has `lo > hi` on an axis.
+    InvertedBox {
+        /// The index of the box in the list given.
+        index: usize,
+        /// The axis.
+        axis: usize,
+        /// The lower bound given.
+        lo: u32,
+        /// The upper bound given.
+        hi: u32,
+    },
 }
 
 impl fmt::Display for ImageError {
@@ -161,6 +206,31 @@ impl fmt::Display for ImageError {
             ImageError::Malformed { position, reason } => {
                 write!(f, "malformed region tree at node {position}: {reason}")
             }
+            ImageError::MemoryLimit { needed, limit } => write!(
+                f,
+                "building the region tree needs more than {needed} bytes; the limit is {limit}"
+            ),
+            ImageError::TooManyRows { height } => {
+                write!(f, "row pushed past the image's height {height}")
+            }
+            ImageError::MissingRows { height, found } => {
+                write!(f, "image has {found} rows of its height {height}")
+            }
+            ImageError::InvalidRadius { radius } => {
+                write!(f, "ball radius {radius} is not a non-negative number")
+            }
+            ImageError::InvalidCentre { axis, value } => {
+                write!(
+                    f,
+                    "ball centre has {value} on axis {axis}, expected a finite number"
+                )
+            }
+            ImageError::InvertedBox {
+                index,
+                axis,
+                lo,
+                hi,
+            } => write!(f, "box {index} has lo {lo} above hi {hi} on axis {axis}"),
         }
     }
 }

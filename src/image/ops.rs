@@ -280,10 +280,29 @@ impl<const D: usize> RegionTree<D> {
         }
     }
 
+    /// Replaces `self` by `op(self, other)` (the fallible form of `&=`, `|=`, `^=`, `-=`);
+    /// `self` is unchanged on error.
+    ///
+    /// # Errors
+    /// [`ImageError::SizeMismatch`] naming both extents if they differ.
+    ///
+    /// ```
+    /// use orthtree::image::{BoolOp, ImageTree};
+    /// let mut a = ImageTree::from_boxes([4, 4], &[([0, 0], [2, 2])]).unwrap();
+    /// a.try_combine_assign(&ImageTree::full([4, 4]).unwrap(), BoolOp::Xor).unwrap();
+    /// assert_eq!(a.len(), 12);
+    /// assert!(a.try_combine_assign(&ImageTree::full([4, 3]).unwrap(), BoolOp::Or).is_err());
+    /// assert_eq!(a.len(), 12);
+    /// ```
+    pub fn try_combine_assign(&mut self, other: &Self, op: BoolOp) -> Result<(), ImageError> {
+        self.check_same_size(other)?;
+        self.nodes = combine::<D>(&self.nodes, &other.nodes, op);
+        Ok(())
+    }
+
     /// Replaces `self` by `op(self, other)`.
     pub(crate) fn assign(&mut self, other: &Self, op: BoolOp) {
-        self.check_same_size(other)
+        self.try_combine_assign(other, op)
             .unwrap_or_else(|e| panic!("{e}"));
-        self.nodes = combine::<D>(&self.nodes, &other.nodes, op);
     }
 }

@@ -16,6 +16,7 @@ mod board_file;
 mod board_syntax;
 pub mod board_text;
 pub mod gmsh;
+mod limits;
 pub mod pbm;
 #[cfg(feature = "png")]
 pub mod png;
@@ -25,4 +26,5 @@ pub mod triangle;
 pub mod vtk;
 
 pub use board_file::{read_board_file, BoardFileError, BoardFormat, BoardReadError};
+pub use limits::{LimitError, Limits};
 pub use svg::{mesh_svg, point_tree_svg, Style, Svg};

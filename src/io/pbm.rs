@@ -1,27 +1,47 @@
 //! Netpbm bitmaps (PBM) for 2D region trees, read and written with no dependency: `P1` (plain,
 //! ASCII `0`/`1`) and `P4` (raw, rows packed 8 pixels a byte, most significant bit first, each
 //! row padded to a whole byte). `1` is black, as in the format; the first row is the image's
-//! row `y = 0`. Comments (`#` to the end of the line) are allowed in the header, and anywhere
-//! in a `P1` body.
+//! row `y = 0`.
 //!
-//! A malformed file is a [`PbmError`] saying what is wrong and where: the line for `P1` and the
-//! header, the byte offset for `P4` data.
+//! # The grammar read
+//!
+//! The Netpbm grammar, exactly: the magic number `P1` or `P4`; whitespace (space, tab, LF, VT,
+//! FF, CR), at least one byte of it; the width in ASCII decimal; whitespace; the height. Comments
+//! (`#` through the next LF or CR) may stand wherever header whitespace may, and end a number.
+//! Then:
+//! - `P4`: exactly **one** whitespace byte (or a comment, whose closing LF or CR is that byte),
+//!   then exactly `ceil(width / 8) * height` bytes of raster, and nothing after it.
+//! - `P1`: the pixels `0` and `1`, separated by any whitespace and comments; after the last
+//!   pixel only whitespace and comments.
+//!
+//! One image a file: a second image, or any other data after the raster, is refused
+//! ([`PbmError::TrailingData`]). Width and height are positive numbers below 2^32.
+//!
+//! A malformed file is a [`PbmError`] naming the **byte offset** (and the line) of what is
+//! wrong, with the bytes found shown escaped and cut short. Sizes are checked against the data
+//! and against [`Limits`] before anything is allocated, and the tree is built row by row
+//! ([`RowBuilder`]), so memory is O(tree + one row), never the dense image.
+//!
+//! Writers stream rows to any [`Write`] through a buffer; an image with a zero side, which no
+//! PBM can hold, is refused ([`PbmError::EmptyImage`]).
 //!
 //! ```
 //! use orthtree::image::ImageTree;
 //! use orthtree::io::pbm::{self, PbmFormat};
 //! let t = ImageTree::from_boxes([10, 3], &[([2, 0], [9, 2])]).unwrap();
 //! for format in [PbmFormat::Plain, PbmFormat::Raw] {
-//!     let bytes = pbm::to_bytes(&t, format);
+//!     let bytes = pbm::to_bytes(&t, format).unwrap();
 //!     assert_eq!(pbm::from_bytes(&bytes).unwrap(), t);
 //! }
-//! assert!(pbm::to_bytes(&t, PbmFormat::Plain).starts_with(b"P1\n10 3\n0011111110\n"));
+//! assert!(pbm::to_bytes(&t, PbmFormat::Plain).unwrap().starts_with(b"P1\n10 3\n0011111110\n"));
 //! let err = pbm::from_bytes(b"P1\n2 2\n0 1\n1 x\n").unwrap_err();
-//! assert_eq!(err.to_string(), "PBM line 4: pixel is 'x', expected 0 or 1");
+//! assert_eq!(err.to_string(), "PBM line 4, byte 13: pixel is \"x\", expected 0 or 1");
 //! ```
 
-use crate::image::{ImageError, ImageTree};
+use super::limits::{LimitError, Limits};
+use crate::image::{ImageError, ImageTree, RowBuilder};
 use core::fmt;
+use std::io::{BufWriter, Write};
 use std::path::Path;
 
 /// Which PBM variant to write.
@@ -33,7 +53,7 @@ pub enum PbmFormat {
     Raw,
 }
 
-/// What is wrong with a PBM file, and where.
+/// What is wrong with a PBM file, and where (`offset`: bytes from the start; `line`: 1-based).
 #[derive(Debug)]
 #[non_exhaustive]
 pub enum PbmError {
@@ -41,34 +61,76 @@ pub enum PbmError {
     Io(std::io::Error),
     /// The file does not start with `P1` or `P4`.
     BadMagic {
-        /// The first two bytes, lossily as text.
+        /// The first bytes, escaped.
         found: String,
     },
-    /// A header field (width or height) is missing or not a positive decimal number.
+    /// A header field (width or height) is missing or not a positive decimal number below 2^32.
     BadHeader {
         /// `"width"` or `"height"`.
         field: &'static str,
-        /// The line (1-based) where it should be.
+        /// Where it should start.
+        offset: usize,
+        /// The line.
         line: usize,
+        /// The bytes found there, escaped and cut short.
+        found: String,
+    },
+    /// No whitespace where the grammar asks for it (after the magic number, the width or the
+    /// height).
+    MissingWhitespace {
+        /// `"magic number"`, `"width"` or `"height"`.
+        after: &'static str,
+        /// Where the whitespace should be.
+        offset: usize,
+        /// The line.
+        line: usize,
+        /// The bytes found there, escaped and cut short.
+        found: String,
     },
     /// A `P1` pixel is neither `0` nor `1`.
     BadPixel {
-        /// The line (1-based).
+        /// Its offset.
+        offset: usize,
+        /// The line.
         line: usize,
-        /// The character found.
-        found: char,
+        /// The byte found.
+        found: u8,
     },
-    /// The pixel data ends early.
+    /// The raster ends early.
     Truncated {
-        /// Where it ends: the line for `P1`, the byte offset for `P4`.
-        at: usize,
-        /// Pixels (for `P1`) or bytes (for `P4`) expected in all.
-        expected: usize,
+        /// Where the file ends.
+        offset: usize,
+        /// The line there.
+        line: usize,
+        /// Pixels (for `P1`) or bytes (for `P4`) the header asks for.
+        expected: u64,
         /// Pixels or bytes found.
-        found: usize,
+        found: u64,
+        /// `"pixels"` or `"bytes"`.
+        unit: &'static str,
     },
-    /// The image is too large for a region tree.
+    /// Data after the raster (a second image included).
+    TrailingData {
+        /// Where it starts.
+        offset: usize,
+        /// The line.
+        line: usize,
+        /// How many bytes follow the raster.
+        bytes: usize,
+        /// The first of them, escaped and cut short.
+        found: String,
+    },
+    /// The image breaks a [`Limits`] limit.
+    Limit(LimitError),
+    /// The image is too large for a region tree, or building it broke the byte limit.
     Image(ImageError),
+    /// Writing an image with a zero side, which a PBM file cannot hold.
+    EmptyImage {
+        /// The width.
+        width: u32,
+        /// The height.
+        height: u32,
+    },
 }
 
 impl fmt::Display for PbmError {
@@ -76,26 +138,68 @@ impl fmt::Display for PbmError {
         match self {
             PbmError::Io(e) => write!(f, "PBM: {e}"),
             PbmError::BadMagic { found } => {
-                write!(f, "PBM: starts with {found:?}, expected \"P1\" or \"P4\"")
-            }
-            PbmError::BadHeader { field, line } => {
                 write!(
                     f,
-                    "PBM line {line}: {field} missing or not a positive number"
+                    "PBM byte 0: starts with \"{found}\", expected \"P1\" or \"P4\""
                 )
             }
-            PbmError::BadPixel { line, found } => {
-                write!(f, "PBM line {line}: pixel is {found:?}, expected 0 or 1")
-            }
-            PbmError::Truncated {
-                at,
-                expected,
+            PbmError::BadHeader {
+                field,
+                offset,
+                line,
                 found,
             } => write!(
                 f,
-                "PBM: data ends at {at} (line or byte offset) after {found} of {expected}"
+                "PBM line {line}, byte {offset}: {field} is \"{found}\", expected a positive \
+                 decimal number of at most {}",
+                u32::MAX
             ),
+            PbmError::MissingWhitespace {
+                after,
+                offset,
+                line,
+                found,
+            } => write!(
+                f,
+                "PBM line {line}, byte {offset}: expected whitespace after the {after}, found \
+                 \"{found}\""
+            ),
+            PbmError::BadPixel {
+                offset,
+                line,
+                found,
+            } => write!(
+                f,
+                "PBM line {line}, byte {offset}: pixel is \"{}\", expected 0 or 1",
+                shown(&[*found])
+            ),
+            PbmError::Truncated {
+                offset,
+                line,
+                expected,
+                found,
+                unit,
+            } => write!(
+                f,
+                "PBM line {line}, byte {offset}: the raster ends after {found} of {expected} \
+                 {unit}"
+            ),
+            PbmError::TrailingData {
+                offset,
+                line,
+                bytes,
+                found,
+            } => write!(
+                f,
+                "PBM line {line}, byte {offset}: {bytes} bytes after the raster (\"{found}\"); \
+                 a file holds one image, and a P4 header ends with exactly one whitespace byte"
+            ),
+            PbmError::Limit(e) => write!(f, "PBM: {e}"),
             PbmError::Image(e) => write!(f, "PBM: {e}"),
+            PbmError::EmptyImage { width, height } => write!(
+                f,
+                "PBM: cannot write a {width} x {height} image, a PBM side is at least 1"
+            ),
         }
     }
 }
@@ -105,6 +209,7 @@ impl std::error::Error for PbmError {
         match self {
             PbmError::Io(e) => Some(e),
             PbmError::Image(e) => Some(e),
+            PbmError::Limit(e) => Some(e),
             _ => None,
         }
     }
@@ -116,7 +221,34 @@ impl From<std::io::Error> for PbmError {
     }
 }
 
-/// A cursor over the bytes that counts lines and skips whitespace and comments.
+/// At most this many bytes are shown in a message.
+const SHOWN: usize = 16;
+
+/// Bytes for a message: printable ASCII as is, everything else escaped, cut after [`SHOWN`].
+pub(crate) fn shown(bytes: &[u8]) -> String {
+    let mut s = String::new();
+    for &b in bytes.iter().take(SHOWN) {
+        match b {
+            b'\n' => s.push_str("\\n"),
+            b'\r' => s.push_str("\\r"),
+            b'\t' => s.push_str("\\t"),
+            b'"' => s.push_str("\\\""),
+            b'\\' => s.push_str("\\\\"),
+            0x20..=0x7e => s.push(char::from(b)),
+            _ => s.push_str(&format!("\\x{b:02x}")),
+        }
+    }
+    if bytes.len() > SHOWN {
+        s.push_str("...");
+    }
+    s
+}
+
+fn is_space(b: u8) -> bool {
+    matches!(b, b' ' | b'\t' | b'\n' | b'\r' | 0x0b | 0x0c)
+}
+
+/// A cursor over the file that counts lines (LF, CR LF or a lone CR ends one).
 struct Cursor<'a> {
     bytes: &'a [u8],
     pos: usize,
@@ -124,53 +256,141 @@ struct Cursor<'a> {
 }
 
 impl Cursor<'_> {
-    fn skip_space(&mut self) {
-        while let Some(&c) = self.bytes.get(self.pos) {
-            match c {
-                b'\n' => self.line += 1,
-                b'#' => {
-                    while self.bytes.get(self.pos).is_some_and(|&c| c != b'\n') {
-                        self.pos += 1;
-                    }
-                    continue;
-                }
-                c if c.is_ascii_whitespace() => {}
-                _ => return,
-            }
-            self.pos += 1;
+    fn peek(&self) -> Option<u8> {
+        self.bytes.get(self.pos).copied()
+    }
+
+    /// Moves past one byte, counting line ends.
+    fn bump(&mut self) {
+        let b = self.bytes[self.pos];
+        self.pos += 1;
+        if b == b'\n' || (b == b'\r' && self.peek() != Some(b'\n')) {
+            self.line += 1;
         }
     }
 
-    fn number(&mut self, field: &'static str) -> Result<u32, PbmError> {
-        self.skip_space();
-        let start = self.pos;
-        while self.bytes.get(self.pos).is_some_and(u8::is_ascii_digit) {
-            self.pos += 1;
+    /// Skips a comment starting here: `#` through the next LF or CR, inclusive.
+    fn comment(&mut self) {
+        while let Some(b) = self.peek() {
+            self.bump();
+            if b == b'\n' || b == b'\r' {
+                return;
+            }
         }
-        let bad = PbmError::BadHeader {
-            field,
-            line: self.line,
-        };
-        let text = core::str::from_utf8(&self.bytes[start..self.pos]).map_err(|_| bad)?;
-        match text.parse::<u32>() {
-            Ok(n) if n > 0 => Ok(n),
-            _ => Err(PbmError::BadHeader {
-                field,
+    }
+
+    /// Skips whitespace and comments; the number of bytes skipped.
+    fn skip_space(&mut self) -> usize {
+        let start = self.pos;
+        while let Some(b) = self.peek() {
+            if b == b'#' {
+                self.comment();
+            } else if is_space(b) {
+                self.bump();
+            } else {
+                break;
+            }
+        }
+        self.pos - start
+    }
+
+    /// The bytes from here to the next whitespace, for a message.
+    fn token(&self) -> String {
+        let rest = &self.bytes[self.pos.min(self.bytes.len())..];
+        let end = rest.iter().position(|&b| is_space(b)).unwrap_or(rest.len());
+        shown(&rest[..end.clamp(1.min(rest.len()), SHOWN + 1)])
+    }
+
+    /// Whitespace (at least one byte) after `after`.
+    fn separator(&mut self, after: &'static str) -> Result<(), PbmError> {
+        if self.skip_space() == 0 {
+            return Err(PbmError::MissingWhitespace {
+                after,
+                offset: self.pos,
                 line: self.line,
-            }),
+                found: self.token(),
+            });
+        }
+        Ok(())
+    }
+
+    fn number(&mut self, field: &'static str) -> Result<u32, PbmError> {
+        let (offset, line) = (self.pos, self.line);
+        let bad = |c: &Self| PbmError::BadHeader {
+            field,
+            offset,
+            line,
+            found: c.token(),
+        };
+        let mut value = 0u32;
+        let mut digits = 0;
+        while let Some(b) = self.peek().filter(u8::is_ascii_digit) {
+            value = value
+                .checked_mul(10)
+                .and_then(|v| v.checked_add(u32::from(b - b'0')))
+                .ok_or_else(|| bad(self))?;
+            self.pos += 1;
+            digits += 1;
+        }
+        if digits == 0 || value == 0 {
+            self.pos = offset;
+            return Err(bad(self));
+        }
+        Ok(value)
+    }
+
+    fn truncated(&self, expected: u64, found: u64, raw: bool) -> PbmError {
+        PbmError::Truncated {
+            offset: self.bytes.len(),
+            line: self.line,
+            expected,
+            found,
+            unit: if raw { "bytes" } else { "pixels" },
+        }
+    }
+
+    fn trailing(&self) -> PbmError {
+        PbmError::TrailingData {
+            offset: self.pos,
+            line: self.line,
+            bytes: self.bytes.len() - self.pos,
+            found: shown(&self.bytes[self.pos..]),
         }
     }
 }
 
-/// Reads a PBM image (`P1` or `P4`) into a region tree.
+/// Reads a PBM image (`P1` or `P4`) into a region tree, within [`Limits::default`].
+///
+/// # Errors
+/// A [`PbmError`] naming the byte offset of what is wrong, or the limit broken.
 pub fn from_bytes(bytes: &[u8]) -> Result<ImageTree, PbmError> {
-    let magic = bytes.get(..2).unwrap_or(bytes);
-    let raw = match magic {
-        b"P1" => false,
-        b"P4" => true,
+    from_bytes_with_limits(bytes, Limits::default())
+}
+
+/// Reads a PBM image (`P1` or `P4`) into a region tree, within `limits`.
+///
+/// # Errors
+/// A [`PbmError`] naming the byte offset of what is wrong, or the limit broken.
+///
+/// # Complexity
+/// O(file + n k) time for an n-node tree of depth k; O(n + width) memory.
+///
+/// ```
+/// use orthtree::io::{pbm, Limits};
+/// // 2000000000 x 2000000000 in a 30-byte file: refused before any allocation
+/// let err = pbm::from_bytes_with_limits(b"P4\n2000000000 2000000000\n\0", Limits::NONE).unwrap_err();
+/// assert!(err.to_string().contains("the raster ends after 1 of 500000000000000000 bytes"));
+/// ```
+pub fn from_bytes_with_limits(bytes: &[u8], limits: Limits) -> Result<ImageTree, PbmError> {
+    limits
+        .check_bytes("the file", bytes.len() as u64)
+        .map_err(PbmError::Limit)?;
+    let raw = match bytes.get(..2) {
+        Some(b"P1") => false,
+        Some(b"P4") => true,
         _ => {
             return Err(PbmError::BadMagic {
-                found: String::from_utf8_lossy(magic).into_owned(),
+                found: shown(&bytes[..bytes.len().min(2)]),
             })
         }
     };
@@ -179,93 +399,210 @@ pub fn from_bytes(bytes: &[u8]) -> Result<ImageTree, PbmError> {
         pos: 2,
         line: 1,
     };
+    c.separator("magic number")?;
     let w = c.number("width")?;
+    c.separator("width")?;
     let h = c.number("height")?;
+    limits.check_pixels(w, h).map_err(PbmError::Limit)?;
     ImageTree::depth_for([w, h]).map_err(PbmError::Image)?;
-    let n = w as usize * h as usize;
-    let mut pixels = vec![false; n];
+    let budget = limits.max_bytes.saturating_sub(bytes.len() as u64);
     if raw {
-        // exactly one whitespace byte after the height
-        c.pos += 1;
-        let row_bytes = (w as usize).div_ceil(8);
-        let expected = row_bytes * h as usize;
-        let data = &bytes[c.pos.min(bytes.len())..];
-        if data.len() < expected {
-            return Err(PbmError::Truncated {
-                at: bytes.len(),
-                expected,
-                found: data.len(),
-            });
-        }
-        for y in 0..h as usize {
-            let row = &data[y * row_bytes..(y + 1) * row_bytes];
-            for x in 0..w as usize {
-                pixels[y * w as usize + x] = (row[x / 8] >> (7 - x % 8)) & 1 == 1;
+        match c.peek() {
+            Some(b'#') => c.comment(),
+            Some(b) if is_space(b) => c.bump(),
+            None => return Err(c.truncated(u64::from(w).div_ceil(8) * u64::from(h), 0, true)),
+            Some(_) => {
+                return Err(PbmError::MissingWhitespace {
+                    after: "height",
+                    offset: c.pos,
+                    line: c.line,
+                    found: c.token(),
+                })
             }
         }
+        read_raw(&mut c, [w, h], budget)
     } else {
-        for (i, p) in pixels.iter_mut().enumerate() {
-            c.skip_space();
-            match c.bytes.get(c.pos) {
-                Some(b'0') => {}
-                Some(b'1') => *p = true,
-                Some(&other) => {
-                    let found = char::from(other);
-                    return Err(PbmError::BadPixel {
-                        line: c.line,
-                        found,
-                    });
-                }
-                None => {
-                    return Err(PbmError::Truncated {
-                        at: c.line,
-                        expected: n,
-                        found: i,
-                    })
-                }
+        match c.peek() {
+            Some(b) if b == b'#' || is_space(b) => {}
+            None => return Err(c.truncated(u64::from(w) * u64::from(h), 0, false)),
+            Some(_) => {
+                return Err(PbmError::MissingWhitespace {
+                    after: "height",
+                    offset: c.pos,
+                    line: c.line,
+                    found: c.token(),
+                })
             }
-            c.pos += 1;
         }
+        read_plain(&mut c, [w, h], budget)
     }
-    ImageTree::from_bools([w, h], &pixels).map_err(PbmError::Image)
 }
 
-/// The PBM file of a region tree (cropped to its extent).
-pub fn to_bytes(tree: &ImageTree, format: PbmFormat) -> Vec<u8> {
-    let [w, h] = tree.extent().map(|e| e as usize);
-    let pixels = tree.to_bools();
-    let mut out = Vec::with_capacity(16 + pixels.len() / 8 + h);
+fn builder(extent: [u32; 2], budget: u64) -> Result<RowBuilder, PbmError> {
+    let limits = Limits {
+        max_pixels: u64::MAX,
+        max_bytes: budget,
+    };
+    let row_bytes = 8 * (extent[0] as u64).div_ceil(64);
+    limits
+        .check_bytes("one row", row_bytes)
+        .map_err(PbmError::Limit)?;
+    Ok(RowBuilder::new(extent)
+        .map_err(PbmError::Image)?
+        .max_bytes(budget - row_bytes))
+}
+
+fn read_raw(c: &mut Cursor<'_>, [w, h]: [u32; 2], budget: u64) -> Result<ImageTree, PbmError> {
+    let row_bytes = (w as usize).div_ceil(8);
+    let expected = row_bytes as u64 * u64::from(h);
+    let raster = &c.bytes[c.pos..];
+    if (raster.len() as u64) < expected {
+        return Err(c.truncated(expected, raster.len() as u64, true));
+    }
+    if raster.len() as u64 > expected {
+        c.pos += expected as usize;
+        return Err(c.trailing());
+    }
+    let mut b = builder([w, h], budget)?;
+    let mut words = vec![0u64; b.row_words()];
+    for row in raster.chunks_exact(row_bytes) {
+        words.fill(0);
+        for (i, &byte) in row.iter().enumerate() {
+            words[i / 8] |= u64::from(byte.reverse_bits()) << (8 * (i % 8));
+        }
+        b.push_row(&words).map_err(PbmError::Image)?;
+    }
+    b.finish().map_err(PbmError::Image)
+}
+
+fn read_plain(c: &mut Cursor<'_>, [w, h]: [u32; 2], budget: u64) -> Result<ImageTree, PbmError> {
+    let expected = u64::from(w) * u64::from(h);
+    // every pixel takes a byte: refuse a header the data cannot back before allocating
+    let rest = &c.bytes[c.pos..];
+    if (rest.len() as u64) < expected {
+        let found = rest.iter().filter(|&&b| b == b'0' || b == b'1').count();
+        return Err(c.truncated(expected, found as u64, false));
+    }
+    let mut b = builder([w, h], budget)?;
+    let mut words = vec![0u64; b.row_words()];
+    let mut done = 0u64;
+    for _ in 0..h {
+        words.fill(0);
+        for x in 0..w as usize {
+            c.skip_space();
+            match c.peek() {
+                Some(b'0') => {}
+                Some(b'1') => words[x / 64] |= 1 << (x % 64),
+                Some(found) => {
+                    return Err(PbmError::BadPixel {
+                        offset: c.pos,
+                        line: c.line,
+                        found,
+                    })
+                }
+                None => return Err(c.truncated(expected, done, false)),
+            }
+            c.pos += 1;
+            done += 1;
+        }
+        b.push_row(&words).map_err(PbmError::Image)?;
+    }
+    c.skip_space();
+    if c.pos < c.bytes.len() {
+        return Err(c.trailing());
+    }
+    b.finish().map_err(PbmError::Image)
+}
+
+/// Writes the PBM file of a region tree (cropped to its extent) to `out`, row by row through a
+/// buffer.
+///
+/// # Errors
+/// [`PbmError::EmptyImage`] for a zero side (nothing is written then); [`PbmError::Io`].
+///
+/// # Complexity
+/// O(pixels / 64 + n k) time, O(width + k) memory beyond the tree (see
+/// [`ImageTree::for_each_row`]).
+pub fn write_to(tree: &ImageTree, format: PbmFormat, out: impl Write) -> Result<(), PbmError> {
+    let [w, h] = tree.extent();
+    if w == 0 || h == 0 {
+        return Err(PbmError::EmptyImage {
+            width: w,
+            height: h,
+        });
+    }
+    let mut out = BufWriter::new(out);
     let magic = if format == PbmFormat::Raw { "P4" } else { "P1" };
-    out.extend_from_slice(format!("{magic}\n{w} {h}\n").as_bytes());
-    for row in pixels.chunks(w.max(1)) {
+    write!(out, "{magic}\n{w} {h}\n")?;
+    let mut line = Vec::with_capacity(71);
+    tree.for_each_row(|_, words| -> Result<(), std::io::Error> {
         match format {
             PbmFormat::Raw => {
-                for byte in row.chunks(8) {
-                    let b = byte
-                        .iter()
-                        .enumerate()
-                        .fold(0u8, |acc, (i, &p)| acc | (u8::from(p) << (7 - i)));
-                    out.push(b);
+                for i in 0..(w as usize).div_ceil(8) {
+                    let byte = (words[i / 8] >> (8 * (i % 8))) as u8;
+                    out.write_all(&[byte.reverse_bits()])?;
                 }
             }
             PbmFormat::Plain => {
-                for line in row.chunks(70) {
-                    out.extend(line.iter().map(|&p| if p { b'1' } else { b'0' }));
-                    out.push(b'\n');
+                for start in (0..w as usize).step_by(70) {
+                    line.clear();
+                    let end = (start + 70).min(w as usize);
+                    line.extend(
+                        (start..end).map(|x| b'0' + ((words[x / 64] >> (x % 64)) & 1) as u8),
+                    );
+                    line.push(b'\n');
+                    out.write_all(&line)?;
                 }
             }
         }
-    }
-    out
-}
-
-/// Reads a PBM file.
-pub fn read(path: impl AsRef<Path>) -> Result<ImageTree, PbmError> {
-    from_bytes(&std::fs::read(path)?)
-}
-
-/// Writes a PBM file.
-pub fn write(tree: &ImageTree, path: impl AsRef<Path>, format: PbmFormat) -> Result<(), PbmError> {
-    std::fs::write(path, to_bytes(tree, format))?;
+        Ok(())
+    })?;
+    out.flush()?;
     Ok(())
+}
+
+/// The PBM file of a region tree (cropped to its extent), in memory: [`write_to`] into a `Vec`.
+///
+/// # Errors
+/// [`PbmError::EmptyImage`] for a zero side.
+pub fn to_bytes(tree: &ImageTree, format: PbmFormat) -> Result<Vec<u8>, PbmError> {
+    let mut out = Vec::new();
+    write_to(tree, format, &mut out)?;
+    Ok(out)
+}
+
+/// Reads a PBM file within [`Limits::default`].
+///
+/// # Errors
+/// As [`from_bytes`], and [`PbmError::Io`].
+pub fn read(path: impl AsRef<Path>) -> Result<ImageTree, PbmError> {
+    read_with_limits(path, Limits::default())
+}
+
+/// Reads a PBM file within `limits` (the file's size is checked before it is read).
+///
+/// # Errors
+/// As [`from_bytes_with_limits`], and [`PbmError::Io`].
+pub fn read_with_limits(path: impl AsRef<Path>, limits: Limits) -> Result<ImageTree, PbmError> {
+    let path = path.as_ref();
+    let size = std::fs::metadata(path)?.len();
+    limits
+        .check_bytes("the file", size)
+        .map_err(PbmError::Limit)?;
+    from_bytes_with_limits(&std::fs::read(path)?, limits)
+}
+
+/// Writes a PBM file (created only once the image is known to be writable).
+///
+/// # Errors
+/// [`PbmError::EmptyImage`] for a zero side; [`PbmError::Io`].
+pub fn write(tree: &ImageTree, path: impl AsRef<Path>, format: PbmFormat) -> Result<(), PbmError> {
+    let [w, h] = tree.extent();
+    if w == 0 || h == 0 {
+        return Err(PbmError::EmptyImage {
+            width: w,
+            height: h,
+        });
+    }
+    write_to(tree, format, std::fs::File::create(path)?)
 }

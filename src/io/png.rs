@@ -7,6 +7,16 @@
 //! (`< 128` of 255). Writing gives a grey PNG, black pixels 0 and white 255, at 1 bit per pixel
 //! ([`PngDepth::One`]) or 8 ([`PngDepth::Eight`]).
 //!
+//! # Memory
+//!
+//! The header's size is checked against [`Limits`] before anything is allocated, the `png`
+//! crate's own limit ([`Limits::max_bytes`]) stays in force for its buffers, and the rows are
+//! decoded one at a time and streamed into a [`RowBuilder`]: memory is O(tree + one row), never
+//! the dense image. An interlaced (Adam7) image cannot be streamed in row order; it is gathered
+//! at 1 bit per pixel first, and that buffer counts against [`Limits::max_bytes`]. Writers stream
+//! rows through a buffer to any [`Write`]; an image with a zero side, which a PNG cannot hold, is
+//! refused ([`PngError::EmptyImage`]).
+//!
 //! ```
 //! use orthtree::image::ImageTree;
 //! use orthtree::io::png::{self, PngDepth};
@@ -18,9 +28,10 @@
 //! assert!(png::from_bytes(b"not a png").is_err());
 //! ```
 
-use crate::image::{ImageError, ImageTree};
+use super::limits::{LimitError, Limits};
+use crate::image::{ImageError, ImageTree, RowBuilder};
 use core::fmt;
-use std::io::Cursor;
+use std::io::{BufRead, BufReader, BufWriter, Cursor, Seek, Write};
 use std::path::Path;
 
 /// The bit depth of a written grey PNG.
@@ -42,8 +53,17 @@ pub enum PngError {
     Decode(::png::DecodingError),
     /// The encoder failed.
     Encode(::png::EncodingError),
-    /// The image is too large for a region tree.
+    /// The image breaks a [`Limits`] limit.
+    Limit(LimitError),
+    /// The image is too large for a region tree, or building it broke the byte limit.
     Image(ImageError),
+    /// Writing an image with a zero side, which a PNG file cannot hold.
+    EmptyImage {
+        /// The width.
+        width: u32,
+        /// The height.
+        height: u32,
+    },
 }
 
 impl fmt::Display for PngError {
@@ -52,7 +72,12 @@ impl fmt::Display for PngError {
             PngError::Io(e) => write!(f, "PNG: {e}"),
             PngError::Decode(e) => write!(f, "PNG: {e}"),
             PngError::Encode(e) => write!(f, "PNG: {e}"),
+            PngError::Limit(e) => write!(f, "PNG: {e}"),
             PngError::Image(e) => write!(f, "PNG: {e}"),
+            PngError::EmptyImage { width, height } => write!(
+                f,
+                "PNG: cannot write a {width} x {height} image, a PNG side is at least 1"
+            ),
         }
     }
 }
@@ -63,94 +88,217 @@ impl std::error::Error for PngError {
             PngError::Io(e) => Some(e),
             PngError::Decode(e) => Some(e),
             PngError::Encode(e) => Some(e),
+            PngError::Limit(e) => Some(e),
             PngError::Image(e) => Some(e),
+            PngError::EmptyImage { .. } => None,
         }
     }
 }
 
-/// Reads a PNG image, thresholded at 50% luminance (see the module docs).
+/// Reads a PNG image within [`Limits::default`], thresholded at 50% luminance (see the module
+/// docs).
+///
+/// # Errors
+/// [`PngError::Decode`] for data the decoder refuses, [`PngError::Limit`] past a limit.
 pub fn from_bytes(bytes: &[u8]) -> Result<ImageTree, PngError> {
-    use ::png::ColorType;
-    let mut decoder = ::png::Decoder::new(Cursor::new(bytes));
+    from_bytes_with_limits(bytes, Limits::default())
+}
+
+/// Reads a PNG image within `limits`, thresholded at 50% luminance (see the module docs).
+///
+/// # Errors
+/// [`PngError::Decode`] for data the decoder refuses, [`PngError::Limit`] past a limit.
+///
+/// # Complexity
+/// O(pixels + n k) time for an n-node tree of depth k; O(n + width) memory (plus the 1-bit image
+/// for interlaced files).
+pub fn from_bytes_with_limits(bytes: &[u8], limits: Limits) -> Result<ImageTree, PngError> {
+    limits
+        .check_bytes("the file", bytes.len() as u64)
+        .map_err(PngError::Limit)?;
+    read_from(Cursor::new(bytes), limits)
+}
+
+/// Whether each pixel of a decoded row (8-bit samples, `channels` of them a pixel) is black;
+/// sets bit `x` of `words` for black pixel `x`.
+fn threshold(data: &[u8], channels: usize, words: &mut [u64]) {
+    words.fill(0);
+    for (x, p) in data.chunks_exact(channels).enumerate() {
+        let black = match channels {
+            1 => p[0] < 128,
+            2 => over_white(f64::from(p[0]), f64::from(p[1])) < 128.0,
+            _ => {
+                let lum =
+                    0.2126 * f64::from(p[0]) + 0.7152 * f64::from(p[1]) + 0.0722 * f64::from(p[2]);
+                let alpha = if channels == 4 {
+                    f64::from(p[3])
+                } else {
+                    255.0
+                };
+                over_white(lum, alpha) < 128.0
+            }
+        };
+        words[x / 64] |= u64::from(black) << (x % 64);
+    }
+}
+
+fn over_white(lum: f64, alpha: f64) -> f64 {
+    (lum * alpha + 255.0 * (255.0 - alpha)) / 255.0
+}
+
+fn read_from<R: BufRead + Seek>(input: R, limits: Limits) -> Result<ImageTree, PngError> {
+    let png_limits = ::png::Limits {
+        bytes: usize::try_from(limits.max_bytes).unwrap_or(usize::MAX),
+    };
+    let mut decoder = ::png::Decoder::new_with_limits(input, png_limits);
     decoder.set_transformations(::png::Transformations::EXPAND | ::png::Transformations::STRIP_16);
     let mut reader = decoder.read_info().map_err(PngError::Decode)?;
-    let size = reader.output_buffer_size().ok_or_else(|| {
-        PngError::Image(ImageError::TooLarge {
-            extent: vec![reader.info().width, reader.info().height],
-            max_depth: ImageTree::MAX_DEPTH,
-        })
-    })?;
-    let mut buf = vec![0; size];
-    let info = reader.next_frame(&mut buf).map_err(PngError::Decode)?;
-    let (w, h) = (info.width as usize, info.height as usize);
-    ImageTree::depth_for([info.width, info.height]).map_err(PngError::Image)?;
-    let channels = match info.color_type {
-        ColorType::Grayscale => 1,
-        ColorType::GrayscaleAlpha => 2,
-        ColorType::Rgb => 3,
-        // palettes are expanded to RGB(A)
-        ColorType::Rgba | ColorType::Indexed => 4,
+    let (w, h) = reader.info().size();
+    let interlaced = reader.info().interlaced;
+    limits.check_pixels(w, h).map_err(PngError::Limit)?;
+    ImageTree::depth_for([w, h]).map_err(PngError::Image)?;
+    let channels = reader.output_color_type().0.samples();
+    let line = reader.output_line_size(w).unwrap_or(usize::MAX) as u64;
+    let row_words = 8 * (w as u64).div_ceil(64);
+    let gathered = if interlaced {
+        (w as u64).div_ceil(8) * u64::from(h)
+    } else {
+        0
     };
-    let mut pixels = Vec::with_capacity(w * h);
-    for y in 0..h {
-        let row = &buf[y * info.line_size..];
-        for x in 0..w {
-            let p = &row[x * channels..(x + 1) * channels];
-            let (lum, alpha) = match channels {
-                1 => (f64::from(p[0]), 255.0),
-                2 => (f64::from(p[0]), f64::from(p[1])),
-                _ => (
-                    0.2126 * f64::from(p[0]) + 0.7152 * f64::from(p[1]) + 0.0722 * f64::from(p[2]),
-                    if channels == 4 {
-                        f64::from(p[3])
-                    } else {
-                        255.0
-                    },
-                ),
-            };
-            let over_white = (lum * alpha + 255.0 * (255.0 - alpha)) / 255.0;
-            pixels.push(over_white < 128.0);
-        }
+    let mut used = 0u64;
+    for (what, bytes) in [
+        ("one decoded row", line),
+        ("one bit-packed row", row_words),
+        ("the deinterlaced 1-bit image", gathered),
+    ] {
+        used = used.saturating_add(bytes);
+        limits.check_bytes(what, used).map_err(PngError::Limit)?;
     }
-    ImageTree::from_bools([info.width, info.height], &pixels).map_err(PngError::Image)
+    let mut b = RowBuilder::new([w, h])
+        .map_err(PngError::Image)?
+        .max_bytes(limits.max_bytes - used);
+    let mut words = vec![0u64; b.row_words()];
+    if !interlaced {
+        while let Some(row) = reader.next_row().map_err(PngError::Decode)? {
+            threshold(row.data(), channels, &mut words);
+            b.push_row(&words).map_err(PngError::Image)?;
+        }
+        return b.finish().map_err(PngError::Image);
+    }
+    let stride = (w as usize).div_ceil(8);
+    let mut image = vec![0u8; gathered as usize];
+    let mut bits = Vec::with_capacity(stride);
+    while let Some(row) = reader.next_interlaced_row().map_err(PngError::Decode)? {
+        let ::png::InterlaceInfo::Adam7(info) = *row.interlace() else {
+            continue;
+        };
+        let data = row.data();
+        threshold(data, channels, &mut words);
+        let samples = data.len() / channels;
+        bits.clear();
+        bits.extend((0..samples.div_ceil(8)).map(|i| (words[i / 8] >> (8 * (i % 8))) as u8));
+        bits.iter_mut().for_each(|x| *x = x.reverse_bits());
+        ::png::expand_interlaced_row(&mut image, stride, &bits, &info, 1);
+    }
+    for row in image.chunks_exact(stride) {
+        words.fill(0);
+        for (i, &byte) in row.iter().enumerate() {
+            words[i / 8] |= u64::from(byte.reverse_bits()) << (8 * (i % 8));
+        }
+        b.push_row(&words).map_err(PngError::Image)?;
+    }
+    b.finish().map_err(PngError::Image)
 }
 
-/// A grey PNG of a region tree (cropped to its extent): black pixels 0, white 255.
-pub fn to_bytes(tree: &ImageTree, depth: PngDepth) -> Result<Vec<u8>, PngError> {
+/// Writes a grey PNG of a region tree (cropped to its extent) to `out`, black pixels 0 and white
+/// 255, row by row through a buffer.
+///
+/// # Errors
+/// [`PngError::EmptyImage`] for a zero side (nothing is written then); [`PngError::Encode`].
+///
+/// # Complexity
+/// O(pixels + n k) time, O(width + k) memory beyond the tree and the encoder's buffers.
+pub fn write_to(tree: &ImageTree, depth: PngDepth, out: impl Write) -> Result<(), PngError> {
     let [w, h] = tree.extent();
-    let pixels = tree.to_bools();
-    let mut data = Vec::new();
-    for row in pixels.chunks((w as usize).max(1)) {
-        match depth {
-            PngDepth::One => data.extend(row.chunks(8).map(|byte| {
-                byte.iter()
-                    .enumerate()
-                    .fold(0u8, |acc, (i, &p)| acc | (u8::from(!p) << (7 - i)))
-            })),
-            PngDepth::Eight => data.extend(row.iter().map(|&p| if p { 0 } else { 255 })),
-        }
-    }
-    let mut out = Vec::new();
-    {
-        let mut encoder = ::png::Encoder::new(&mut out, w, h);
-        encoder.set_color(::png::ColorType::Grayscale);
-        encoder.set_depth(match depth {
-            PngDepth::One => ::png::BitDepth::One,
-            PngDepth::Eight => ::png::BitDepth::Eight,
+    if w == 0 || h == 0 {
+        return Err(PngError::EmptyImage {
+            width: w,
+            height: h,
         });
-        let mut writer = encoder.write_header().map_err(PngError::Encode)?;
-        writer.write_image_data(&data).map_err(PngError::Encode)?;
-        writer.finish().map_err(PngError::Encode)?;
     }
+    let mut encoder = ::png::Encoder::new(BufWriter::new(out), w, h);
+    encoder.set_color(::png::ColorType::Grayscale);
+    encoder.set_depth(match depth {
+        PngDepth::One => ::png::BitDepth::One,
+        PngDepth::Eight => ::png::BitDepth::Eight,
+    });
+    let mut writer = encoder.write_header().map_err(PngError::Encode)?;
+    let mut stream = writer.stream_writer().map_err(PngError::Encode)?;
+    let mut line = Vec::new();
+    tree.for_each_row(|_, words| -> Result<(), std::io::Error> {
+        line.clear();
+        match depth {
+            PngDepth::One => line.extend(
+                (0..(w as usize).div_ceil(8))
+                    .map(|i| !((words[i / 8] >> (8 * (i % 8))) as u8).reverse_bits()),
+            ),
+            PngDepth::Eight => line.extend((0..w as usize).map(|x| {
+                if (words[x / 64] >> (x % 64)) & 1 == 1 {
+                    0
+                } else {
+                    255
+                }
+            })),
+        }
+        stream.write_all(&line)
+    })
+    .map_err(PngError::Io)?;
+    stream.finish().map_err(PngError::Encode)?;
+    writer.finish().map_err(PngError::Encode)
+}
+
+/// A grey PNG of a region tree (cropped to its extent), in memory: [`write_to`] into a `Vec`.
+///
+/// # Errors
+/// [`PngError::EmptyImage`] for a zero side; [`PngError::Encode`].
+pub fn to_bytes(tree: &ImageTree, depth: PngDepth) -> Result<Vec<u8>, PngError> {
+    let mut out = Vec::new();
+    write_to(tree, depth, &mut out)?;
     Ok(out)
 }
 
-/// Reads a PNG file.
+/// Reads a PNG file within [`Limits::default`], streaming it from the disk.
+///
+/// # Errors
+/// As [`from_bytes`], and [`PngError::Io`].
 pub fn read(path: impl AsRef<Path>) -> Result<ImageTree, PngError> {
-    from_bytes(&std::fs::read(path).map_err(PngError::Io)?)
+    read_with_limits(path, Limits::default())
 }
 
-/// Writes a grey PNG file.
+/// Reads a PNG file within `limits`, streaming it from the disk.
+///
+/// # Errors
+/// As [`from_bytes_with_limits`], and [`PngError::Io`].
+pub fn read_with_limits(path: impl AsRef<Path>, limits: Limits) -> Result<ImageTree, PngError> {
+    let file = std::fs::File::open(path).map_err(PngError::Io)?;
+    read_from(BufReader::new(file), limits)
+}
+
+/// Writes a grey PNG file (created only once the image is known to be writable).
+///
+/// # Errors
+/// [`PngError::EmptyImage`] for a zero side; [`PngError::Io`], [`PngError::Encode`].
 pub fn write(tree: &ImageTree, path: impl AsRef<Path>, depth: PngDepth) -> Result<(), PngError> {
-    std::fs::write(path, to_bytes(tree, depth)?).map_err(PngError::Io)
+    let [w, h] = tree.extent();
+    if w == 0 || h == 0 {
+        return Err(PngError::EmptyImage {
+            width: w,
+            height: h,
+        });
+    }
+    write_to(
+        tree,
+        depth,
+        std::fs::File::create(path).map_err(PngError::Io)?,
+    )
 }

@@ -3,9 +3,11 @@
 //! viewers show it (the plane's y axis points up, so row `y` is the strip
 //! `side - y - 1 .. side - y`).
 
+use super::format::num;
 use super::{Style, Svg, DEFAULT_WIDTH_PX};
 use crate::geom::Aabb;
 use crate::image::{Block, ImageTree};
+use std::io::{BufWriter, Write};
 
 /// The plane box of a block, row 0 at the top of a cube of side `side`.
 fn block_box(b: &Block<2>, side: f64) -> Aabb<f64, 2> {
@@ -35,7 +37,7 @@ impl Svg {
 
 /// An SVG picture of a 2D region tree: its root cube `[0, 2^k]^2` on a white background, black
 /// leaves filled black, every leaf cell outlined in thin grey, and the extent (when padded) in
-/// dashed red; [`DEFAULT_WIDTH_PX`] wide.
+/// dashed red; [`DEFAULT_WIDTH_PX`] wide. [`write_image_tree_svg`] into a `String`.
 ///
 /// ```
 /// use orthtree::image::ImageTree;
@@ -46,26 +48,84 @@ impl Svg {
 /// assert!(svg.contains("stroke-dasharray")); // the 6 x 8 extent inside the 8 x 8 cube
 /// ```
 pub fn image_tree_svg(tree: &ImageTree) -> String {
+    let mut out = Vec::new();
+    write_image_tree_svg(tree, &mut out).expect("writing to a Vec does not fail");
+    String::from_utf8(out).expect("the SVG is ASCII")
+}
+
+/// Writes the picture of [`image_tree_svg`] to `out` through a buffer, one `<rect>` per leaf as
+/// the leaves are visited: memory O(k), whatever the tree's size.
+///
+/// # Errors
+/// The first error of `out`.
+///
+/// ```
+/// use orthtree::image::ImageTree;
+/// use orthtree::io::svg::{write_image_tree_svg, Style, Svg, DEFAULT_WIDTH_PX};
+/// use orthtree::Aabb;
+/// let t = ImageTree::from_ball([40, 30], [20.0, 15.0], 9.0).unwrap();
+/// let mut out = Vec::new();
+/// write_image_tree_svg(&t, &mut out).unwrap();
+/// // the same picture as the builder's layers
+/// let side = f64::from(t.side());
+/// let mut svg = Svg::new(Aabb { min: [0.0; 2], max: [side; 2] }, DEFAULT_WIDTH_PX);
+/// svg.background("white");
+/// let outline = Style::solid().stroke("#888").stroke_width(0.5f64.min(800.0 / side / 4.0));
+/// svg.image_tree(&t, &Style::solid().stroke("none").fill("black"), &outline);
+/// let extent = Aabb { min: [0.0, side - 30.0], max: [40.0, side] };
+/// svg.boxes([extent], &Style::dashed().stroke("red"));
+/// assert_eq!(String::from_utf8(out).unwrap(), svg.finish());
+/// ```
+pub fn write_image_tree_svg(tree: &ImageTree, out: impl Write) -> std::io::Result<()> {
     let side = f64::from(tree.side());
     let cube = Aabb {
         min: [0.0, 0.0],
         max: [side, side],
     };
-    let mut svg = Svg::new(cube, DEFAULT_WIDTH_PX);
-    svg.background("white");
+    let svg = Svg::new(cube, DEFAULT_WIDTH_PX);
+    let mut out = BufWriter::new(out);
+    let (w, h) = svg.size_px();
+    let (w, h) = (num(w), num(h));
+    writeln!(
+        out,
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" \
+         viewBox=\"0 0 {w} {h}\">"
+    )?;
+    writeln!(out, "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>")?;
     let width = (0.5f64).min(DEFAULT_WIDTH_PX / side / 4.0);
-    svg.image_tree(
-        tree,
-        &Style::solid().stroke("none").fill("black"),
-        &Style::solid().stroke("#888").stroke_width(width),
-    );
+    let rect = |out: &mut BufWriter<_>, b: &Aabb<f64, 2>| -> std::io::Result<()> {
+        let (x0, x1) = (svg.x(b.min[0]), svg.x(b.max[0]));
+        let (top, bottom) = (svg.y(b.max[1]), svg.y(b.min[1]));
+        writeln!(
+            out,
+            "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/>",
+            num(x0),
+            num(top),
+            num((x1 - x0).max(0.0)),
+            num((bottom - top).max(0.0))
+        )
+    };
+    let layers = [
+        (Style::solid().stroke("none").fill("black"), true),
+        (Style::solid().stroke("#888").stroke_width(width), false),
+    ];
+    for (style, only_black) in &layers {
+        writeln!(out, "<g{}>", style.attributes())?;
+        for b in tree.blocks().filter(|b| b.black || !only_black) {
+            rect(&mut out, &block_box(&b, side))?;
+        }
+        writeln!(out, "</g>")?;
+    }
     if !tree.is_cube() {
         let [w, h] = tree.extent().map(f64::from);
         let extent = Aabb {
             min: [0.0, side - h],
             max: [w, side],
         };
-        svg.boxes([extent], &Style::dashed().stroke("red"));
+        writeln!(out, "<g{}>", Style::dashed().stroke("red").attributes())?;
+        rect(&mut out, &extent)?;
+        writeln!(out, "</g>")?;
     }
-    svg.finish()
+    writeln!(out, "</svg>")?;
+    out.flush()
 }

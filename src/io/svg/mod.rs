@@ -21,7 +21,7 @@ mod style;
 mod tests;
 
 use format::{clamp_px, escape, length, num, repair_view, MAX_PX};
-pub use image::image_tree_svg;
+pub use image::{image_tree_svg, write_image_tree_svg};
 pub use mesh::mesh_svg;
 pub use style::Style;
 
