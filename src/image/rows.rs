@@ -83,8 +83,18 @@ impl<'a> Subtrees<'a> {
     }
 }
 
-/// Builds a 2D region tree from rows streamed in (see the [module docs](self)): O(n + width)
-/// memory for an n-node result, never the dense image.
+/// Builds a 2D region tree from rows streamed in: O(n + width) memory for an n-node result,
+/// never the dense image.
+///
+/// A row is a band of cells of side 1; two complete bands of side 2^j merge into one of side
+/// 2^(j+1), whose cell is a leaf when its four children are leaves of one colour and otherwise an
+/// internal node followed by the children's subtrees. At most one band per level waits for its
+/// partner, each as two bitmaps (mixed, black) and the subtrees of its mixed cells, merged 64
+/// cells at a time.
+///
+/// # Complexity
+/// O(pixels / 64 + n k) time (a subtree is copied once per level above it), O(n + width)
+/// memory.
 ///
 /// ```
 /// use orthtree::image::{ImageTree, RowBuilder};
