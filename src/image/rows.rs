@@ -99,7 +99,7 @@ impl<'a> Subtrees<'a> {
 /// ```
 /// use orthtree::image::{ImageTree, RowBuilder};
 /// let mut b = RowBuilder::new([70, 3]).unwrap();
-/// b.push_row(&[u64::MAX, 0b11]).unwrap(); // a black first row (bits past 70 are padding)
+/// b.push_row(&[u64::MAX, u64::MAX]).unwrap(); // a black first row (bits past 70: padding)
 /// b.push_row(&[0, 0]).unwrap();
 /// b.push_row(&[1, 0]).unwrap(); // the pixel (0, 2)
 /// let t = b.finish().unwrap();
