@@ -23,6 +23,14 @@ use std::error::Error;
 use std::path::Path;
 use std::time::Instant;
 
+/// `println!` that ignores a closed standard output (a pipe into `head`) instead of panicking.
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout(), $($arg)*);
+    }};
+}
+
 fn read(path: &str) -> Result<ImageTree, Box<dyn Error>> {
     match extension(path).as_str() {
         "pbm" => Ok(pbm::read(path).map_err(|e| format!("{path}: {e}"))?),
@@ -80,7 +88,7 @@ fn extension(path: &str) -> String {
 
 fn describe(name: &str, t: &ImageTree) {
     let [w, h] = t.extent();
-    println!(
+    say!(
         "{name:>8}: {w} x {h} (depth {}), {} nodes, {} leaves, {} black pixels",
         t.depth(),
         t.node_count(),
@@ -105,7 +113,7 @@ fn combine(a: &ImageTree, b: Option<&ImageTree>, op: &str) -> Result<ImageTree, 
         (Some(_), None) => return Err(Usage(format!("--op {op} needs two images")).into()),
         (Some(op), Some(b)) => a.try_combine(b, op)?,
     };
-    println!("{op:>8}: {:.3} ms", start.elapsed().as_secs_f64() * 1e3);
+    say!("{op:>8}: {:.3} ms", start.elapsed().as_secs_f64() * 1e3);
     Ok(result)
 }
 
@@ -134,19 +142,32 @@ fn run(args: &[String]) -> Result<(), Box<dyn Error>> {
     let (Some(op), Some(out), 1..=2) = (op, out, files.len()) else {
         return Err(Usage("give one or two images, --op and --out".into()).into());
     };
+    let writable = [
+        "pbm",
+        "svg",
+        if cfg!(feature = "png") { "png" } else { "pbm" },
+    ];
+    if !writable.contains(&extension(&out).as_str()) {
+        return Err(Usage(format!(
+            "{out}: unsupported extension {:?} (pbm, svg{})",
+            extension(&out),
+            png_hint()
+        ))
+        .into());
+    }
     let start = Instant::now();
     let trees = files
         .iter()
         .map(|f| read(f))
         .collect::<Result<Vec<_>, _>>()?;
-    println!("    read: {:.3} ms", start.elapsed().as_secs_f64() * 1e3);
+    say!("    read: {:.3} ms", start.elapsed().as_secs_f64() * 1e3);
     for (f, t) in files.iter().zip(&trees) {
         describe(f, t);
     }
     let result = combine(&trees[0], trees.get(1), &op)?;
     describe("result", &result);
     write(&result, &out)?;
-    println!("wrote {out}");
+    say!("wrote {out}");
     Ok(())
 }
 
@@ -156,12 +177,12 @@ fn demo() -> Result<(), Box<dyn Error>> {
     let disc = ImageTree::from_ball(extent, [200.0, 192.0], 150.0)?;
     let ring = ImageTree::from_ball(extent, [330.0, 180.0], 140.0)?
         - ImageTree::from_ball(extent, [330.0, 180.0], 90.0)?;
-    println!("   built: {:.3} ms", start.elapsed().as_secs_f64() * 1e3);
+    say!("   built: {:.3} ms", start.elapsed().as_secs_f64() * 1e3);
     describe("disc", &disc);
     describe("ring", &ring);
     let result = combine(&disc, Some(&ring), "xor")?;
     describe("result", &result);
-    println!(
+    say!(
         "  counts: and {} or {} xor {} sub {} (count-only)",
         disc.intersection_len(&ring),
         disc.union_len(&ring),
@@ -169,14 +190,14 @@ fn demo() -> Result<(), Box<dyn Error>> {
         disc.difference_len(&ring)
     );
     write(&result, "image_ops.pbm")?;
-    println!("wrote image_ops.pbm");
+    say!("wrote image_ops.pbm");
     #[cfg(feature = "png")]
     {
         write(&result, "image_ops.png")?;
-        println!("wrote image_ops.png");
+        say!("wrote image_ops.png");
     }
     write(&result, "image_ops.svg")?;
-    println!("wrote image_ops.svg");
+    say!("wrote image_ops.svg");
     Ok(())
 }
 
@@ -198,7 +219,7 @@ fn main() {
         .map(|a| a.to_string_lossy().into_owned())
         .collect();
     if args.iter().any(|a| a == "--help" || a == "-h") {
-        println!("{USAGE}");
+        say!("{USAGE}");
         return;
     }
     let outcome = if args.is_empty() { demo() } else { run(&args) };

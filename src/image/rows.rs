@@ -83,13 +83,23 @@ impl<'a> Subtrees<'a> {
     }
 }
 
-/// Builds a 2D region tree from rows streamed in (see the [module docs](self)): O(n + width)
-/// memory for an n-node result, never the dense image.
+/// Builds a 2D region tree from rows streamed in: O(n + width) memory for an n-node result,
+/// never the dense image.
+///
+/// A row is a band of cells of side 1; two complete bands of side 2^j merge into one of side
+/// 2^(j+1), whose cell is a leaf when its four children are leaves of one colour and otherwise an
+/// internal node followed by the children's subtrees. At most one band per level waits for its
+/// partner, each as two bitmaps (mixed, black) and the subtrees of its mixed cells, merged 64
+/// cells at a time.
+///
+/// # Complexity
+/// O(pixels / 64 + n k) time (a subtree is copied once per level above it), O(n + width)
+/// memory.
 ///
 /// ```
 /// use orthtree::image::{ImageTree, RowBuilder};
 /// let mut b = RowBuilder::new([70, 3]).unwrap();
-/// b.push_row(&[u64::MAX, 0b11]).unwrap(); // a black first row (bits past 70 are padding)
+/// b.push_row(&[u64::MAX, u64::MAX]).unwrap(); // a black first row (bits past 70: padding)
 /// b.push_row(&[0, 0]).unwrap();
 /// b.push_row(&[1, 0]).unwrap(); // the pixel (0, 2)
 /// let t = b.finish().unwrap();
