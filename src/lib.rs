@@ -45,7 +45,9 @@ pub use points::{
     ValidationError, DEFAULT_BUCKET_SIZE,
 };
 pub use query::{Ball, HalfSpace, Metric, Neighbor, QueryError, Region, Relation, SpatialIndex};
-pub use tree::{BalanceOptions, NodeId, PreOrder, SplitError, Tree};
+pub use tree::{
+    BalanceOptions, LevelDifferenceError, NodeId, PreOrder, SplitError, Tree, TreeError,
+};
 
 /// The README's examples, compiled and run as doctests.
 #[cfg(doctest)]

@@ -204,6 +204,12 @@ impl<const D: usize> Tree<D> {
         Ok(NodeId(first as u32))
     }
 
+    /// The length of the per-node level array (equal to [`Tree::node_count`] in a valid tree).
+    #[inline]
+    pub(super) fn level_slots(&self) -> usize {
+        self.level.len()
+    }
+
     /// The parent of every child block, by block number (block `b` holds nodes
     /// `1 + b * 2^D ..`); freed blocks keep their last parent.
     #[inline]

@@ -19,41 +19,104 @@
 
 use super::{NodeId, Tree};
 use crate::geom::{Connectivity, Direction};
+use core::num::NonZeroU8;
 
 /// What "balanced" means: which leaves are adjacent and how far their levels may differ.
+///
+/// The level difference is private so that no value outside
+/// 1..=[`BalanceOptions::MAX_LEVEL_DIFFERENCE`] can be built: [`BalanceOptions::new`] gives 1 (2:1
+/// balance), [`BalanceOptions::weak`] 2, and [`BalanceOptions::with_max_level_difference`] any
+/// other value, checked.
 ///
 /// ```
 /// use orthtree::{BalanceOptions, Connectivity};
 /// let strict = BalanceOptions::new(Connectivity::Face); // the chapter's 2:1 balance
 /// let weak = strict.weak();                              // exercise 14.6: factor 4
-/// assert_eq!((strict.max_level_difference, weak.max_level_difference), (1, 2));
+/// assert_eq!((strict.max_level_difference(), weak.max_level_difference()), (1, 2));
+/// let three = strict.with_max_level_difference(3).unwrap();
+/// assert_eq!(three.max_level_difference(), 3);
+/// let err = strict.with_max_level_difference(0).unwrap_err();
+/// assert_eq!(err.to_string(), "max_level_difference 0 is outside 1..=32");
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct BalanceOptions {
     /// Which leaves count as adjacent.
     pub connectivity: Connectivity,
-    /// The largest allowed difference in level between adjacent leaves: 1 is 2:1 balance, 2 is
-    /// the weak (4:1) balance of exercise 14.6. At least 1.
-    pub max_level_difference: u8,
+    /// The largest allowed difference in level between adjacent leaves, in
+    /// 1..=[`BalanceOptions::MAX_LEVEL_DIFFERENCE`].
+    max_level_difference: NonZeroU8,
 }
 
 impl BalanceOptions {
+    /// The largest level difference accepted: the deepest level of any tree
+    /// ([`crate::Cell::MAX_LEVEL`] is at most 32), beyond which every tree is balanced.
+    pub const MAX_LEVEL_DIFFERENCE: u8 = 32;
+
     /// 2:1 balance with `connectivity`.
     pub const fn new(connectivity: Connectivity) -> Self {
         BalanceOptions {
             connectivity,
-            max_level_difference: 1,
+            max_level_difference: NonZeroU8::MIN,
         }
     }
 
     /// The same, weakened to a factor 4 between adjacent leaves.
     pub const fn weak(self) -> Self {
         BalanceOptions {
-            max_level_difference: 2,
+            max_level_difference: NonZeroU8::MIN.saturating_add(1),
             ..self
         }
     }
+
+    /// The same with `max_level_difference` levels allowed between adjacent leaves (1 is 2:1
+    /// balance, 2 the weak balance of exercise 14.6).
+    ///
+    /// # Errors
+    /// [`LevelDifferenceError`] when `max_level_difference` is 0 or above
+    /// [`BalanceOptions::MAX_LEVEL_DIFFERENCE`].
+    pub const fn with_max_level_difference(
+        self,
+        max_level_difference: u8,
+    ) -> Result<Self, LevelDifferenceError> {
+        match NonZeroU8::new(max_level_difference) {
+            Some(k) if max_level_difference <= Self::MAX_LEVEL_DIFFERENCE => Ok(BalanceOptions {
+                max_level_difference: k,
+                ..self
+            }),
+            _ => Err(LevelDifferenceError {
+                value: max_level_difference,
+            }),
+        }
+    }
+
+    /// The largest allowed difference in level between adjacent leaves: 1 is 2:1 balance, 2 is
+    /// the weak (4:1) balance of exercise 14.6.
+    #[inline]
+    pub const fn max_level_difference(&self) -> u8 {
+        self.max_level_difference.get()
+    }
 }
+
+/// Why [`BalanceOptions::with_max_level_difference`] refused: the level difference is 0 or above
+/// [`BalanceOptions::MAX_LEVEL_DIFFERENCE`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LevelDifferenceError {
+    /// The level difference asked for.
+    pub value: u8,
+}
+
+impl core::fmt::Display for LevelDifferenceError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(
+            f,
+            "max_level_difference {} is outside 1..={}",
+            self.value,
+            BalanceOptions::MAX_LEVEL_DIFFERENCE
+        )
+    }
+}
+
+impl std::error::Error for LevelDifferenceError {}
 
 impl From<Connectivity> for BalanceOptions {
     fn from(connectivity: Connectivity) -> Self {
@@ -72,16 +135,9 @@ impl<const D: usize> Tree<D> {
     ///
     /// Complexity: at most (3^D - 1) m splits for a tree of m nodes (Theorem 14.4, generalised
     /// in the module doc), O(d + 1) per neighbour query.
-    ///
-    /// # Panics
-    /// If `options.max_level_difference` is 0.
     pub fn balance_chapter(&mut self, options: impl Into<BalanceOptions>) -> Vec<NodeId> {
         let options = options.into();
-        assert!(
-            options.max_level_difference >= 1,
-            "max_level_difference must be at least 1"
-        );
-        let k = options.max_level_difference;
+        let k = options.max_level_difference();
         let directions: Vec<Direction> = Direction::all::<D>(options.connectivity).collect();
         let mut work: Vec<NodeId> = self.leaves().map(|(id, _)| id).collect();
         let mut split = Vec::new();
@@ -106,12 +162,12 @@ impl<const D: usize> Tree<D> {
 
     /// The reference check for [`Tree::is_balanced`]: for every leaf and direction, looks for a
     /// too-deep leaf below the neighbour. `true` when no two adjacent leaves (under `options`'
-    /// connectivity) differ by more than `options.max_level_difference` levels. O((d + 1) m).
+    /// connectivity) differ by more than `options.max_level_difference()` levels. O((d + 1) m).
     pub fn is_balanced_chapter(&self, options: impl Into<BalanceOptions>) -> bool {
         let options = options.into();
         let directions: Vec<Direction> = Direction::all::<D>(options.connectivity).collect();
         self.leaves()
-            .all(|(leaf, _)| !self.must_split(leaf, &directions, options.max_level_difference))
+            .all(|(leaf, _)| !self.must_split(leaf, &directions, options.max_level_difference()))
     }
 
     /// `true` when some leaf adjacent to `leaf` in one of `directions` is more than `k` levels

@@ -52,26 +52,38 @@ pub(super) struct Rule {
 
 impl Rule {
     /// The rule for `options`.
-    ///
-    /// # Panics
-    /// If `options.max_level_difference` is 0.
     pub(super) fn new<const D: usize>(options: BalanceOptions) -> Rule {
-        assert!(
-            options.max_level_difference >= 1,
-            "max_level_difference must be at least 1"
-        );
         let directions: Vec<Direction> = Direction::all::<D>(options.connectivity).collect();
         let k = directions.len();
+        // Direction numbers by base-3 code, so that finding one is O(1): 256 children times
+        // 6560 directions in 8-D made a linear search take seconds.
+        let code = |d: Direction| {
+            (0..D).rev().fold(0usize, |code, a| {
+                3 * code
+                    + ((d.plus_mask() >> a) & 1) as usize
+                    + 2 * ((d.minus_mask() >> a) & 1) as usize
+            })
+        };
+        let mut numbers = vec![u16::MAX; 3usize.pow(D as u32)];
+        for (j, &d) in directions.iter().enumerate() {
+            numbers[code(d)] = u16::try_from(j).expect("3^D - 1 < 2^16 directions for D <= 8");
+        }
         let number = |d: Direction| {
-            directions
-                .iter()
-                .position(|&e| e == d)
-                .expect("a restriction of an allowed direction is allowed") as u16
+            let j = numbers[code(d)];
+            debug_assert!(
+                j != u16::MAX,
+                "a restriction of an allowed direction is allowed"
+            );
+            j
         };
         let mut sources = Vec::with_capacity(Dim::<D>::CHILDREN * k);
         let (mut touch, mut touch_start, mut steps) = (Vec::new(), vec![0], Vec::new());
-        for c in 0..Dim::<D>::CHILDREN as u8 {
-            let first = touch.len();
+        // `touched[j]`: the last child (plus one) whose list holds direction j.
+        let mut touched = vec![0usize; k];
+        // `c` counts in `usize`: 2^D children is 256 in 8-D, one more than a `u8` holds.
+        for c in 0..Dim::<D>::CHILDREN {
+            let mark = c + 1;
+            let c = u8::try_from(c).expect("a child index is below 2^D <= 256");
             for &d in &directions {
                 let index = c ^ d.axes();
                 let (plus, minus) = (d.plus_mask() & c, d.minus_mask() & !c);
@@ -80,7 +92,8 @@ impl Rule {
                 } else {
                     let from = number(Direction::from_masks(plus, minus));
                     sources.push((from, index));
-                    if !touch[first..].contains(&from) {
+                    if touched[from as usize] != mark {
+                        touched[from as usize] = mark;
                         touch.push(from);
                         steps.push(directions[from as usize]);
                     }
@@ -116,14 +129,11 @@ impl Rule {
 
 impl<const D: usize> Tree<D> {
     /// `true` when no two adjacent leaves (under `options`' connectivity) differ by more than
-    /// `options.max_level_difference` levels.
+    /// `options.max_level_difference()` levels.
     ///
     /// One top-down pass over the internal nodes that carries each node's neighbours down from
     /// its parent (see the module doc): O(internal nodes × directions) array reads, no neighbour
     /// search; it stops at the first node in violation.
-    ///
-    /// # Panics
-    /// If `options.max_level_difference` is 0.
     ///
     /// ```
     /// use orthtree::{BalanceOptions, Connectivity, NodeId, Tree};
@@ -163,7 +173,7 @@ impl<const D: usize> Tree<D> {
         if self.is_leaf(NodeId::ROOT) {
             return None;
         }
-        Some(Dense::new(self)?.balanced(&rule, options.max_level_difference))
+        Some(Dense::new(self)?.balanced(&rule, options.max_level_difference()))
     }
 
     /// [`Tree::is_balanced`] with the subtrees spread over rayon's threads: the top levels are
@@ -179,9 +189,6 @@ impl<const D: usize> Tree<D> {
     /// t.split(t.child(corner, 3).unwrap()); // level-4 leaves next to a level-2 leaf
     /// assert!(!t.par_is_balanced(Connectivity::Face));
     /// ```
-    ///
-    /// # Panics
-    /// If `options.max_level_difference` is 0.
     #[cfg(feature = "rayon")]
     pub fn par_is_balanced(&self, options: impl Into<BalanceOptions>) -> bool {
         use rayon::prelude::*;
@@ -225,7 +232,7 @@ impl<const D: usize> Plan<D> {
         if tree.is_leaf(NodeId::ROOT) {
             Plan::Leaf
         } else if let Some(dense) = Dense::new(tree) {
-            Plan::Dense(dense, rule, options.max_level_difference)
+            Plan::Dense(dense, rule, options.max_level_difference())
         } else {
             Plan::Walk(Check::new(tree, rule, options))
         }
@@ -283,7 +290,7 @@ impl<const D: usize> Check<D> {
         Check {
             inner: Inner::new(tree).expect("the root is internal"),
             rule,
-            slack: options.max_level_difference as u32 - 1,
+            slack: options.max_level_difference() as u32 - 1,
             depth: tree.depth() as usize,
         }
     }

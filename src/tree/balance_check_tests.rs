@@ -71,10 +71,9 @@ fn check<const D: usize>(seed: u64, steps: usize, merge_percent: u32) -> usize {
     let mut dense = 0;
     for connectivity in Connectivity::ALL {
         for max_level_difference in 1..=3 {
-            let opts = BalanceOptions {
-                connectivity,
-                max_level_difference,
-            };
+            let opts = BalanceOptions::new(connectivity)
+                .with_max_level_difference(max_level_difference)
+                .unwrap();
             dense += paths_agree(&t, opts);
             let mut b = t.clone();
             b.balance(opts);

@@ -18,12 +18,11 @@ use crate::geom::Direction;
 
 impl<const D: usize> Tree<D> {
     /// Splits the leaf `leaf` and, first, every leaf the split would leave more than
-    /// `options.max_level_difference` levels coarser than a neighbour; calls `on_split` for each
+    /// `options.max_level_difference()` levels coarser than a neighbour; calls `on_split` for each
     /// leaf split, `leaf` last. Keeps a balanced tree balanced (exercise 14.8).
     ///
     /// # Panics
-    /// If `leaf` is not a leaf or is at [`crate::Cell::MAX_LEVEL`], or if
-    /// `options.max_level_difference` is 0.
+    /// If `leaf` is not a leaf or is at [`crate::Cell::MAX_LEVEL`].
     ///
     /// ```
     /// use orthtree::{Connectivity, NodeId, Tree};
@@ -42,12 +41,8 @@ impl<const D: usize> Tree<D> {
         mut on_split: impl FnMut(&Self, NodeId),
     ) {
         let options = options.into();
-        assert!(
-            options.max_level_difference >= 1,
-            "max_level_difference must be at least 1"
-        );
         assert!(self.is_leaf(leaf), "split_balanced needs a leaf");
-        let k = options.max_level_difference;
+        let k = options.max_level_difference();
         let directions: Vec<Direction> = Direction::all::<D>(options.connectivity).collect();
         let mut stack = vec![leaf];
         while let Some(&x) = stack.last() {

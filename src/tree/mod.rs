@@ -15,8 +15,10 @@ mod neighbors;
 mod parallel;
 mod ripple;
 mod traverse;
+mod validate;
 
 pub use arena::{NodeId, SplitError, Tree};
-pub use balance::BalanceOptions;
+pub use balance::{BalanceOptions, LevelDifferenceError};
 pub use merge::MergeError;
 pub use traverse::PreOrder;
+pub use validate::TreeError;

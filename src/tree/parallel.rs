@@ -38,9 +38,6 @@ impl<const D: usize> Tree<D> {
     /// assert!(t.par_is_balanced(Connectivity::Face));
     /// assert!(t.leaves().map(|(_, c)| c).eq(serial.leaves().map(|(_, c)| c)));
     /// ```
-    ///
-    /// # Panics
-    /// If `options.max_level_difference` is 0.
     pub fn par_balance(&mut self, options: impl Into<BalanceOptions>) -> Vec<NodeId> {
         let options = options.into();
         let outward = outward_directions::<D>(options.connectivity);

@@ -24,7 +24,7 @@
 //! internal node for the lists by level.
 
 use super::{BalanceOptions, NodeId, Tree};
-use crate::geom::{Cell, Connectivity, Direction};
+use crate::geom::{Cell, Connectivity, Dim, Direction};
 use smallvec::SmallVec;
 
 impl<const D: usize> Tree<D> {
@@ -52,9 +52,6 @@ impl<const D: usize> Tree<D> {
     /// // propagates: NE (level 1) now borders level-3 leaves and splits too
     /// assert_eq!(split.len(), 5);
     /// ```
-    ///
-    /// # Panics
-    /// If `options.max_level_difference` is 0.
     pub fn balance(&mut self, options: impl Into<BalanceOptions>) -> Vec<NodeId> {
         let options = options.into();
         let outward = outward_directions::<D>(options.connectivity);
@@ -146,14 +143,7 @@ pub(super) struct Levels {
 
 impl Levels {
     /// Lists the internal nodes of `tree` by level.
-    ///
-    /// # Panics
-    /// If `options.max_level_difference` is 0.
     pub(super) fn new<const D: usize>(tree: &Tree<D>, options: BalanceOptions) -> Levels {
-        assert!(
-            options.max_level_difference >= 1,
-            "max_level_difference must be at least 1"
-        );
         let mut by_level: Vec<Vec<NodeId>> = vec![Vec::new(); Cell::<D>::MAX_LEVEL as usize + 1];
         for i in 0..tree.node_count() as u32 {
             let id = NodeId(i);
@@ -162,7 +152,7 @@ impl Levels {
             }
         }
         Levels {
-            slack: options.max_level_difference - 1,
+            slack: options.max_level_difference() - 1,
             level: by_level.len(),
             by_level,
             split: Vec::new(),
@@ -217,14 +207,23 @@ impl Levels {
 pub(super) fn outward_directions<const D: usize>(
     connectivity: Connectivity,
 ) -> Vec<SmallVec<[Direction; 8]>> {
-    (0..1usize << D)
+    // Masks over the axes count in `usize`: `1u8 << D` overflows in 8-D.
+    (0..Dim::<D>::CHILDREN)
         .map(|c| {
-            (1..1u8 << D)
+            (1..Dim::<D>::CHILDREN)
                 .filter(|axes| connectivity.allows(axes.count_ones()))
-                .map(|axes| Direction::from_masks(axes & c as u8, axes & !(c as u8)))
+                .map(|axes| {
+                    let (plus, minus) = (axes & c, axes & !c);
+                    Direction::from_masks(axis_mask(plus), axis_mask(minus))
+                })
                 .collect()
         })
         .collect()
+}
+
+/// A mask over the axes (below 2^D <= 256) as a [`Direction`]'s `u8` mask.
+fn axis_mask(axes: usize) -> u8 {
+    u8::try_from(axes).expect("a mask over at most 8 axes fits a u8")
 }
 
 #[cfg(test)]

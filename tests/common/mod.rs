@@ -219,7 +219,7 @@ pub fn brute_violation<const D: usize>(
 ) -> Option<(Cell<D>, Cell<D>)> {
     for l in leaves {
         for m in leaves {
-            if m.level() <= l.level() + opts.max_level_difference {
+            if m.level() <= l.level() + opts.max_level_difference() {
                 continue;
             }
             if let Some(k) = contact(l, m) {
@@ -259,7 +259,7 @@ pub fn brute_balance<const D: usize>(leaves: &[Cell<D>], opts: BalanceOptions) -
         let mut coarse: BTreeSet<Cell<D>> = BTreeSet::new();
         for l in &cur {
             let violates = cur.iter().any(|m| {
-                m.level() > l.level() + opts.max_level_difference
+                m.level() > l.level() + opts.max_level_difference()
                     && contact(l, m).is_some_and(|k| allowed(opts.connectivity, k))
             });
             if violates {
@@ -315,7 +315,7 @@ pub fn fast_balance<const D: usize>(leaves: &[Cell<D>], opts: BalanceOptions) ->
                 continue;
             };
             while let Some(l) = leaf_containing(&set, &n) {
-                if l.level() + opts.max_level_difference >= m.level() {
+                if l.level() + opts.max_level_difference() >= m.level() {
                     break;
                 }
                 set.remove(&l);
