@@ -2,7 +2,12 @@
 //! finite elements on the quadtree mesh of a circuit board.
 //!
 //! `cargo run --release --example pcb_heat -- [BOARD.poly|BOARD.txt] [--size U]
-//! [--random SEED,U,COUNT] [--no-files]`
+//! [--random SEED,U,COUNT] [--max-triangles N] [--no-files] [--help]`
+//!
+//! `--max-triangles` caps the mesh (default 2e6, so that the sparse Cholesky factor fits in a
+//! few GiB); a board needing more is refused with the number it needs. `--random` takes at most
+//! 100000 components. Bad arguments exit with status 2, a refused board or a failed write with
+//! status 1.
 //!
 //! Meshes the built-in board (or the given one, or `random_board(SEED, U, COUNT)`), gives every
 //! region a conductivity `k` and a heat source `q` (chips: k = 20 W/(m K), q = 2e5 W/m^3; copper
@@ -21,30 +26,46 @@
 mod fem;
 
 use orthtree::io::vtk;
-use orthtree::mesh::{generate_mesh, random_board, sample_board, Board, Mesh};
-use std::fmt::Write as _;
-use std::io::Write as _;
+use orthtree::mesh::{random_board, sample_board, Board, Mesh, MeshOptions};
+use std::io::{BufWriter, Write};
 use std::time::{Duration, Instant};
 
 struct Args {
     board: Option<String>,
     size: Option<i64>,
     random: Option<(u64, i64, usize)>,
+    max_triangles: u64,
     files: bool,
 }
 
-fn parse() -> Result<Args, String> {
+const USAGE: &str = "usage: pcb_heat [BOARD.poly|BOARD.txt] [--size U] [--random SEED,U,COUNT] \
+                     [--max-triangles N] [--no-files] [--help]";
+
+/// The default mesh limit: about 10^6 unknowns, whose Cholesky factor fits in a few GiB.
+const DEFAULT_MAX_TRIANGLES: u64 = 2_000_000;
+
+/// The most components `--random` asks for: `random_board` places them in O(COUNT^2) time.
+const MAX_RANDOM_COUNT: usize = 100_000;
+
+/// `None` for `--help`.
+fn parse() -> Result<Option<Args>, String> {
     let mut args = Args {
         board: None,
         size: None,
         random: None,
+        max_triangles: DEFAULT_MAX_TRIANGLES,
         files: true,
     };
     let mut it = std::env::args().skip(1);
     while let Some(arg) = it.next() {
         let mut value = || it.next().ok_or(format!("{arg} needs a value"));
         match arg.as_str() {
+            "--help" | "-h" => return Ok(None),
             "--size" => args.size = Some(value()?.parse().map_err(|e| format!("--size: {e}"))?),
+            "--max-triangles" => {
+                let v = value()?;
+                args.max_triangles = v.parse().map_err(|e| format!("--max-triangles {v:?}: {e}"))?
+            }
             "--random" => {
                 let v = value()?;
                 let parts: Vec<&str> = v.split(',').collect();
@@ -58,19 +79,27 @@ fn parse() -> Result<Args, String> {
                         "--random: U = {u} is not a power of two from 8 to 2^30"
                     ));
                 }
-                args.random = Some((
-                    parts[0].parse().map_err(|_| bad())?,
-                    u,
-                    parts[2].parse().map_err(|_| bad())?,
-                ));
+                let count: usize = parts[2].parse().map_err(|_| bad())?;
+                if count > MAX_RANDOM_COUNT {
+                    return Err(format!(
+                        "--random: COUNT = {count} is above {MAX_RANDOM_COUNT} (placing \
+                         components takes time quadratic in the count)"
+                    ));
+                }
+                args.random = Some((parts[0].parse().map_err(|_| bad())?, u, count));
             }
             "--no-files" => args.files = false,
-            flag if flag.starts_with("--") => return Err(format!("unknown option {flag:?}")),
+            flag if flag.starts_with('-') && flag.len() > 1 => {
+                return Err(format!("unknown option {flag:?}"))
+            }
             path if args.board.is_none() => args.board = Some(path.to_string()),
             extra => return Err(format!("unexpected argument {extra:?}")),
         }
     }
-    Ok(args)
+    if args.board.is_some() && args.random.is_some() {
+        return Err("give a board file or --random, not both".into());
+    }
+    Ok(Some(args))
 }
 
 fn read_board(args: &Args) -> Result<(Board, String), String> {
@@ -108,28 +137,44 @@ fn colour(s: f64) -> [u8; 3] {
     c
 }
 
-/// The heat map: each triangle filled with the colour of its mean vertex temperature (256
-/// levels, one path per level), the component outlines on top, a colour bar on the right.
-fn heat_svg(mesh: &Mesh, board: &Board, t: &[f64], t_max: f64) -> String {
+/// The heat map, streamed to `out`: each triangle filled with the colour of its mean vertex
+/// temperature (256 levels, one path per level, triangles sorted into levels by counting), the
+/// component outlines on top, a colour bar on the right.
+fn write_heat_svg(
+    mesh: &Mesh,
+    board: &Board,
+    t: &[f64],
+    t_max: f64,
+    out: &mut impl Write,
+) -> std::io::Result<()> {
     const LEVELS: usize = 256;
     let u = board.size() as f64;
-    let mut paths = vec![String::new(); LEVELS];
-    for tri in &mesh.triangles {
+    let level_of = |tri: &[u32; 3]| {
         let mean = tri.iter().map(|&v| t[v as usize]).sum::<f64>() / 3.0;
         let level = ((mean / t_max.max(f64::MIN_POSITIVE)) * (LEVELS - 1) as f64).round();
-        let path = &mut paths[(level.max(0.0) as usize).min(LEVELS - 1)];
-        let [a, b, c] = tri.map(|v| mesh.vertices[v as usize]);
-        let _ = write!(
-            path,
-            "M{} {}L{} {}L{} {}Z",
-            a[0], a[1], b[0], b[1], c[0], c[1]
-        );
+        (level.max(0.0) as usize).min(LEVELS - 1)
+    };
+    // Counting sort of the triangles by level: `order[start[l]..start[l + 1]]` is level l.
+    let levels: Vec<u8> = mesh.triangles.iter().map(|tri| level_of(tri) as u8).collect();
+    let mut start = [0usize; LEVELS + 1];
+    for &l in &levels {
+        start[l as usize + 1] += 1;
     }
+    for l in 0..LEVELS {
+        start[l + 1] += start[l];
+    }
+    let mut next = start;
+    let mut order = vec![0u32; levels.len()];
+    for (k, &l) in levels.iter().enumerate() {
+        order[next[l as usize]] = k as u32;
+        next[l as usize] += 1;
+    }
+    drop(levels);
+
     let bar = u / 16.0;
     let (w, h) = (u + 3.0 * bar, u);
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
+    writeln!(
+        out,
         r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="{} {} {} {}" width="{}" height="{}">"#,
         -bar / 2.0,
         -bar / 2.0,
@@ -137,86 +182,87 @@ fn heat_svg(mesh: &Mesh, board: &Board, t: &[f64], t_max: f64) -> String {
         h + bar,
         (w + bar) * 900.0 / (u + bar),
         900.0 * (h + bar) / (u + bar)
-    );
-    let _ = writeln!(
-        s,
+    )?;
+    writeln!(
+        out,
         r#"<rect x="{}" y="{}" width="100%" height="100%" fill="white"/>"#,
         -bar / 2.0,
         -bar / 2.0
-    );
-    let _ = writeln!(s, r#"<g transform="translate(0 {u}) scale(1 -1)">"#);
+    )?;
+    writeln!(out, r#"<g transform="translate(0 {u}) scale(1 -1)">"#)?;
     let stroke = u / 4096.0;
-    for (level, path) in paths.iter().enumerate() {
-        if path.is_empty() {
+    for level in 0..LEVELS {
+        let members = &order[start[level]..start[level + 1]];
+        if members.is_empty() {
             continue;
         }
         let [r, g, b] = colour(level as f64 / (LEVELS - 1) as f64);
-        let _ = writeln!(
-            s,
-            r##"<path fill="#{r:02x}{g:02x}{b:02x}" stroke="#{r:02x}{g:02x}{b:02x}" stroke-width="{stroke}" d="{path}"/>"##
-        );
+        write!(
+            out,
+            r##"<path fill="#{r:02x}{g:02x}{b:02x}" stroke="#{r:02x}{g:02x}{b:02x}" stroke-width="{stroke}" d=""##
+        )?;
+        for &k in members {
+            let [a, b, c] = mesh.triangles[k as usize].map(|v| mesh.vertices[v as usize]);
+            write!(out, "M{} {}L{} {}L{} {}Z", a[0], a[1], b[0], b[1], c[0], c[1])?;
+        }
+        writeln!(out, "\"/>")?;
     }
-    let mut outlines = String::new();
+    write!(
+        out,
+        r##"<path fill="none" stroke="#7fdfff" stroke-width="{}" stroke-linejoin="round" d=""##,
+        u / 1024.0
+    )?;
     for c in board.components() {
         for (i, p) in c.outline.iter().enumerate() {
-            let _ = write!(
-                outlines,
-                "{}{} {}",
-                if i == 0 { "M" } else { "L" },
-                p[0],
-                p[1]
-            );
+            write!(out, "{}{} {}", if i == 0 { "M" } else { "L" }, p[0], p[1])?;
         }
-        outlines.push('Z');
+        write!(out, "Z")?;
     }
-    let _ = writeln!(
-        s,
-        r##"<path fill="none" stroke="#7fdfff" stroke-width="{}" stroke-linejoin="round" d="{outlines}"/>"##,
-        u / 1024.0
-    );
-    let _ = writeln!(
-        s,
+    writeln!(out, "\"/>")?;
+    writeln!(
+        out,
         r##"<rect x="0" y="0" width="{u}" height="{u}" fill="none" stroke="black" stroke-width="{}"/>"##,
         u / 512.0
-    );
-    s.push_str("</g>\n");
+    )?;
+    writeln!(out, "</g>")?;
     // colour bar
     let x0 = u + bar;
     let steps = 64;
     for i in 0..steps {
         let [r, g, b] = colour((i as f64 + 0.5) / steps as f64);
         let y = u - (i + 1) as f64 * u / steps as f64;
-        let _ = writeln!(
-            s,
+        writeln!(
+            out,
             r##"<rect x="{x0}" y="{y}" width="{}" height="{}" fill="#{r:02x}{g:02x}{b:02x}"/>"##,
             bar / 2.0,
             u / steps as f64 + 0.5
-        );
+        )?;
     }
     let font = u / 40.0;
     for (y, label) in [(u, "0 K".to_string()), (font, format!("{t_max:.3} K"))] {
-        let _ = writeln!(
-            s,
+        writeln!(
+            out,
             r#"<text x="{}" y="{y}" font-family="sans-serif" font-size="{font}" transform="rotate(-90 {} {y})" text-anchor="{}">{label}</text>"#,
             x0 + bar * 1.2,
             x0 + bar * 1.2,
             if y == u { "start" } else { "end" }
-        );
+        )?;
     }
-    s.push_str("</svg>\n");
-    s
+    writeln!(out, "</svg>")?;
+    out.flush()
 }
 
-/// The mesh as legacy VTK with the temperature as `POINT_DATA` (and the region as `CELL_DATA`).
+/// The mesh as legacy VTK with the temperature as `POINT_DATA` (and the region as `CELL_DATA`),
+/// streamed to a file.
 fn write_heat_vtk(mesh: &Mesh, t: &[f64], path: &str) -> std::io::Result<()> {
-    let mut out = Vec::new();
+    let mut out = BufWriter::new(std::fs::File::create(path)?);
     vtk::write_vtk(mesh, &mut out)?;
     writeln!(out, "POINT_DATA {}", mesh.vertices.len())?;
     writeln!(out, "SCALARS temperature double 1\nLOOKUP_TABLE default")?;
     for v in t {
         writeln!(out, "{v:e}")?;
     }
-    std::fs::write(path, out)
+    out.flush()
 }
 
 fn ms(d: Duration) -> String {
@@ -224,16 +270,24 @@ fn ms(d: Duration) -> String {
 }
 
 fn main() {
-    let args = parse().unwrap_or_else(|e| {
-        eprintln!("error: {e}\nusage: pcb_heat [BOARD.poly|BOARD.txt] [--size U] [--random SEED,U,COUNT] [--no-files]");
-        std::process::exit(2);
-    });
+    let args = match parse() {
+        Ok(Some(args)) => args,
+        Ok(None) => {
+            println!("{USAGE}");
+            return;
+        }
+        Err(e) => {
+            eprintln!("error: {e}\n{USAGE}");
+            std::process::exit(2);
+        }
+    };
     let (board, name) = read_board(&args).unwrap_or_else(|e| {
         eprintln!("error: {e}");
         std::process::exit(1);
     });
     let start = Instant::now();
-    let out = generate_mesh(&board).unwrap_or_else(|e| {
+    let options = MeshOptions::new().grid_unit(1).max_triangles(args.max_triangles);
+    let out = options.generate(&board).unwrap_or_else(|e| {
         eprintln!("error: {e}");
         std::process::exit(1);
     });
@@ -279,8 +333,11 @@ fn main() {
     println!("temperature: min {t_min:.6e} K, max {t_max:.6} K (rise over the board edge)");
     if args.files {
         let start = Instant::now();
-        let written = std::fs::write("pcb_heat.svg", heat_svg(&mesh, &board, &t, t_max))
-            .and_then(|_| write_heat_vtk(&mesh, &t, "pcb_heat.vtk"));
+        let svg = |path: &str| {
+            let mut out = BufWriter::new(std::fs::File::create(path)?);
+            write_heat_svg(&mesh, &board, &t, t_max, &mut out)
+        };
+        let written = svg("pcb_heat.svg").and_then(|_| write_heat_vtk(&mesh, &t, "pcb_heat.vtk"));
         if let Err(e) = written {
             eprintln!("error: writing pcb_heat.svg / pcb_heat.vtk: {e}");
             std::process::exit(1);

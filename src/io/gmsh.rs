@@ -21,6 +21,7 @@
 //! [`std::io::ErrorKind::InvalidInput`] error, writing nothing, if an index is out of range.
 //! Checked by loading written files with the gmsh 4.15 Python API and with meshio 5.3.
 
+use super::text_out::TextOut;
 use crate::mesh::{Mesh, SegmentKind};
 use std::collections::BTreeMap;
 use std::io::{self, BufWriter, Write};
@@ -66,6 +67,11 @@ fn bounding_box(mesh: &Mesh, vertices: impl Iterator<Item = u32>) -> [i64; 4] {
 /// ```
 pub fn write_msh(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
     super::triangle::checked(mesh)?;
+    write_unchecked(mesh, out)
+}
+
+/// [`write_msh`] on a mesh whose indices are checked.
+fn write_unchecked(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
     let mut surfaces: BTreeMap<u64, Group> = BTreeMap::new();
     for (t, &r) in mesh.regions.iter().enumerate() {
         let tag = 1 + u64::from(r);
@@ -131,48 +137,51 @@ pub fn write_msh(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
 
     // Gmsh itself leaves out the sections it has nothing for (and warns about the tag range
     // of an empty $Nodes section).
-    let n = mesh.vertices.len();
+    let n = mesh.vertices.len() as u64;
+    let mut o = TextOut::new(out);
     if n > 0 {
-        writeln!(out, "$Nodes\n1 {n} 1 {n}\n2 {node_entity} 0 {n}")?;
+        o.s("$Nodes\n1 ").u(n).s(" 1 ").u(n).nl()?;
+        o.s("2 ").u(node_entity).s(" 0 ").u(n).nl()?;
         for i in 1..=n {
-            writeln!(out, "{i}")?;
+            o.u(i).nl()?;
         }
         for p in &mesh.vertices {
-            writeln!(out, "{} {} 0", p[0], p[1])?;
+            o.i(p[0]).sp().i(p[1]).s(" 0").nl()?;
         }
-        writeln!(out, "$EndNodes")?;
+        o.s("$EndNodes").nl()?;
     }
 
-    let elements = mesh.triangles.len() + mesh.segments.len();
+    let elements = (mesh.triangles.len() + mesh.segments.len()) as u64;
     if elements == 0 {
-        return Ok(());
+        return o.finish();
     }
-    writeln!(out, "$Elements")?;
-    let blocks = surfaces.len() + curves.len();
-    writeln!(out, "{blocks} {elements} 1 {elements}")?;
+    o.s("$Elements").nl()?;
+    let blocks = (surfaces.len() + curves.len()) as u64;
+    o.u(blocks).sp().u(elements).s(" 1 ").u(elements).nl()?;
     for g in surfaces.values() {
-        writeln!(out, "2 {} 2 {}", g.tag, g.members.len())?;
+        o.s("2 ").u(g.tag).s(" 2 ").u(g.members.len() as u64).nl()?;
         for &t in &g.members {
             let [a, b, c] = mesh.triangles[t].map(|v| u64::from(v) + 1);
-            writeln!(out, "{} {a} {b} {c}", t + 1)?;
+            o.u(t as u64 + 1).sp().u(a).sp().u(b).sp().u(c).nl()?;
         }
     }
-    let mut tag = mesh.triangles.len();
+    let mut tag = mesh.triangles.len() as u64;
     for g in curves.values() {
-        writeln!(out, "1 {} 1 {}", g.tag, g.members.len())?;
+        o.s("1 ").u(g.tag).s(" 1 ").u(g.members.len() as u64).nl()?;
         for &k in &g.members {
             tag += 1;
             let [a, b] = mesh.segments[k].vertices.map(|v| u64::from(v) + 1);
-            writeln!(out, "{tag} {a} {b}")?;
+            o.u(tag).sp().u(a).sp().u(b).nl()?;
         }
     }
-    writeln!(out, "$EndElements")
+    o.s("$EndElements").nl()?;
+    o.finish()
 }
 
 /// Writes [`write_msh`]'s output to a file (checking the indices before creating it).
 pub fn write_msh_to(mesh: &Mesh, path: impl AsRef<Path>) -> io::Result<()> {
     super::triangle::checked(mesh)?;
     let mut out = BufWriter::new(std::fs::File::create(path)?);
-    write_msh(mesh, &mut out)?;
+    write_unchecked(mesh, &mut out)?;
     out.flush()
 }

@@ -22,9 +22,10 @@ pub mod pbm;
 pub mod png;
 pub mod poly;
 pub mod svg;
+mod text_out;
 pub mod triangle;
 pub mod vtk;
 
 pub use board_file::{read_board_file, BoardFileError, BoardFormat, BoardReadError};
 pub use limits::{LimitError, Limits};
-pub use svg::{mesh_svg, point_tree_svg, Style, Svg};
+pub use svg::{mesh_svg, point_tree_svg, write_mesh_svg, write_mesh_svg_to, Style, Svg};

@@ -14,7 +14,7 @@
 //! Every writer first runs [`Mesh::check_indices`] and returns an
 //! [`std::io::ErrorKind::InvalidInput`] error, writing nothing, if an index is out of range.
 
-use crate::hash::FastMap;
+use super::text_out::TextOut;
 use crate::mesh::{Mesh, SegmentKind};
 use std::io::{self, BufWriter, Write};
 use std::path::Path;
@@ -50,20 +50,46 @@ fn marker(kind: SegmentKind) -> u64 {
 /// assert_eq!(edges, [([0, 1], 1), ([1, 2], 0), ([2, 0], 0), ([2, 3], 0), ([3, 0], 0)]);
 /// ```
 pub fn edges_with_markers(mesh: &Mesh) -> Vec<([u32; 2], u64)> {
-    let mut index: FastMap<(u32, u32), usize> = FastMap::default();
-    let mut edges = Vec::new();
+    // Edges are found again by their smaller endpoint: `slots[start[v]..filled[v]]` holds the
+    // ids of the edges seen so far whose smaller endpoint is v (a handful per vertex), in a
+    // table sized by counting first, so nothing is hashed and nothing grows.
+    let n = mesh.vertices.len();
+    let key = |a: u32, b: u32| (a.min(b) as usize, a.max(b));
+    let mut start = vec![0usize; n + 1];
+    for tri in &mesh.triangles {
+        for i in 0..3 {
+            start[key(tri[i], tri[(i + 1) % 3]).0 + 1] += 1;
+        }
+    }
+    for v in 0..n {
+        start[v + 1] += start[v];
+    }
+    let mut filled = start.clone();
+    let mut slots = vec![0usize; start[n]];
+    let mut edges: Vec<([u32; 2], u64)> = Vec::new();
     for tri in &mesh.triangles {
         for i in 0..3 {
             let (a, b) = (tri[i], tri[(i + 1) % 3]);
-            index.entry((a.min(b), a.max(b))).or_insert_with(|| {
+            let (lo, hi) = key(a, b);
+            let seen = slots[start[lo]..filled[lo]]
+                .iter()
+                .any(|&e| key(edges[e].0[0], edges[e].0[1]).1 == hi);
+            if !seen {
+                slots[filled[lo]] = edges.len();
+                filled[lo] += 1;
                 edges.push(([a, b], 0));
-                edges.len() - 1
-            });
+            }
         }
     }
     for s in &mesh.segments {
-        let [a, b] = s.vertices;
-        if let Some(&k) = index.get(&(a.min(b), a.max(b))) {
+        let (lo, hi) = key(s.vertices[0], s.vertices[1]);
+        let Some(range) = start.get(lo).zip(filled.get(lo)).map(|(&a, &b)| a..b) else {
+            continue;
+        };
+        let found = slots[range]
+            .iter()
+            .find(|&&e| key(edges[e].0[0], edges[e].0[1]).1 == hi);
+        if let Some(&k) = found {
             let m = &mut edges[k].1;
             // An outline marker beats the board-boundary marker.
             if *m <= 1 {
@@ -77,6 +103,11 @@ pub fn edges_with_markers(mesh: &Mesh) -> Vec<([u32; 2], u64)> {
 /// Writes the `.node` file (see the module doc).
 pub fn write_node(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
     checked(mesh)?;
+    node_unchecked(mesh, out)
+}
+
+/// [`write_node`] on a mesh whose indices are checked.
+fn node_unchecked(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
     let mut on_boundary = vec![false; mesh.vertices.len()];
     for s in &mesh.segments {
         if s.kind == SegmentKind::Boundary {
@@ -85,39 +116,50 @@ pub fn write_node(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
             }
         }
     }
-    writeln!(out, "{} 2 0 1", mesh.vertices.len())?;
+    let mut o = TextOut::new(out);
+    o.u(mesh.vertices.len() as u64).s(" 2 0 1").nl()?;
     for (i, (p, &b)) in mesh.vertices.iter().zip(&on_boundary).enumerate() {
-        writeln!(out, "{} {} {} {}", i + 1, p[0], p[1], u8::from(b))?;
+        o.u(i as u64 + 1).sp().i(p[0]).sp().i(p[1]).sp().u(u64::from(b));
+        o.nl()?;
     }
-    Ok(())
+    o.finish()
 }
 
 /// Writes the `.ele` file (see the module doc).
 pub fn write_ele(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
     checked(mesh)?;
-    writeln!(out, "{} 3 1", mesh.triangles.len())?;
-    for (i, (t, r)) in mesh.triangles.iter().zip(&mesh.regions).enumerate() {
+    ele_unchecked(mesh, out)
+}
+
+/// [`write_ele`] on a mesh whose indices are checked.
+fn ele_unchecked(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
+    let mut o = TextOut::new(out);
+    o.u(mesh.triangles.len() as u64).s(" 3 1").nl()?;
+    for (i, (t, &r)) in mesh.triangles.iter().zip(&mesh.regions).enumerate() {
         let [a, b, c] = t.map(|v| u64::from(v) + 1);
-        writeln!(out, "{} {a} {b} {c} {r}", i + 1)?;
+        o.u(i as u64 + 1).sp().u(a).sp().u(b).sp().u(c).sp().u(u64::from(r));
+        o.nl()?;
     }
-    Ok(())
+    o.finish()
 }
 
 /// Writes the `.edge` file (see the module doc and [`edges_with_markers`]).
 pub fn write_edge(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
     checked(mesh)?;
+    edge_unchecked(mesh, out)
+}
+
+/// [`write_edge`] on a mesh whose indices are checked.
+fn edge_unchecked(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
     let edges = edges_with_markers(mesh);
-    writeln!(out, "{} 1", edges.len())?;
-    for (i, ([a, b], m)) in edges.iter().enumerate() {
-        writeln!(
-            out,
-            "{} {} {} {m}",
-            i + 1,
-            u64::from(*a) + 1,
-            u64::from(*b) + 1
-        )?;
+    let mut o = TextOut::new(out);
+    o.u(edges.len() as u64).s(" 1").nl()?;
+    for (i, &([a, b], m)) in edges.iter().enumerate() {
+        let (a, b) = (u64::from(a) + 1, u64::from(b) + 1);
+        o.u(i as u64 + 1).sp().u(a).sp().u(b).sp().u(m);
+        o.nl()?;
     }
-    Ok(())
+    o.finish()
 }
 
 /// Writes `<stem>.node`, `<stem>.ele` and `<stem>.edge` (the suffix is appended, so a stem such
@@ -131,9 +173,9 @@ pub fn write_triangle_files(mesh: &Mesh, stem: impl AsRef<Path>) -> io::Result<(
     };
     type Writer = fn(&Mesh, &mut BufWriter<std::fs::File>) -> io::Result<()>;
     let files: [(&str, Writer); 3] = [
-        (".node", |m, o| write_node(m, o)),
-        (".ele", |m, o| write_ele(m, o)),
-        (".edge", |m, o| write_edge(m, o)),
+        (".node", |m, o| node_unchecked(m, o)),
+        (".ele", |m, o| ele_unchecked(m, o)),
+        (".edge", |m, o| edge_unchecked(m, o)),
     ];
     for (suffix, write) in files {
         let mut out = BufWriter::new(std::fs::File::create(with(suffix))?);

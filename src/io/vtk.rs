@@ -6,6 +6,7 @@
 //! The writer first runs [`Mesh::check_indices`] and returns an
 //! [`std::io::ErrorKind::InvalidInput`] error, writing nothing, if an index is out of range.
 
+use super::text_out::TextOut;
 use crate::mesh::Mesh;
 use std::io::{self, BufWriter, Write};
 use std::path::Path;
@@ -30,34 +31,39 @@ use std::path::Path;
 /// ```
 pub fn write_vtk(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
     super::triangle::checked(mesh)?;
-    let (n, t) = (mesh.vertices.len(), mesh.triangles.len());
-    writeln!(out, "# vtk DataFile Version 3.0")?;
-    writeln!(out, "orthtree quadtree mesh")?;
-    writeln!(out, "ASCII\nDATASET UNSTRUCTURED_GRID")?;
-    writeln!(out, "POINTS {n} double")?;
+    write_unchecked(mesh, out)
+}
+
+/// [`write_vtk`] on a mesh whose indices are checked.
+fn write_unchecked(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
+    let (n, t) = (mesh.vertices.len() as u64, mesh.triangles.len() as u64);
+    let mut o = TextOut::new(out);
+    o.s("# vtk DataFile Version 3.0\northtree quadtree mesh\nASCII\nDATASET UNSTRUCTURED_GRID");
+    o.nl()?;
+    o.s("POINTS ").u(n).s(" double").nl()?;
     for p in &mesh.vertices {
-        writeln!(out, "{} {} 0", p[0], p[1])?;
+        o.i(p[0]).sp().i(p[1]).s(" 0").nl()?;
     }
-    writeln!(out, "CELLS {t} {}", 4 * t)?;
-    for [a, b, c] in &mesh.triangles {
-        writeln!(out, "3 {a} {b} {c}")?;
+    o.s("CELLS ").u(t).sp().u(4 * t).nl()?;
+    for &[a, b, c] in &mesh.triangles {
+        o.s("3 ").u(a.into()).sp().u(b.into()).sp().u(c.into()).nl()?;
     }
-    writeln!(out, "CELL_TYPES {t}")?;
+    o.s("CELL_TYPES ").u(t).nl()?;
     for _ in 0..t {
-        writeln!(out, "5")?;
+        o.s("5").nl()?;
     }
-    writeln!(out, "CELL_DATA {t}")?;
-    writeln!(out, "SCALARS region int 1\nLOOKUP_TABLE default")?;
-    for r in &mesh.regions {
-        writeln!(out, "{r}")?;
+    o.s("CELL_DATA ").u(t).nl()?;
+    o.s("SCALARS region int 1\nLOOKUP_TABLE default").nl()?;
+    for &r in &mesh.regions {
+        o.u(r.into()).nl()?;
     }
-    Ok(())
+    o.finish()
 }
 
 /// Writes [`write_vtk`]'s output to a file (checking the indices before creating it).
 pub fn write_vtk_to(mesh: &Mesh, path: impl AsRef<Path>) -> io::Result<()> {
     super::triangle::checked(mesh)?;
     let mut out = BufWriter::new(std::fs::File::create(path)?);
-    write_vtk(mesh, &mut out)?;
+    write_unchecked(mesh, &mut out)?;
     out.flush()
 }

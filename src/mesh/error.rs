@@ -1,6 +1,6 @@
 //! [`BoardError`]: why a board was refused, naming the component, edge and input line.
 
-use super::Point;
+use super::{Point, TooManyTriangles};
 
 /// A board the mesher refuses. Components and edges are numbered from 1 (component i is region
 /// i; edge k of a component runs from its vertex k to vertex k + 1); `line` is the input line when
@@ -162,6 +162,9 @@ pub enum BoardError {
         /// That byte.
         byte: u8,
     },
+    /// The mesh would have more triangles than the mesher's limit
+    /// ([`MeshOptions::max_triangles`](super::MeshOptions::max_triangles)).
+    TooManyTriangles(TooManyTriangles),
 }
 
 /// A coordinate given in half units, written as a decimal: 5 as `2.5`, -3 as `-1.5`, 4 as `2`.
@@ -313,6 +316,7 @@ impl core::fmt::Display for BoardError {
                 "line {line} (byte offset {offset}): byte 0x{byte:02x} is not valid UTF-8; a \
                  board file must be UTF-8 text"
             ),
+            BoardError::TooManyTriangles(e) => e.fmt(f),
         }
     }
 }

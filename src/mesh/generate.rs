@@ -20,6 +20,7 @@
 //!    ([`outline`](super::outline)), before step 3 so that each triangle gets its region as it
 //!    is made.
 
+use super::budget;
 use super::labels::{half_touching, label_pieces, Labels};
 use super::outline::{trace_outlines, Outlines, RISING};
 use super::refine::{build_quadtree, input_edges, provide_midpoints, SplitRule};
@@ -56,7 +57,9 @@ pub struct MeshOutcome {
 ///
 /// Complexity: O(p(S) log U) triangles, built in O(p(S) log^2 U) (Theorem 14.5).
 ///
-/// Errors: none for a validated [`Board`]; the `Result` is kept for compatibility.
+/// Errors: [`BoardError::TooManyTriangles`] when the mesh would have more than
+/// [`DEFAULT_MAX_TRIANGLES`](super::DEFAULT_MAX_TRIANGLES) triangles (see
+/// [`MeshOptions::max_triangles`]); nothing else for a validated [`Board`].
 ///
 /// ```
 /// use orthtree::mesh::{generate_mesh, Board, Component};
@@ -71,17 +74,20 @@ pub struct MeshOutcome {
 /// assert_eq!(out.mesh.regions.iter().filter(|&&r| r == 1).count(), 2);
 /// ```
 pub fn generate_mesh(board: &Board) -> Result<MeshOutcome, BoardError> {
-    Ok(MeshOptions::new()
-        .grid_unit(1)
-        .generate(board)
-        .expect("unit 1 and the chapter's sizes suit every board"))
+    match MeshOptions::new().grid_unit(1).generate(board) {
+        Ok(outcome) => Ok(outcome),
+        Err(OptionsError::TooManyTriangles(e)) => Err(BoardError::TooManyTriangles(e)),
+        Err(e) => unreachable!("unit 1 and the chapter's sizes suit every board: {e}"),
+    }
 }
 
-/// Meshes `board` in grid units of `unit` with the split rule `rule` (in those units).
+/// Meshes `board` in grid units of `unit` with the split rule `rule` (in those units), refusing
+/// a mesh of more than `max_triangles` triangles (see the `budget` module).
 pub(super) fn generate(
     board: &Board,
     unit: i64,
     rule: SplitRule,
+    max_triangles: u64,
 ) -> Result<MeshOutcome, OptionsError> {
     let start = Instant::now();
     let reduced;
@@ -91,8 +97,12 @@ pub(super) fn generate(
         reduced = board.scaled_down(unit);
         &reduced
     };
+    budget::check(
+        budget::lower_bound(board, rule.near, rule.max),
+        max_triangles,
+    )?;
     let edges = input_edges(board);
-    let mut tree = build_quadtree(board.size(), &edges, &rule)?;
+    let mut tree = build_quadtree(board.size(), &edges, &rule, max_triangles)?;
     let build_time = start.elapsed();
     let leaves_before_balance = tree.leaf_count();
 
@@ -100,6 +110,7 @@ pub(super) fn generate(
     tree.balance(Connectivity::Face);
     provide_midpoints(&mut tree, board.size(), &edges);
     let balance_time = start.elapsed();
+    budget::check(2 * tree.leaf_count() as u64, max_triangles)?;
 
     let start = Instant::now();
     let mut cells = vec![Cell::<2>::root(); tree.node_count()];
@@ -112,6 +123,7 @@ pub(super) fn generate(
         size: board.size(),
     };
     let numbering = Numbering::new(grid);
+    budget::check(numbering.triangle_count(), max_triangles)?;
     let mut segments = Vec::new();
     let outlines = trace_outlines(&grid, &numbering, &edges, &mut segments);
     let labels = label_pieces(&grid, &outlines);

@@ -2,6 +2,7 @@
 //! triangle [`Mesh`] that respects the input, with every angle in [45, 90] degrees, out.
 
 mod board;
+mod budget;
 mod check;
 mod error;
 mod generate;
@@ -18,6 +19,7 @@ mod validate;
 mod vertices;
 
 pub use board::{Board, Component, Point};
+pub use budget::{TooManyTriangles, DEFAULT_MAX_TRIANGLES, PEAK_BYTES_PER_TRIANGLE};
 pub use error::BoardError;
 pub use generate::{generate_mesh, MeshOutcome};
 pub use halfedge::{HalfEdgeError, HalfEdges, Outgoing};

@@ -15,6 +15,7 @@
 //! - a maximum cell size everywhere, and a user size function (Chew's idea, "Guaranteed-quality
 //!   mesh generation for curved surfaces", 1993: the user says where a cell is fine enough).
 
+use super::budget::{TooManyTriangles, DEFAULT_MAX_TRIANGLES};
 use super::generate::{generate, MeshOutcome};
 use super::{Board, Point};
 use core::fmt;
@@ -69,6 +70,7 @@ pub struct MeshOptions {
     near_size: Option<i64>,
     max_size: Option<i64>,
     size_fn: Option<Arc<SizeFn>>,
+    max_triangles: Option<u64>,
 }
 
 impl fmt::Debug for MeshOptions {
@@ -82,6 +84,7 @@ impl fmt::Debug for MeshOptions {
                 "size_fn",
                 &self.size_fn.as_ref().map(|_| "Fn([f64; 2]) -> f64"),
             )
+            .field("max_triangles", &self.max_triangles)
             .finish()
     }
 }
@@ -124,6 +127,32 @@ impl MeshOptions {
         self
     }
 
+    /// Refuses, with [`OptionsError::TooManyTriangles`], a board whose mesh would have more than
+    /// `limit` triangles, before spending the time and memory to make it. Default:
+    /// [`DEFAULT_MAX_TRIANGLES`] (2 * 10^7, about 2.8 GiB at the measured
+    /// [`PEAK_BYTES_PER_TRIANGLE`](super::PEAK_BYTES_PER_TRIANGLE)); `u64::MAX` for no limit. The check is exact (a board is
+    /// refused only when its mesh has more triangles than the limit), and a refused board costs
+    /// at most the work of `limit / 2` leaves; a refusal from the board's size and outlines alone
+    /// (most of them) costs O(p(S)) time and no memory (see the `budget` module).
+    ///
+    /// ```
+    /// use orthtree::mesh::{Board, Component, MeshOptions, OptionsError};
+    /// let board = Board::new(16, vec![Component::new(vec![[1, 14], [2, 14], [2, 15], [1, 15]])])?;
+    /// assert_eq!(MeshOptions::new().max_triangles(94).generate(&board)?.mesh.triangles.len(), 94);
+    /// let err = MeshOptions::new().max_triangles(93).generate(&board).unwrap_err();
+    /// assert!(matches!(err, OptionsError::TooManyTriangles(e) if e.at_least == 94));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn max_triangles(mut self, limit: u64) -> Self {
+        self.max_triangles = Some(limit);
+        self
+    }
+
+    /// The triangle limit in force ([`MeshOptions::max_triangles`]).
+    pub fn current_max_triangles(&self) -> u64 {
+        self.max_triangles.unwrap_or(DEFAULT_MAX_TRIANGLES)
+    }
+
     /// The mode set.
     pub fn current_mode(&self) -> Mode {
         self.mode
@@ -137,7 +166,8 @@ impl MeshOptions {
     ///
     /// Errors: a grid unit that is not a power of two or does not divide a coordinate, a size
     /// limit that is not positive or below one grid unit, a size function returning NaN or a
-    /// value that is not positive. Each names the offending value.
+    /// value that is not positive. Each names the offending value. A mesh of more triangles than
+    /// [`MeshOptions::max_triangles`] is refused with the number it needs at least.
     pub fn generate(&self, board: &Board) -> Result<MeshOutcome, OptionsError> {
         let unit = match self.grid_unit {
             None => board.grid_unit(),
@@ -166,6 +196,7 @@ impl MeshOptions {
                 unit,
                 size_fn: self.size_fn.as_deref(),
             },
+            self.current_max_triangles(),
         )
     }
 }
@@ -260,6 +291,8 @@ pub enum OptionsError {
         /// The value returned.
         value: f64,
     },
+    /// The mesh would have more triangles than [`MeshOptions::max_triangles`] allows.
+    TooManyTriangles(TooManyTriangles),
 }
 
 impl fmt::Display for OptionsError {
@@ -300,8 +333,15 @@ impl fmt::Display for OptionsError {
                 f,
                 "the size function returned {value} at ({x}, {y}); sizes must be positive"
             ),
+            OptionsError::TooManyTriangles(e) => e.fmt(f),
         }
     }
 }
 
 impl std::error::Error for OptionsError {}
+
+impl From<TooManyTriangles> for OptionsError {
+    fn from(e: TooManyTriangles) -> Self {
+        OptionsError::TooManyTriangles(e)
+    }
+}

@@ -276,13 +276,17 @@ impl SplitRule<'_> {
     }
 }
 
-/// Step 1: the quadtree, split by `rule` from the root down. Errors only from the size function.
+/// Step 1: the quadtree, split by `rule` from the root down. Errors from the size function, and
+/// as soon as the leaves (each at least two triangles) imply more than `max_triangles`
+/// triangles, so that at most `max_triangles / 2` leaves are ever made.
 pub(super) fn build_quadtree(
     size: i64,
     edges: &[InputEdge],
     rule: &SplitRule,
+    max_triangles: u64,
 ) -> Result<Tree<2>, OptionsError> {
     let mut tree = Tree::<2>::new();
+    let mut leaves: u64 = 1;
     // Edge lists of the nodes on the stack, one run each, in stack order.
     let mut lists: Vec<u32> = (0..edges.len() as u32).collect();
     let mut mine: Vec<u32> = Vec::new();
@@ -295,6 +299,8 @@ pub(super) fn build_quadtree(
         if !rule.split(square(&cell, size), edges, &mine)? {
             continue;
         }
+        leaves += 3;
+        super::budget::check(2 * leaves, max_triangles)?;
         tree.split(v);
         // Children in reverse, so that child 0, pushed last, owns the last run.
         for c in (0..4).rev() {

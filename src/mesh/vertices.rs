@@ -132,6 +132,20 @@ impl<'a> Numbering<'a> {
         self.grid.square(id)
     }
 
+    /// The number of triangles step 3 makes: two per leaf without a Steiner point, one per
+    /// boundary vertex (four corners and its midpoints) for a leaf with one.
+    pub fn triangle_count(&self) -> u64 {
+        let per_leaf = |(leaf, _): (NodeId, Cell<2>)| {
+            let f = self.flags[leaf.index()];
+            if f & CENTRE == 0 {
+                2
+            } else {
+                4 + u64::from((f & 15).count_ones())
+            }
+        };
+        self.grid.tree.leaves().map(per_leaf).sum()
+    }
+
     /// The id of `p`, owned by the leaf `owner` (whose closure holds `p` where it owns it).
     fn owned(&self, owner: NodeId, p: Point) -> u32 {
         let (x, y, s) = self.square(owner);

@@ -58,6 +58,28 @@ pub(super) fn clamp_px(x: f64) -> f64 {
     }
 }
 
+/// [`num`] written into `buf`, without allocating: the bytes written.
+pub(super) fn num_into(x: f64, buf: &mut [u8; 40]) -> &[u8] {
+    use std::io::Write as _;
+    let mut cursor = std::io::Cursor::new(&mut buf[..]);
+    // |x| <= MAX_PX, so 3 decimals fit in 40 bytes.
+    let _ = write!(cursor, "{:.3}", clamp_px(x));
+    let len = cursor.position() as usize;
+    let mut end = len;
+    if buf[..len].contains(&b'.') {
+        while buf[end - 1] == b'0' {
+            end -= 1;
+        }
+        if buf[end - 1] == b'.' {
+            end -= 1;
+        }
+    }
+    if &buf[..end] == b"-0" {
+        return b"0";
+    }
+    &buf[..end]
+}
+
 /// A number with at most three decimals and no trailing zeros.
 pub(super) fn num(x: f64) -> String {
     let s = format!("{:.3}", clamp_px(x));

@@ -1,5 +1,10 @@
-//! SVG pictures of a [`Mesh`]: [`mesh_svg`], and the two layers it adds to the [`Svg`] builder,
-//! [`Svg::triangles`] and [`Svg::segments`].
+//! SVG pictures of a [`Mesh`]: [`write_mesh_svg`] (streamed) and [`mesh_svg`] (a string), and
+//! the two layers they add to the [`Svg`] builder, [`Svg::triangles`] and [`Svg::segments`].
+//!
+//! A mesh of up to [`MESH_SVG_DETAIL_TRIANGLES`] triangles is drawn triangle by triangle. A
+//! larger one, whose triangles are mostly far below a pixel at the picture's 800 pixels, is
+//! drawn merged (see the `merged` module), so that the file has a size bounded by the picture
+//! and the board, not by the mesh.
 
 use super::format::num;
 use super::{Style, Svg, DEFAULT_WIDTH_PX};
@@ -8,9 +13,17 @@ use crate::hash::FastMap;
 use crate::mesh::{Board, Mesh, SegmentKind};
 use core::fmt::Write as _;
 use std::collections::BTreeMap;
+use std::io::{self, Write};
+use std::path::Path;
+
+#[path = "merged.rs"]
+mod merged;
+
+/// Meshes of up to this many triangles are drawn triangle by triangle; larger ones merged.
+pub const MESH_SVG_DETAIL_TRIANGLES: usize = 50_000;
 
 /// The fill of region 0, the board.
-const BOARD_FILL: &str = "#f4f1e6";
+pub(super) const BOARD_FILL: &str = "#f4f1e6";
 
 /// Fills of the components, cycled (the light half of Tableau 20).
 const COMPONENT_FILLS: [&str; 10] = [
@@ -19,7 +32,7 @@ const COMPONENT_FILLS: [&str; 10] = [
 ];
 
 /// The fill colour of region `r`.
-fn region_fill(r: u32) -> &'static str {
+pub(super) fn region_fill(r: u32) -> &'static str {
     match r {
         0 => BOARD_FILL,
         i => COMPONENT_FILLS[(i as usize - 1) % COMPONENT_FILLS.len()],
@@ -27,7 +40,7 @@ fn region_fill(r: u32) -> &'static str {
 }
 
 /// Segments per `<path>` in [`Svg::segments`]: about 40 kB of path data.
-const SEGMENTS_PER_PATH: usize = 1024;
+pub(super) const SEGMENTS_PER_PATH: usize = 1024;
 
 fn finite(p: &[f64; 2]) -> bool {
     p[0].is_finite() && p[1].is_finite()
@@ -109,12 +122,7 @@ impl Svg {
     }
 }
 
-/// Draws a mesh on its board, [`DEFAULT_WIDTH_PX`] wide on a white background: the triangles
-/// filled by region (the board light, each component its own colour, one `<g>` per region), every
-/// mesh edge once as a thin grey line, the component outlines (the mesh's `Component` segments)
-/// thick, and the board's outline. Line widths shrink on big boards (below 4 pixels per unit)
-/// so that the finest cells stay visible. Triangles and segments with an index out of range are
-/// skipped, so a malformed mesh still gives a picture.
+/// [`write_mesh_svg`] into a string.
 ///
 /// ```
 /// use orthtree::io::svg::mesh_svg;
@@ -130,6 +138,51 @@ impl Svg {
 /// assert_eq!(svg.matches("<polygon").count(), 2);
 /// ```
 pub fn mesh_svg(mesh: &Mesh, board: &Board) -> String {
+    let mut out = Vec::new();
+    write_mesh_svg(mesh, board, &mut out).expect("writing to a Vec does not fail");
+    String::from_utf8(out).expect("the picture is ASCII")
+}
+
+/// [`write_mesh_svg`] to a file, through a buffer.
+pub fn write_mesh_svg_to(mesh: &Mesh, board: &Board, path: impl AsRef<Path>) -> io::Result<()> {
+    let mut out = io::BufWriter::new(std::fs::File::create(path)?);
+    write_mesh_svg(mesh, board, &mut out)?;
+    out.flush()
+}
+
+/// Draws a mesh on its board to `out`, [`DEFAULT_WIDTH_PX`] wide on a white background.
+///
+/// Up to [`MESH_SVG_DETAIL_TRIANGLES`] triangles: the triangles
+/// filled by region (the board light, each component its own colour, one `<g>` per region), every
+/// mesh edge once as a thin grey line, the component outlines (the mesh's `Component` segments)
+/// thick, and the board's outline. Line widths shrink on big boards (below 4 pixels per unit)
+/// so that the finest cells stay visible. Triangles and segments with an index out of range are
+/// skipped, so a malformed mesh still gives a picture.
+///
+/// More triangles: the regions filled from the board (the board light, each component's outline
+/// filled in its colour: the regions of a valid mesh), the parts where triangles are smaller than
+/// 4 pixels shaded grey (one path of pixel runs), every mesh edge of 4 pixels or more once as a
+/// thin grey line (one group per power-of-two length), then the component outlines and the
+/// board's outline. The file is then at most a few MB whatever the mesh, and is written in one
+/// pass over the triangles with a bitmap of the picture's pixels.
+///
+/// # Errors
+///
+/// Only those of `out`.
+///
+/// # Complexity
+///
+/// O(T) time for T triangles; O(T) memory up to [`MESH_SVG_DETAIL_TRIANGLES`], above that O(1)
+/// beyond the picture's bitmap (under 1 MB).
+pub fn write_mesh_svg(mesh: &Mesh, board: &Board, out: &mut impl Write) -> io::Result<()> {
+    if mesh.triangles.len() > MESH_SVG_DETAIL_TRIANGLES {
+        return merged::write(mesh, board, out);
+    }
+    detailed(mesh, board).write(out)
+}
+
+/// The picture of a small mesh, triangle by triangle.
+fn detailed(mesh: &Mesh, board: &Board) -> Svg {
     let u = board.size() as f64;
     let view = Aabb {
         min: [0.0; 2],
@@ -167,10 +220,7 @@ pub fn mesh_svg(mesh: &Mesh, board: &Board) -> String {
             }
         }
     }
-    // Line widths shrink with the grid on big boards, so unit cells stay visible.
-    let unit_px = DEFAULT_WIDTH_PX / u.max(1.0);
-    let edge_px = (unit_px * 0.25).clamp(0.15, 0.5);
-    let outline_px = (unit_px * 0.6).clamp(0.8, 2.2);
+    let (edge_px, outline_px) = line_widths(u);
     svg.segments(
         edges,
         &Style::solid().stroke("#6b6b6b").stroke_width(edge_px),
@@ -184,5 +234,14 @@ pub fn mesh_svg(mesh: &Mesh, board: &Board) -> String {
         &Style::solid().stroke("#1a1a1a").stroke_width(outline_px),
     );
     svg.boxes([view], &Style::solid().stroke("#1a1a1a").stroke_width(1.5));
-    svg.finish()
+    svg
+}
+
+/// The widths of mesh edges and of component outlines on a board of side `u`: they shrink with
+/// the grid on big boards, so unit cells stay visible.
+fn line_widths(u: f64) -> (f64, f64) {
+    let unit_px = DEFAULT_WIDTH_PX / u.max(1.0);
+    let edge_px = (unit_px * 0.25).clamp(0.15, 0.5);
+    let outline_px = (unit_px * 0.6).clamp(0.8, 2.2);
+    (edge_px, outline_px)
 }

@@ -22,7 +22,7 @@ mod tests;
 
 use format::{clamp_px, escape, length, num, repair_view, MAX_PX};
 pub use image::{image_tree_svg, write_image_tree_svg};
-pub use mesh::mesh_svg;
+pub use mesh::{mesh_svg, write_mesh_svg, write_mesh_svg_to, MESH_SVG_DETAIL_TRIANGLES};
 pub use style::Style;
 
 use crate::geom::{Aabb, Cell, Scalar};
@@ -226,18 +226,31 @@ impl Svg {
 
     /// The SVG document.
     pub fn finish(&self) -> String {
+        format!("{}{}</svg>\n", self.header(), self.body)
+    }
+
+    /// Writes [`Svg::finish`] to `out`, without building the document in one string.
+    pub fn write(&self, out: &mut impl std::io::Write) -> std::io::Result<()> {
+        out.write_all(self.header().as_bytes())?;
+        out.write_all(self.body.as_bytes())?;
+        out.write_all(b"</svg>\n")
+    }
+
+    /// Writes [`Svg::finish`] to a file, through a buffer.
+    pub fn write_to(&self, path: impl AsRef<std::path::Path>) -> std::io::Result<()> {
+        let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
+        self.write(&mut out)?;
+        std::io::Write::flush(&mut out)
+    }
+
+    /// The opening `<svg>` tag, with its line break.
+    fn header(&self) -> String {
         let (w, h) = self.size_px();
         let (w, h) = (num(w), num(h));
         format!(
             "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" \
-             viewBox=\"0 0 {w} {h}\">\n{}</svg>\n",
-            self.body
+             viewBox=\"0 0 {w} {h}\">\n"
         )
-    }
-
-    /// Writes [`Svg::finish`] to a file.
-    pub fn write_to(&self, path: impl AsRef<std::path::Path>) -> std::io::Result<()> {
-        std::fs::write(path, self.finish())
     }
 
     /// Pixels per unit of the plane. Halved differences keep the extent finite for any finite

@@ -157,3 +157,11 @@ fn all_zero_dash_is_solid_and_numbers_are_short() {
     assert_eq!(num(2.5), "2.5");
     assert_eq!(num(f64::INFINITY), "10000000");
 }
+
+#[test]
+fn numbers_without_allocation_match() {
+    let mut buf = [0u8; 40];
+    for x in [0.0, -0.0, 1.0, -0.0001, 2.5, 0.0625, 1e7, -1e7, 1e300, f64::NAN, 123.4567, -3.1] {
+        assert_eq!(format::num_into(x, &mut buf), num(x).as_bytes(), "{x}");
+    }
+}

@@ -1,0 +1,242 @@
+//! The picture of a large mesh (more than [`MESH_SVG_DETAIL_TRIANGLES`] triangles), streamed in
+//! one pass with a file size bounded by the picture and the board: region fills from the board's
+//! outlines, the fine parts shaded by how much of each pixel their edges cover, only the mesh edges of at least
+//! [`MIN_EDGE_PX`] pixels drawn (see [`write_mesh_svg`]).
+//!
+//! [`MESH_SVG_DETAIL_TRIANGLES`]: super::MESH_SVG_DETAIL_TRIANGLES
+//! [`write_mesh_svg`]: super::write_mesh_svg
+
+use super::super::format::{escape, num_into};
+use super::super::{Style, Svg, DEFAULT_WIDTH_PX};
+use super::{line_widths, region_fill, BOARD_FILL, SEGMENTS_PER_PATH};
+use crate::geom::Aabb;
+use crate::io::text_out::TextOut;
+use crate::mesh::{Board, Mesh};
+use std::io::{self, Write};
+
+/// Mesh edges shorter than this many pixels are not drawn; the parts of the picture they fill
+/// are shaded instead.
+pub const MIN_EDGE_PX: f64 = 4.0;
+
+/// The grey of the mesh edges, also the shade of the fine parts (at half opacity).
+const EDGE_GREY: &str = "#6b6b6b";
+
+/// Shades of the fine parts: pixels are drawn at one of this many opacities.
+const SHADES: usize = 8;
+
+/// How much of each pixel of the picture (margins included) the short mesh edges cover, as a
+/// renderer would stroke them: their length in pixels times the stroke width.
+struct Coverage {
+    width: usize,
+    height: usize,
+    cover: Vec<f32>,
+}
+
+impl Coverage {
+    fn new(width: usize, height: usize) -> Self {
+        Coverage {
+            width,
+            height,
+            cover: vec![0.0; width * height],
+        }
+    }
+
+    /// Adds `amount` at the pixel holding `(x, y)` (pixel coordinates, clipped).
+    fn add(&mut self, x: f64, y: f64, amount: f64) {
+        let clip = |v: f64, n: usize| (v.max(0.0) as usize).min(n - 1);
+        let k = clip(y, self.height) * self.width + clip(x, self.width);
+        self.cover[k] += amount as f32;
+    }
+
+    /// The shade of each pixel, row by row: 0 for none, else 1 to [`SHADES`].
+    fn shades(&self) -> Vec<u8> {
+        let shade = |&cover: &f32| {
+            // Overlapping hairlines composite, they do not add up: 1 - e^-sum.
+            let c = 1.0 - (-cover).exp();
+            (c * SHADES as f32).ceil().min(SHADES as f32) as u8
+        };
+        self.cover.iter().map(shade).collect()
+    }
+}
+
+/// Appends a pixel coordinate as [`num`](super::super::format::num) writes it.
+fn px<W: Write + ?Sized>(o: &mut TextOut<'_, W>, x: f64) {
+    let mut buf = [0u8; 40];
+    let bytes = num_into(x, &mut buf);
+    o.s(std::str::from_utf8(bytes).unwrap_or("0"));
+}
+
+/// Opens a `<g>` with `style`'s attributes.
+fn open_group<W: Write + ?Sized>(o: &mut TextOut<'_, W>, style: &Style) -> io::Result<()> {
+    o.s("<g").s(&style.attributes()).s(">").nl()
+}
+
+/// Writes the picture (see [`write_mesh_svg`](super::write_mesh_svg)).
+pub(super) fn write(mesh: &Mesh, board: &Board, out: &mut impl Write) -> io::Result<()> {
+    let u = board.size() as f64;
+    let view = Aabb {
+        min: [0.0; 2],
+        max: [u; 2],
+    };
+    let mut svg = Svg::new(view, DEFAULT_WIDTH_PX);
+    svg.margin(6.0);
+    let scale = svg.scale();
+    let (w, h) = svg.size_px();
+    let mut o = TextOut::new(out);
+    o.s(&svg.header());
+    o.s("<rect width=\"100%\" height=\"100%\" fill=\"white\"/>").nl()?;
+
+    // Regions: the board, then each component's outline filled.
+    let board_style = Style::solid().stroke("none").fill(BOARD_FILL);
+    open_group(&mut o, &board_style)?;
+    write_rect(&mut o, &svg, &view)?;
+    o.s("</g>").nl()?;
+    for (i, c) in board.components().iter().enumerate() {
+        o.s("<path fill=\"").s(&escape(region_fill(i as u32 + 1))).s("\" d=\"");
+        write_ring(&mut o, &svg, &c.outline)?;
+        o.s("\"/>").nl()?;
+    }
+
+    // One pass over the triangles: short edges added to the coverage, long ones kept by level.
+    let (edge_px, outline_px) = line_widths(u);
+    let point = |v: u32| mesh.vertices.get(v as usize).map(|p| p.map(|c| c as f64));
+    let mut coverage = Coverage::new(w.ceil() as usize + 1, h.ceil() as usize + 1);
+    // Level k holds the edges of 2^k * MIN_EDGE_PX to 2^(k + 1) * MIN_EDGE_PX pixels.
+    let mut long: Vec<Vec<[[f64; 2]; 2]>> = vec![Vec::new(); 32];
+    for tri in &mesh.triangles {
+        let (Some(p0), Some(p1), Some(p2)) = (point(tri[0]), point(tri[1]), point(tri[2])) else {
+            continue;
+        };
+        let c = [p0, p1, p2];
+        for i in 0..3 {
+            let (a, b) = (tri[i], tri[(i + 1) % 3]);
+            let (p, q) = (c[i], c[(i + 1) % 3]);
+            let length = (p[0] - q[0]).abs().max((p[1] - q[1]).abs()) * scale;
+            if length < MIN_EDGE_PX {
+                // Half from each of the (at most) two triangles holding the edge.
+                let (x, y) = (svg.x((p[0] + q[0]) / 2.0), svg.y((p[1] + q[1]) / 2.0));
+                coverage.add(x, y, 0.5 * length * edge_px);
+            } else {
+                // Each interior edge is in two triangles, once each way: draw it from one.
+                // Board-boundary edges (one way only) are under the board's outline.
+                if a < b {
+                    let level = (length / MIN_EDGE_PX).log2().floor().clamp(0.0, 31.0);
+                    long[level as usize].push([p, q]);
+                }
+            }
+        }
+    }
+
+    // The fine parts: runs of pixels of one shade, row by row, one group per shade.
+    let shades = coverage.shades();
+    let (width, height) = (coverage.width, coverage.height);
+    let shade_at = |x: usize, y: usize| shades[y * width + x] as usize;
+    for shade in 1..=SHADES {
+        let opacity = shade as f64 / SHADES as f64;
+        o.s("<g fill=\"").s(EDGE_GREY).s("\" fill-opacity=\"");
+        px(&mut o, opacity);
+        o.s("\" stroke=\"none\">").nl()?;
+        let mut runs = 0;
+        for y in 0..height {
+            let mut x = 0;
+            while x < width {
+                if shade_at(x, y) != shade {
+                    x += 1;
+                    continue;
+                }
+                let start = x;
+                while x < width && shade_at(x, y) == shade {
+                    x += 1;
+                }
+                if runs % SEGMENTS_PER_PATH == 0 {
+                    if runs > 0 {
+                        o.s("\"/>").nl()?;
+                    }
+                    o.s("<path d=\"");
+                }
+                let len = (x - start) as u64;
+                o.s("M").u(start as u64).sp().u(y as u64).s("h").u(len);
+                o.s("v1h-").u(len).s("z");
+                runs += 1;
+            }
+        }
+        if runs > 0 {
+            o.s("\"/>").nl()?;
+        }
+        o.s("</g>").nl()?;
+    }
+
+    // The long edges, one group per level.
+    let edge_style = Style::solid().stroke(EDGE_GREY).stroke_width(edge_px);
+    for edges in long.iter().filter(|e| !e.is_empty()) {
+        open_group(&mut o, &edge_style)?;
+        for chunk in edges.chunks(SEGMENTS_PER_PATH) {
+            o.s("<path d=\"");
+            for [p, q] in chunk {
+                o.s("M");
+                px(&mut o, svg.x(p[0]));
+                o.sp();
+                px(&mut o, svg.y(p[1]));
+                o.s("L");
+                px(&mut o, svg.x(q[0]));
+                o.sp();
+                px(&mut o, svg.y(q[1]));
+            }
+            o.s("\"/>").nl()?;
+        }
+        o.s("</g>").nl()?;
+    }
+
+    // Component outlines, then the board's.
+    open_group(
+        &mut o,
+        &Style::solid().stroke("#1a1a1a").stroke_width(outline_px),
+    )?;
+    for c in board.components() {
+        o.s("<path d=\"");
+        write_ring(&mut o, &svg, &c.outline)?;
+        o.s("\"/>").nl()?;
+    }
+    o.s("</g>").nl()?;
+    open_group(&mut o, &Style::solid().stroke("#1a1a1a").stroke_width(1.5))?;
+    write_rect(&mut o, &svg, &view)?;
+    o.s("</g>").nl()?;
+    o.s("</svg>").nl()?;
+    o.finish()
+}
+
+/// A closed polygon as path data (`M x y L x y ... Z`), in pixels.
+fn write_ring<W: Write + ?Sized>(
+    o: &mut TextOut<'_, W>,
+    svg: &Svg,
+    ring: &[[i64; 2]],
+) -> io::Result<()> {
+    for (k, p) in ring.iter().enumerate() {
+        o.s(if k == 0 { "M" } else { "L" });
+        px(o, svg.x(p[0] as f64));
+        o.sp();
+        px(o, svg.y(p[1] as f64));
+        o.spill()?;
+    }
+    o.s("Z");
+    Ok(())
+}
+
+/// A box as one `<rect>` line, as [`Svg::boxes`] draws it.
+fn write_rect<W: Write + ?Sized>(
+    o: &mut TextOut<'_, W>,
+    svg: &Svg,
+    b: &Aabb<f64, 2>,
+) -> io::Result<()> {
+    let (x0, x1) = (svg.x(b.min[0]), svg.x(b.max[0]));
+    let (top, bottom) = (svg.y(b.max[1]), svg.y(b.min[1]));
+    o.s("<rect x=\"");
+    px(o, x0);
+    o.s("\" y=\"");
+    px(o, top);
+    o.s("\" width=\"");
+    px(o, (x1 - x0).max(0.0));
+    o.s("\" height=\"");
+    px(o, (bottom - top).max(0.0));
+    o.s("\"/>").nl()
+}
