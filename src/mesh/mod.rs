@@ -2,6 +2,7 @@
 //! triangle [`Mesh`] that respects the input, with every angle in [45, 90] degrees, out.
 
 mod board;
+mod box_index;
 mod check;
 mod error;
 mod generate;
@@ -23,6 +24,6 @@ pub use generate::{generate_mesh, MeshOutcome};
 pub use halfedge::{HalfEdgeError, HalfEdges, Outgoing};
 pub use options::{MeshOptions, Mode, OptionsError, SizeFn};
 pub use output::{Mesh, Segment, SegmentKind};
-pub use random_board::random_board;
+pub use random_board::{random_board, random_board_capacity, try_random_board, RandomBoardError};
 pub use samples::sample_board;
 pub use validate::{Check, ValidationReport};
