@@ -1,6 +1,7 @@
 //! p4est's "timings" fractal, then 2:1 balance: the workload of p4est's balance benchmarks.
 //!
-//! `cargo run --release --example balance_fractal -- --dim 2|3|4 --level L --connect face|edge|corner [--weak] [--incremental] [--reps N] [--parallel]`
+//! `cargo run --release --example balance_fractal -- [--dim 2|3|4] [--level L] [--connect face|edge|corner] [--weak] [--incremental] [--reps N] [--parallel]`
+//! (`--help` lists the options and their limits)
 //!
 //! `--incremental` also builds the same refinement with `Tree::split_balanced` (exercise 14.8:
 //! balanced construction without the unbalanced tree first) and compares time and result.
@@ -14,6 +15,28 @@ use orthtree::{BalanceOptions, Connectivity, Tree};
 mod fractal;
 use std::time::Instant;
 
+#[path = "common/cli.rs"]
+mod cli;
+use cli::{Cli, CliError};
+
+const USAGE: &str = "\
+usage: balance_fractal [--dim 2|3|4] [--level L] [--connect face|edge|corner] [--weak] [--incremental] [--reps N] [--parallel]
+
+p4est's fractal refinement at level L, then 2:1 balance; prints leaf counts, times, peak memory
+and a checksum of the leaves.
+
+options:
+  --dim D          dimension: 2, 3 or 4 (default 2)
+  --level L        refinement level, at most the tree's deepest level: 32 in 2D, 21 in 3D,
+                   16 in 4D (default 12); levels whose tree would not fit in memory are refused
+  --connect C      balance across faces, edges or corners (default face)
+  --weak           allow a level difference of 2 instead of 1
+  --incremental    also build the tree with split_balanced (exercise 14.8) and compare
+  --reps N         runs of balance and of the balance check, median reported (1 to 1000, default 1)
+  --parallel       the rayon balance (needs --features rayon)
+  -h, --help       this text
+";
+
 struct Args {
     dim: usize,
     level: u8,
@@ -23,43 +46,91 @@ struct Args {
     parallel: bool,
 }
 
-fn parse() -> Result<Args, String> {
-    let mut args = Args {
-        dim: 2,
-        level: 12,
-        options: BalanceOptions::new(Connectivity::Face),
-        incremental: false,
-        reps: 1,
-        parallel: false,
-    };
-    let mut it = std::env::args().skip(1);
-    while let Some(flag) = it.next() {
-        let mut value = || it.next().ok_or(format!("{flag} needs a value"));
+/// Peak bytes per leaf of the refined fractal (the refined tree, its copy and balance's work),
+/// measured with the `peak memory` line: 25 to 27 B at levels 12 and 14 in 2D (face and corner
+/// balance), 20 to 21 B at levels 7 and 8 in 3D, 19 B at level 6 in 4D; with a margin.
+const PEAK_BYTES_PER_LEAF: f64 = 40.0;
+/// The extra peak of `--incremental` (a second tree and the list of split cells): measured 1.2
+/// at level 8 in 3D; with a margin.
+const INCREMENTAL_FACTOR: f64 = 1.5;
+
+/// Leaves of the fractal at `level` in dimension `dim` (exact, see `benches/workloads/fractal.rs`):
+/// the uniform tree at level u = level - 4 (or the root), half of whose cells (those with an
+/// even child id) are refined for the remaining levels, half of each cell's children again.
+fn fractal_leaves(dim: usize, level: u8) -> f64 {
+    let uniform = level.saturating_sub(4);
+    let half = 2f64.powi(dim as i32 - 1);
+    // leaves under an even cell with k levels to go: 1, then half * (1 + below(k - 1))
+    let mut below = 1.0;
+    for _ in 0..level - uniform {
+        below = half * (1.0 + below);
+    }
+    if uniform == 0 {
+        below
+    } else {
+        2f64.powi((dim * uniform as usize) as i32) / 2.0 * (1.0 + below)
+    }
+}
+
+/// The deepest level of a tree in dimension `dim` (`Cell::<D>::MAX_LEVEL`).
+fn max_level(dim: usize) -> u8 {
+    match dim {
+        2 => orthtree::Cell::<2>::MAX_LEVEL,
+        3 => orthtree::Cell::<3>::MAX_LEVEL,
+        _ => orthtree::Cell::<4>::MAX_LEVEL,
+    }
+}
+
+fn parse(cli: &mut Cli) -> Result<Args, CliError> {
+    let (mut dim, mut level, mut connectivity, mut weak) = (2, 12, Connectivity::Face, false);
+    let (mut incremental, mut reps, mut parallel) = (false, 1, false);
+    while let Some(flag) = cli.next_arg()? {
         match flag.as_str() {
-            "--dim" => args.dim = value()?.parse().map_err(|e| format!("--dim: {e}"))?,
-            "--level" => args.level = value()?.parse().map_err(|e| format!("--level: {e}"))?,
+            "--dim" => dim = cli.number("--dim", 2, 4)?,
+            "--level" => level = cli.number("--level", 0, u8::MAX)?,
             "--connect" => {
-                args.options.connectivity = match value()?.as_str() {
+                connectivity = match cli.value("--connect")?.as_str() {
                     "face" => Connectivity::Face,
                     "edge" => Connectivity::Edge,
                     "corner" | "full" => Connectivity::Corner,
-                    other => return Err(format!("--connect: unknown connectivity {other:?}")),
+                    other => {
+                        return Err(CliError::new(format!(
+                            "--connect {}: expected face, edge or corner",
+                            cli::shown(other)
+                        )))
+                    }
                 }
             }
-            "--weak" => args.options = args.options.weak(),
-            "--incremental" => args.incremental = true,
-            "--parallel" if cfg!(feature = "rayon") => args.parallel = true,
-            "--parallel" => return Err("--parallel needs --features rayon".into()),
-            "--reps" => {
-                args.reps = value()?.parse().map_err(|e| format!("--reps: {e}"))?;
-                if args.reps == 0 {
-                    return Err("--reps must be at least 1".into());
-                }
-            }
-            other => return Err(format!("unknown argument {other:?}")),
+            "--weak" => weak = true,
+            "--incremental" => incremental = true,
+            "--parallel" if cfg!(feature = "rayon") => parallel = true,
+            "--parallel" => return Err(CliError::new("--parallel needs --features rayon")),
+            "--reps" => reps = cli.number("--reps", 1, 1000)?,
+            other => return Err(CliError::unknown(other)),
         }
     }
-    Ok(args)
+    if level > max_level(dim) {
+        return Err(CliError::new(format!(
+            "--level {level}: the deepest level of a {dim}D tree is {}",
+            max_level(dim)
+        )));
+    }
+    let leaves = fractal_leaves(dim, level);
+    let copies = if incremental { INCREMENTAL_FACTOR } else { 1.0 };
+    cli::check_memory(
+        &format!("--dim {dim} --level {level}: about {leaves:.3e} leaves before balance"),
+        leaves * PEAK_BYTES_PER_LEAF * copies,
+        cli::memory_limit(),
+    )?;
+    let options = BalanceOptions::new(connectivity);
+    Ok(Args {
+        dim,
+        level,
+        options: if weak { options.weak() } else { options },
+        incremental,
+        reps,
+        parallel,
+    })
 }
 
 /// FNV-1a over (level, coordinates) of the leaves in Morton order.
@@ -136,6 +207,10 @@ fn run<const D: usize>(args: &Args) {
         if args.parallel { ", parallel" } else { "" }
     );
     println!("leaves before balance: {before}");
+    println!(
+        "estimated before:      {:.0}",
+        fractal_leaves(D, args.level)
+    );
     println!("leaves after balance:  {}", tree.leaf_count());
     println!("splits:                {}", split.len());
     println!("refine time:           {refine_s:.4} s");
@@ -185,20 +260,10 @@ fn run<const D: usize>(args: &Args) {
 }
 
 fn main() {
-    let args = match parse() {
-        Ok(a) => a,
-        Err(e) => {
-            eprintln!("error: {e}\nusage: balance_fractal --dim 2|3|4 --level L --connect face|edge|corner [--weak] [--incremental] [--reps N] [--parallel]");
-            std::process::exit(2);
-        }
-    };
+    let args = cli::parse_or_exit(USAGE, parse);
     match args.dim {
         2 => run::<2>(&args),
         3 => run::<3>(&args),
-        4 => run::<4>(&args),
-        d => {
-            eprintln!("error: --dim {d} is not supported (2, 3 or 4)");
-            std::process::exit(2);
-        }
+        _ => run::<4>(&args),
     }
 }

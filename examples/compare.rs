@@ -45,6 +45,27 @@ use std::time::Instant;
 const KIDDO_BUCKET: usize = 32;
 type Kiddo<const D: usize> = ImmutableKdTree<f64, u64, D, KIDDO_BUCKET>;
 
+#[path = "common/cli.rs"]
+mod cli;
+use cli::{Cli, CliError};
+
+const USAGE: &str = "\
+usage: compare [--n N] [--queries Q] [--reps R] [--dim 2|3] [--workload NAME] [--parallel]
+
+orthtree beside kiddo and rstar: build, box, radius and k-nearest queries, then single updates.
+
+options:
+  --n N            points per workload, at least 1 (default 1000000); counts whose trees would
+                   not fit in memory are refused
+  --queries Q      queries per row and updates per tree, at least 1 (default 100000)
+  --reps R         timed runs per row, median reported (1 to 1000, default 5)
+  --dim D          only dimension 2 or 3
+  --workload NAME  only workloads whose name starts with NAME (uniform, clustered, duplicates,
+                   lattice)
+  --parallel       also rayon's speed-ups (needs --features rayon)
+  -h, --help       this text
+";
+
 struct Args {
     n: usize,
     queries: usize,
@@ -56,7 +77,15 @@ struct Args {
     workload: Option<String>,
 }
 
-fn args() -> Args {
+/// Peak bytes per point of one workload in 3D: the points, their entries, the three crates'
+/// trees and the update trees (measured: 360 B per point at N = 10^6 and 440 B at 2 * 10^5 in
+/// 3D, the peak resident memory with `/usr/bin/time -v`); with a margin.
+const PEAK_BYTES_PER_POINT: f64 = 600.0;
+/// Peak bytes per query point (the query points, and 100 answers per k-nearest query are
+/// consumed one query at a time).
+const PEAK_BYTES_PER_QUERY: f64 = 200.0;
+
+fn parse(cli: &mut Cli) -> Result<Args, CliError> {
     let mut a = Args {
         n: 1_000_000,
         queries: 100_000,
@@ -65,33 +94,39 @@ fn args() -> Args {
         dim: None,
         workload: None,
     };
-    let mut it = std::env::args().skip(1);
-    while let Some(flag) = it.next() {
-        if flag == "--parallel" && cfg!(feature = "rayon") {
-            a.parallel = true;
-            continue;
-        }
-        let raw = it.next();
-        if flag == "--workload" && raw.is_some() {
-            a.workload = raw;
-            continue;
-        }
-        let value = raw.and_then(|v| v.parse().ok());
-        match (flag.as_str(), value) {
-            ("--n", Some(v)) => a.n = v,
-            ("--queries", Some(v)) => a.queries = v,
-            ("--reps", Some(v)) => a.reps = v,
-            ("--dim", Some(v @ (2 | 3))) => a.dim = Some(v),
-            _ => {
-                eprintln!(
-                    "usage: compare [--n N] [--queries Q] [--reps R] [--dim 2|3] \
-                     [--workload uniform|clustered|duplicates|lattice] [--parallel (feature rayon)]"
-                );
-                std::process::exit(2);
+    while let Some(flag) = cli.next_arg()? {
+        match flag.as_str() {
+            "--parallel" if cfg!(feature = "rayon") => a.parallel = true,
+            "--parallel" => return Err(CliError::new("--parallel needs --features rayon")),
+            "--workload" => {
+                let w = cli.value("--workload")?;
+                let known = ["uniform", "clustered", "duplicates x8", "lattice"];
+                if !known.iter().any(|k| k.starts_with(w.as_str())) {
+                    return Err(CliError::new(format!(
+                        "--workload {}: no workload starts with it (uniform, clustered, \
+                         duplicates, lattice)",
+                        cli::shown(&w)
+                    )));
+                }
+                a.workload = Some(w);
             }
+            "--n" => a.n = cli.number("--n", 1, usize::MAX)?,
+            "--queries" => a.queries = cli.number("--queries", 1, usize::MAX)?,
+            "--reps" => a.reps = cli.number("--reps", 1, 1000)?,
+            "--dim" => a.dim = Some(cli.number("--dim", 2, 3)?),
+            other => return Err(CliError::unknown(other)),
         }
     }
-    a
+    // The lattice workload rounds N to side^D points, at most (N^(1/2) + 1)^2 in 2D.
+    let lattice = ((a.n as f64).sqrt() + 1.0).powi(2);
+    let bytes =
+        (a.n as f64).max(lattice) * PEAK_BYTES_PER_POINT + a.queries as f64 * PEAK_BYTES_PER_QUERY;
+    cli::check_memory(
+        &format!("--n {} --queries {}", a.n, a.queries),
+        bytes,
+        cli::memory_limit(),
+    )?;
+    Ok(a)
 }
 
 /// The median time in milliseconds of `reps` runs of `f`, and its (checked equal) result,
@@ -400,7 +435,7 @@ fn workloads<const D: usize>(a: &Args, rows: &mut Vec<Row>) {
 }
 
 fn main() {
-    let a = args();
+    let a = cli::parse_or_exit(USAGE, parse);
     let mut rows = Vec::new();
     if a.dim != Some(3) {
         workloads::<2>(&a, &mut rows);
@@ -544,6 +579,20 @@ fn updates<const D: usize>(a: &Args) {
     type Entry<const D: usize> = rstar::primitives::GeomWithData<[f64; D], u64>;
     let mut rtree: RTree<Entry<D>> =
         RTree::bulk_load(entries.iter().map(|&(p, i)| Entry::new(p, i)).collect());
+    if !leaves_at_one_depth(&rtree) {
+        // rstar 0.12's bulk_load leaves some leaves one level deeper at some sizes (for example
+        // N = 2 * 10^5 in 3D), and a later insert then panics; one insert at a time builds a
+        // tree that takes updates.
+        eprintln!(
+            "{D}D: rstar's bulk-loaded tree has leaves at several depths (N = {}); its update \
+             row uses a tree built by single inserts",
+            a.n
+        );
+        rtree = RTree::new();
+        for &(p, i) in &entries {
+            rtree.insert(Entry::new(p, i));
+        }
+    }
     let (t_rstar, _) = time(a.reps, || {
         for (i, p) in new.iter().enumerate() {
             rtree.insert(Entry::new(*p, (a.n + i) as u64));
@@ -616,4 +665,23 @@ fn updates<const D: usize>(a: &Args) {
         t_dk / t_pk,
         t_db / t_pb
     );
+}
+
+/// Whether every leaf of `tree` is at the same depth, which rstar's insert assumes.
+fn leaves_at_one_depth<T: rstar::RTreeObject>(tree: &RTree<T>) -> bool {
+    let mut depths = None;
+    let mut stack = vec![(tree.root(), 0usize)];
+    while let Some((node, depth)) = stack.pop() {
+        for child in node.children() {
+            match child {
+                rstar::RTreeNode::Leaf(_) => {
+                    if *depths.get_or_insert(depth) != depth {
+                        return false;
+                    }
+                }
+                rstar::RTreeNode::Parent(parent) => stack.push((parent, depth + 1)),
+            }
+        }
+    }
+    true
 }

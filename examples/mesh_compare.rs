@@ -1,6 +1,7 @@
 //! Triangle counts of the mesher's modes beside a quality Delaunay mesher (issue 9).
 //!
 //! `cargo run --release --example mesh_compare -- [--seeds N] [--runs R] [--target]`
+//! (`--help` lists the options)
 //!
 //! `--target` meshes only the mesher's target workload, `random_board(7, 65536, 640)`, in both
 //! modes, and prints the median time of each phase.
@@ -16,6 +17,46 @@ use spade::{
     AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation,
 };
 use std::time::{Duration, Instant};
+
+#[path = "common/cli.rs"]
+mod cli;
+use cli::{Cli, CliError};
+
+const USAGE: &str = "\
+usage: mesh_compare [--seeds N] [--runs R] [--target]
+
+Triangle counts and times of the mesher's book and coarsest modes beside spade's refined
+constrained Delaunay triangulation, on Figure 14.2's input, the sample board and random boards.
+
+options:
+  --seeds N      random boards per size (0 to 10000, default 5); one board is held at a time
+  --runs R       timed runs per mesh, median reported (1 to 1000, default 3)
+  --target       only the mesher's target workload, random_board(7, 65536, 640), phase by phase
+  -h, --help     this text
+";
+
+struct Args {
+    seeds: u64,
+    runs: usize,
+    only_target: bool,
+}
+
+fn parse(cli: &mut Cli) -> Result<Args, CliError> {
+    let mut args = Args {
+        seeds: 5,
+        runs: 3,
+        only_target: false,
+    };
+    while let Some(flag) = cli.next_arg()? {
+        match flag.as_str() {
+            "--target" => args.only_target = true,
+            "--seeds" => args.seeds = cli.number("--seeds", 0, 10_000)?,
+            "--runs" => args.runs = cli.number("--runs", 1, 1000)?,
+            other => return Err(CliError::unknown(other)),
+        }
+    }
+    Ok(args)
+}
 
 /// The median of `runs` timings of `f`, and its last result.
 fn timed<T>(runs: usize, mut f: impl FnMut() -> T) -> (Duration, T) {
@@ -128,26 +169,27 @@ fn target(runs: usize) {
     }
 }
 
+/// One table row: both modes and spade on `board`.
+fn row(name: &str, board: &Board, runs: usize) {
+    let (book, book_time) = ours(board, Mode::Book, runs);
+    let (coarse, coarse_time) = ours(board, Mode::Coarsest, runs);
+    let (sp, [lo, hi], sp_time, complete) = spade(board, runs);
+    println!(
+        "| {name} | {book} | {coarse} | {:.2} | {sp}{} | {lo:.1}-{hi:.1}° | {} | {} | {} |",
+        book as f64 / coarse as f64,
+        if complete { "" } else { " (incomplete)" },
+        ms(book_time),
+        ms(coarse_time),
+        ms(sp_time)
+    );
+}
+
 fn main() {
-    let mut seeds = 5u64;
-    let mut runs = 3usize;
-    let mut only_target = false;
-    let mut args = std::env::args().skip(1);
-    while let Some(arg) = args.next() {
-        if arg == "--target" {
-            only_target = true;
-            continue;
-        }
-        let value = args.next().and_then(|v| v.parse::<u64>().ok());
-        match (arg.as_str(), value) {
-            ("--seeds", Some(v)) => seeds = v,
-            ("--runs", Some(v)) => runs = v as usize,
-            _ => {
-                eprintln!("usage: mesh_compare [--seeds N] [--runs R] [--target]");
-                std::process::exit(2);
-            }
-        }
-    }
+    let Args {
+        seeds,
+        runs,
+        only_target,
+    } = cli::parse_or_exit(USAGE, parse);
     if only_target {
         return target(runs);
     }
@@ -162,39 +204,24 @@ fn main() {
         ])],
     )
     .expect("Figure 14.2's input is valid");
-    let mut boards = vec![
-        ("Figure 14.2 (U = 16)".to_string(), figure),
-        ("sample_board (U = 1024)".to_string(), sample_board()),
-    ];
-    for (size, count) in [(1 << 10, 160), (1 << 12, 640)] {
-        for seed in 0..seeds {
-            boards.push((
-                format!("random_board({seed}, {size}, {count})"),
-                random_board(seed, size, count),
-            ));
-        }
-    }
-    boards.push((
-        "random_board(7, 65536, 640)".to_string(),
-        random_board(7, 1 << 16, 640),
-    ));
     println!(
         "| board | book | coarsest | book / coarsest | spade 30° | spade angles | book time | \
          coarsest time | spade time |"
     );
     println!("|---|---|---|---|---|---|---|---|---|");
-    for (name, board) in &boards {
-        let (book, book_time) = ours(board, Mode::Book, runs);
-        let (coarse, coarse_time) = ours(board, Mode::Coarsest, runs);
-        let (sp, [lo, hi], sp_time, complete) = spade(board, runs);
-        println!(
-            "| {name} | {book} | {coarse} | {:.2} | {sp}{} | {lo:.1}-{hi:.1}° | {} | {} | {} |",
-            book as f64 / coarse as f64,
-            if complete { "" } else { " (incomplete)" },
-            ms(book_time),
-            ms(coarse_time),
-            ms(sp_time)
-        );
+    row("Figure 14.2 (U = 16)", &figure, runs);
+    row("sample_board (U = 1024)", &sample_board(), runs);
+    // One random board at a time, so memory does not grow with --seeds.
+    for (size, count) in [(1 << 10, 160), (1 << 12, 640)] {
+        for seed in 0..seeds {
+            let name = format!("random_board({seed}, {size}, {count})");
+            row(&name, &random_board(seed, size, count), runs);
+        }
     }
+    row(
+        "random_board(7, 65536, 640)",
+        &random_board(7, 1 << 16, 640),
+        runs,
+    );
     println!("book and coarsest: every angle 45 or 90 degrees (validated); times are medians.");
 }

@@ -26,9 +26,32 @@
 mod fem;
 
 use orthtree::io::vtk;
-use orthtree::mesh::{random_board, sample_board, Board, Mesh, MeshOptions};
+use orthtree::mesh::{sample_board, try_random_board, Board, Mesh, MeshOptions};
 use std::io::{BufWriter, Write};
 use std::time::{Duration, Instant};
+
+#[path = "common/cli.rs"]
+mod cli;
+use cli::{Cli, CliError};
+
+const USAGE: &str = "\
+usage: pcb_heat [BOARD.poly|BOARD.txt] [--size U] [--random SEED,U,COUNT]
+                [--max-triangles N] [--no-files]
+
+The steady heat equation on the quadtree mesh of a circuit board (the built-in board, a board
+file, or a seeded random board), solved with finite elements; writes pcb_heat.svg and
+pcb_heat.vtk into the current folder.
+
+options:
+  BOARD                    a board file (.poly, or the text format)
+  --size U                 the board's side U for a file that does not give it (1 to 2^30)
+  --random SEED,U,COUNT    random_board(SEED, U, COUNT) instead of a file: U a power of two from
+                           8 to 2^30, COUNT at most (U / 2)^2; counts whose mesh and solve would
+                           not fit in memory are refused
+  --max-triangles N        refuse a mesh of more than N triangles (default 2000000)
+  --no-files               write no files
+  -h, --help               this text
+";
 
 struct Args {
     board: Option<String>,
@@ -38,17 +61,76 @@ struct Args {
     files: bool,
 }
 
-const USAGE: &str = "usage: pcb_heat [BOARD.poly|BOARD.txt] [--size U] [--random SEED,U,COUNT] \
-                     [--max-triangles N] [--no-files] [--help]";
-
 /// The default mesh limit: about 10^6 unknowns, whose Cholesky factor fits in a few GiB.
 const DEFAULT_MAX_TRIANGLES: u64 = 2_000_000;
 
-/// The most components `--random` asks for: `random_board` places them in O(COUNT^2) time.
-const MAX_RANDOM_COUNT: usize = 100_000;
+/// Triangles of a board's mesh per step of its perimeter `p(S)` (Theorem 14.5 bounds them by
+/// `O(p(S) log U)`): measured 12.6 to 18.2 on the sample board and on random boards from U = 64
+/// to 2^22 (`generate_mesh`); with a margin.
+const TRIANGLES_PER_PERIMETER_STEP: f64 = 20.0;
+/// Peak bytes per triangle of the mesher (the mesh and its work): measured 43 B on a random
+/// board of 1.2 * 10^7 triangles; with a margin.
+const MESH_BYTES_PER_TRIANGLE: f64 = 80.0;
+/// Peak bytes per component of drawing and checking a random board (outlines, edge lines,
+/// placement boxes, `Board::new`'s work): measured 1.5 KB at 4 * 10^5 components; with a margin.
+const BOARD_BYTES_PER_COMPONENT: f64 = 2500.0;
+/// Every component has a perimeter of at least 4 steps (a unit square).
+const MIN_PERIMETER_STEPS: f64 = 4.0;
 
-/// `None` for `--help`.
-fn parse() -> Result<Option<Args>, String> {
+/// The estimated peak bytes of meshing and solving on a board of perimeter `steps`.
+fn solve_bytes_for_perimeter(steps: f64) -> f64 {
+    steps * TRIANGLES_PER_PERIMETER_STEP * (MESH_BYTES_PER_TRIANGLE + fem::SOLVE_BYTES_PER_TRIANGLE)
+}
+
+/// Refuses a board whose mesh and solve are estimated not to fit in memory, from its perimeter,
+/// before meshing it.
+fn check_board_work(board: &Board, name: &str) -> Result<(), CliError> {
+    let steps = board.perimeter_steps() as f64;
+    cli::check_memory(
+        &format!(
+            "{name}: perimeter {steps} steps, about {:.2e} triangles",
+            steps * TRIANGLES_PER_PERIMETER_STEP
+        ),
+        solve_bytes_for_perimeter(steps),
+        cli::memory_limit(),
+    )
+}
+
+/// `SEED,U,COUNT` of `--random`, each checked; the count against the board's capacity.
+fn parse_random(raw: &str) -> Result<(u64, i64, usize), CliError> {
+    let parts: Vec<&str> = raw.split(',').collect();
+    let [seed, size, count] = parts[..] else {
+        return Err(CliError::new(format!(
+            "--random {}: expected SEED,U,COUNT (three numbers separated by commas)",
+            cli::shown(raw)
+        )));
+    };
+    let seed = cli::parse_number("--random SEED", seed, 0, u64::MAX)?;
+    let size = cli::parse_number("--random U", size, 8, 1 << 30)?;
+    if size & (size - 1) != 0 {
+        return Err(CliError::new(format!(
+            "--random U {size}: expected a power of two from 8 to 2^30"
+        )));
+    }
+    let count = cli::parse_number("--random COUNT", count, 0, usize::MAX)?;
+    let capacity = orthtree::mesh::random_board_capacity(size);
+    if count as u64 > capacity {
+        return Err(CliError::new(format!(
+            "--random COUNT {count}: at most {capacity} components fit a board of side {size}"
+        )));
+    }
+    // A lower bound before the board is drawn (each component at least a unit square); the
+    // board's real perimeter is checked once it is drawn.
+    let least = count as f64;
+    cli::check_memory(
+        &format!("--random {raw}: {count} components of at least 4 perimeter steps each"),
+        least * (BOARD_BYTES_PER_COMPONENT + solve_bytes_for_perimeter(MIN_PERIMETER_STEPS)),
+        cli::memory_limit(),
+    )?;
+    Ok((seed, size, count))
+}
+
+fn parse(cli: &mut Cli) -> Result<Args, CliError> {
     let mut args = Args {
         board: None,
         size: None,
@@ -56,44 +138,30 @@ fn parse() -> Result<Option<Args>, String> {
         max_triangles: DEFAULT_MAX_TRIANGLES,
         files: true,
     };
-    let mut it = std::env::args().skip(1);
-    while let Some(arg) = it.next() {
-        let mut value = || it.next().ok_or(format!("{arg} needs a value"));
+    while let Some(arg) = cli.next_arg()? {
         match arg.as_str() {
-            "--help" | "-h" => return Ok(None),
-            "--size" => args.size = Some(value()?.parse().map_err(|e| format!("--size: {e}"))?),
+            "--size" => args.size = Some(cli.number("--size", 1, 1 << 30)?),
             "--max-triangles" => {
-                let v = value()?;
-                args.max_triangles = v.parse().map_err(|e| format!("--max-triangles {v:?}: {e}"))?
+                args.max_triangles = cli.number("--max-triangles", 1, u64::MAX)?
             }
-            "--random" => {
-                let v = value()?;
-                let parts: Vec<&str> = v.split(',').collect();
-                let bad = || format!("--random {v:?}: expected SEED,U,COUNT");
-                if parts.len() != 3 {
-                    return Err(bad());
-                }
-                let u: i64 = parts[1].parse().map_err(|_| bad())?;
-                if !(8..=1 << 30).contains(&u) || u & (u - 1) != 0 {
-                    return Err(format!(
-                        "--random: U = {u} is not a power of two from 8 to 2^30"
-                    ));
-                }
-                let count: usize = parts[2].parse().map_err(|_| bad())?;
-                if count > MAX_RANDOM_COUNT {
-                    return Err(format!(
-                        "--random: COUNT = {count} is above {MAX_RANDOM_COUNT} (placing \
-                         components takes time quadratic in the count)"
-                    ));
-                }
-                args.random = Some((parts[0].parse().map_err(|_| bad())?, u, count));
-            }
+            "--random" => args.random = Some(parse_random(&cli.value("--random")?)?),
             "--no-files" => args.files = false,
-            flag if flag.starts_with('-') && flag.len() > 1 => {
-                return Err(format!("unknown option {flag:?}"))
-            }
+            flag if flag.starts_with('-') => return Err(CliError::unknown(flag)),
             path if args.board.is_none() => args.board = Some(path.to_string()),
-            extra => return Err(format!("unexpected argument {extra:?}")),
+            extra => return Err(CliError::unknown(extra)),
+        }
+    }
+    if args.random.is_some() {
+        if let Some(path) = &args.board {
+            return Err(CliError::new(format!(
+                "--random and the board file {}: give one of them",
+                cli::shown(path)
+            )));
+        }
+        if let Some(size) = args.size {
+            return Err(CliError::new(format!(
+                "--size {size} with --random: the random board's side is its U"
+            )));
         }
     }
     if args.board.is_some() && args.random.is_some() {
@@ -104,10 +172,9 @@ fn parse() -> Result<Option<Args>, String> {
 
 fn read_board(args: &Args) -> Result<(Board, String), String> {
     if let Some((seed, u, count)) = args.random {
-        return Ok((
-            random_board(seed, u, count),
-            format!("random_board({seed}, {u}, {count})"),
-        ));
+        return try_random_board(seed, u, count)
+            .map(|b| (b, format!("random_board({seed}, {u}, {count})")))
+            .map_err(|e| e.to_string());
     }
     let Some(path) = &args.board else {
         return Ok((sample_board(), "built-in sample board".into()));
@@ -270,21 +337,14 @@ fn ms(d: Duration) -> String {
 }
 
 fn main() {
-    let args = match parse() {
-        Ok(Some(args)) => args,
-        Ok(None) => {
-            println!("{USAGE}");
-            return;
-        }
-        Err(e) => {
-            eprintln!("error: {e}\n{USAGE}");
-            std::process::exit(2);
-        }
-    };
+    let args = cli::parse_or_exit(USAGE, parse);
     let (board, name) = read_board(&args).unwrap_or_else(|e| {
         eprintln!("error: {e}");
         std::process::exit(1);
     });
+    if let Err(e) = check_board_work(&board, &name) {
+        cli::exit_with(USAGE, e);
+    }
     let start = Instant::now();
     let options = MeshOptions::new().grid_unit(1).max_triangles(args.max_triangles);
     let out = options.generate(&board).unwrap_or_else(|e| {
@@ -293,6 +353,12 @@ fn main() {
     });
     let mesh_time = start.elapsed();
     let mesh = out.mesh;
+    let solve_work = format!("{name}: {} triangles to solve on", mesh.triangles.len());
+    let solve_bytes = fem::estimated_solve_bytes(mesh.triangles.len());
+    if let Err(e) = cli::check_memory(&solve_work, solve_bytes, cli::memory_limit()) {
+        eprintln!("error: {e}");
+        std::process::exit(2);
+    }
 
     let (k, q) = fem::board_materials(&board);
     let start = Instant::now();

@@ -5,7 +5,7 @@
 //! `point_location.svg` (or the path given).
 //!
 //! ```text
-//! cargo run --release --example point_location [-- out.svg]
+//! cargo run --release --example point_location [-- [--out] out.svg]
 //! ```
 
 use orthtree::compressed::{PointLocator, Subdivision};
@@ -17,6 +17,42 @@ use std::time::Instant;
 
 #[path = "../benches/workloads/compressed.rs"]
 mod workload;
+
+#[path = "common/cli.rs"]
+mod cli;
+use cli::{Cli, CliError};
+use std::path::PathBuf;
+
+const USAGE: &str = "\
+usage: point_location [[--out] FILE.svg]
+
+Point location in a planar subdivision with a compressed quadtree: sizes and times of both leaf
+rules, and a picture of the subdivision, its quadtree and located sample points.
+
+options:
+  --out FILE     the picture to write, in a folder that exists (default point_location.svg);
+                 the path may also be given alone
+  -h, --help     this text
+";
+
+/// The picture's path: `--out FILE` or one positional path.
+fn parse(cli: &mut Cli) -> Result<PathBuf, CliError> {
+    let mut out = None;
+    while let Some(arg) = cli.next_arg()? {
+        let path = match arg.as_str() {
+            "--out" => cli.output_path("--out")?,
+            other if other.starts_with('-') => return Err(CliError::unknown(other)),
+            other => cli::output_path("the picture path", other)?,
+        };
+        if out.replace(path).is_some() {
+            return Err(CliError::new(format!(
+                "{}: only one picture path may be given",
+                cli::shown(&arg)
+            )));
+        }
+    }
+    Ok(out.unwrap_or_else(|| PathBuf::from("point_location.svg")))
+}
 
 /// A jittered triangulated `k` by `k` grid ([`workload::triangulated_grid`]) plus a wheel of
 /// `spokes` spokes and radius `r` around `centre`, joined to the nearest grid vertex by one
@@ -49,9 +85,7 @@ fn colour(face: u32) -> String {
 }
 
 fn main() {
-    let out = std::env::args()
-        .nth(1)
-        .unwrap_or_else(|| "point_location.svg".into());
+    let out = cli::parse_or_exit(USAGE, parse);
     let k = 8;
     let s = subdivision(k, 12, [2.35, 3.3], 0.12);
     println!(
@@ -117,6 +151,9 @@ fn main() {
         .map(|e| e.map(|i| s.vertices()[i as usize]));
     svg.segments(edges, &Style::solid().stroke("black").stroke_width(1.4));
     svg.points(s.vertices(), &Style::points().point_radius(2.5));
-    svg.write_to(&out).expect("write the SVG");
-    println!("wrote {out}");
+    if let Err(e) = svg.write_to(&out) {
+        eprintln!("error: cannot write {}: {e}", out.display());
+        std::process::exit(1);
+    }
+    println!("wrote {}", out.display());
 }

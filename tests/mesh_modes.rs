@@ -9,8 +9,8 @@ mod mesh_oracle;
 
 use mesh_oracle::{assert_valid_board, assert_valid_mesh, board, figure_14_2};
 use orthtree::mesh::{
-    generate_mesh, random_board, sample_board, Board, Component, Mesh, MeshOptions, MeshOutcome,
-    Mode, OptionsError,
+    generate_mesh, random_board, random_board_capacity, sample_board, Board, Component, Mesh,
+    MeshOptions, MeshOutcome, Mode, OptionsError,
 };
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
@@ -257,6 +257,7 @@ proptest! {
     #[test]
     fn every_mode_on_random_boards(seed in any::<u64>(), level in 3u32..=9, count in 0usize..50,
                                    max in 1u32..=9, near in 0u32..=4) {
+        let count = count.min(random_board_capacity(1 << level) as usize);
         let b = random_board(seed, 1 << level, count);
         let (g, max, near) = (b.grid_unit(), 1i64 << max.min(level), 1i64 << near);
         let (max, near) = (max.max(g), near.max(g));

@@ -9,7 +9,8 @@ mod mesh_oracle;
 
 use mesh_oracle::{assert_valid_board, assert_valid_mesh, board, figure_14_2, Stats};
 use orthtree::mesh::{
-    generate_mesh, random_board, sample_board, Board, Mesh, MeshOutcome, Point, SegmentKind,
+    generate_mesh, random_board, random_board_capacity, sample_board, Board, Mesh, MeshOutcome,
+    Point, SegmentKind,
 };
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
@@ -222,20 +223,23 @@ fn random_boards_mesh() {
 fn random_boards_are_valid_at_every_size() {
     for level in 3..=30u32 {
         let size = 1i64 << level;
+        // U = 8 holds at most (U / 2)^2 = 16 components
+        let count = 60.min(random_board_capacity(size) as usize);
         for seed in 0..4 {
-            let b = random_board(seed, size, 60);
+            let b = random_board(seed, size, count);
             assert_valid_board(&b);
-            assert_eq!(b, random_board(seed, size, 60), "deterministic");
+            assert_eq!(b, random_board(seed, size, count), "deterministic");
             assert!(!b.components().is_empty());
             if level >= 8 {
                 assert_eq!(b.components().len(), 60, "room for all at U = {size}");
             }
         }
     }
-    // Small boards fill up: fewer components than asked, but valid.
-    let full = random_board(9, 8, 500);
+    // Small boards fill up: fewer components than asked, but valid. (A count above the
+    // capacity (U / 2)^2, such as 500 at U = 8, is refused: see tests/random_board.rs.)
+    let full = random_board(9, 8, 16);
     assert_valid_board(&full);
-    assert!(full.components().len() < 500);
+    assert!(full.components().len() < 16);
     assert!(random_board(9, 16, 0).components().is_empty());
 }
 
@@ -360,6 +364,7 @@ proptest! {
 
     #[test]
     fn random_boards_mesh_correctly(seed in any::<u64>(), level in 3u32..=9, count in 0usize..50) {
+        let count = count.min(random_board_capacity(1 << level) as usize);
         let b = random_board(seed, 1 << level, count);
         prop_assert!(b.components().len() <= count);
         let (out, stats) = mesh_and_check(&b);

@@ -3,6 +3,7 @@
 
 mod board;
 mod budget;
+mod box_index;
 mod check;
 mod error;
 mod generate;
@@ -25,6 +26,6 @@ pub use generate::{generate_mesh, MeshOutcome};
 pub use halfedge::{HalfEdgeError, HalfEdges, Outgoing};
 pub use options::{MeshOptions, Mode, OptionsError, SizeFn};
 pub use output::{Mesh, Segment, SegmentKind};
-pub use random_board::random_board;
+pub use random_board::{random_board, random_board_capacity, try_random_board, RandomBoardError};
 pub use samples::sample_board;
 pub use validate::{Check, ValidationReport};
