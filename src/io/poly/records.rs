@@ -39,14 +39,17 @@ impl<'a> Records<'a> {
         Ok(None)
     }
 
-    /// The next data line, or an error on the last line naming what was `expected`.
+    /// The next data line, or [`Records::end_of_input`].
     pub(super) fn expect(&mut self, expected: &str) -> Result<Line<'a>, BoardError> {
-        self.next()?.ok_or_else(|| {
-            parse_error(
-                self.lines.last_number().max(1),
-                format!("unexpected end of input: expected {expected}"),
-            )
-        })
+        self.next()?.ok_or_else(|| self.end_of_input(expected))
+    }
+
+    /// The error for input that ends where `expected` should be, on the last line.
+    pub(super) fn end_of_input(&self, expected: &str) -> BoardError {
+        parse_error(
+            self.lines.last_number().max(1),
+            format!("unexpected end of input: expected {expected}"),
+        )
     }
 
     fn size_comment(&mut self, line: &Line<'_>, comment: &str) -> Result<(), BoardError> {

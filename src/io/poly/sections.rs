@@ -88,7 +88,7 @@ pub(super) fn read_vertices(records: &mut Records<'_>) -> Result<Vertices, Board
         let next_id = vertices.base + i as i64;
         let Some(record) = records.next()? else {
             return Err(if i == 0 {
-                records.expect(&format!("vertex 1 of {count}")).unwrap_err()
+                records.end_of_input(&format!("vertex 1 of {count}"))
             } else {
                 count_error(
                     line,
@@ -189,9 +189,7 @@ pub(super) fn read_segments(
     for s in 0..count {
         let Some(record) = records.next()? else {
             return Err(if s == 0 {
-                records
-                    .expect(&format!("segment 1 of {count}"))
-                    .unwrap_err()
+                records.end_of_input(&format!("segment 1 of {count}"))
             } else {
                 count_error(
                     line,
