@@ -164,10 +164,7 @@ fn parse(cli: &mut Cli) -> Result<Args, CliError> {
             )));
         }
     }
-    if args.board.is_some() && args.random.is_some() {
-        return Err("give a board file or --random, not both".into());
-    }
-    Ok(Some(args))
+    Ok(args)
 }
 
 fn read_board(args: &Args) -> Result<(Board, String), String> {
