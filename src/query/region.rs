@@ -130,9 +130,9 @@ impl<const D: usize> Region<D> for Aabb<f64, D> {
 /// assert!(!b.contains(&[3.0, 4.5]));
 /// assert!(Ball::new([0.0, 0.0], -1.0).is_err());
 /// let huge = Ball::new([0.0, 0.0], 1e200).unwrap();
-/// assert!(huge.contains(&[6e199, 8e199]) && !huge.contains(&[1e201, 0.0]));
+/// assert!(huge.contains(&[3e199, 4e199]) && !huge.contains(&[1e201, 0.0]));
 /// let tiny = Ball::new([0.0, 0.0], 1e-300).unwrap();
-/// assert!(tiny.contains(&[6e-301, 8e-301]) && !tiny.contains(&[1e-200, 0.0]));
+/// assert!(tiny.contains(&[3e-301, 4e-301]) && !tiny.contains(&[1e-200, 0.0]));
 /// assert!(Ball::new([0.0, 0.0], f64::INFINITY).unwrap().contains(&[f64::MAX, -f64::MAX]));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
