@@ -141,9 +141,7 @@ fn parse(cli: &mut Cli) -> Result<Args, CliError> {
     while let Some(arg) = cli.next_arg()? {
         match arg.as_str() {
             "--size" => args.size = Some(cli.number("--size", 1, 1 << 30)?),
-            "--max-triangles" => {
-                args.max_triangles = cli.number("--max-triangles", 1, u64::MAX)?
-            }
+            "--max-triangles" => args.max_triangles = cli.number("--max-triangles", 1, u64::MAX)?,
             "--random" => args.random = Some(parse_random(&cli.value("--random")?)?),
             "--no-files" => args.files = false,
             flag if flag.starts_with('-') => return Err(CliError::unknown(flag)),
@@ -219,7 +217,11 @@ fn write_heat_svg(
         (level.max(0.0) as usize).min(LEVELS - 1)
     };
     // Counting sort of the triangles by level: `order[start[l]..start[l + 1]]` is level l.
-    let levels: Vec<u8> = mesh.triangles.iter().map(|tri| level_of(tri) as u8).collect();
+    let levels: Vec<u8> = mesh
+        .triangles
+        .iter()
+        .map(|tri| level_of(tri) as u8)
+        .collect();
     let mut start = [0usize; LEVELS + 1];
     for &l in &levels {
         start[l as usize + 1] += 1;
@@ -267,7 +269,11 @@ fn write_heat_svg(
         )?;
         for &k in members {
             let [a, b, c] = mesh.triangles[k as usize].map(|v| mesh.vertices[v as usize]);
-            write!(out, "M{} {}L{} {}L{} {}Z", a[0], a[1], b[0], b[1], c[0], c[1])?;
+            write!(
+                out,
+                "M{} {}L{} {}L{} {}Z",
+                a[0], a[1], b[0], b[1], c[0], c[1]
+            )?;
         }
         writeln!(out, "\"/>")?;
     }
@@ -343,7 +349,9 @@ fn main() {
         cli::exit_with(USAGE, e);
     }
     let start = Instant::now();
-    let options = MeshOptions::new().grid_unit(1).max_triangles(args.max_triangles);
+    let options = MeshOptions::new()
+        .grid_unit(1)
+        .max_triangles(args.max_triangles);
     let out = options.generate(&board).unwrap_or_else(|e| {
         eprintln!("error: {e}");
         std::process::exit(1);

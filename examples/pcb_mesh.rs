@@ -57,7 +57,9 @@ fn parse_random(v: &str) -> Result<(u64, i64, usize), String> {
     let seed = parse_number("--random SEED", seed)?;
     let u: i64 = parse_number("--random U", u)?;
     if !(8..=1 << 30).contains(&u) || u & (u - 1) != 0 {
-        return Err(format!("--random: U = {u} is not a power of two from 8 to 2^30"));
+        return Err(format!(
+            "--random: U = {u} is not a power of two from 8 to 2^30"
+        ));
     }
     let count: usize = parse_number("--random COUNT", count)?;
     if count > MAX_RANDOM_COUNT {
@@ -91,9 +93,7 @@ fn parse(args: impl IntoIterator<Item = String>) -> Result<Parsed, String> {
             "--unit" => a.options = options.grid_unit(parse_number(&arg, &value()?)?),
             "--near" => a.options = options.near_size(parse_number(&arg, &value()?)?),
             "--max" => a.options = options.max_size(parse_number(&arg, &value()?)?),
-            "--max-triangles" => {
-                a.options = options.max_triangles(parse_number(&arg, &value()?)?)
-            }
+            "--max-triangles" => a.options = options.max_triangles(parse_number(&arg, &value()?)?),
             "--out" => a.out = value()?,
             "--no-svg" => a.svg = false,
             "--no-files" => a.files = false,
@@ -178,7 +178,8 @@ fn write_all(
             }),
         ];
         for job in jobs {
-            job.join().map_err(|_| std::io::Error::other("a writer panicked"))??;
+            job.join()
+                .map_err(|_| std::io::Error::other("a writer panicked"))??;
         }
         Ok::<(), std::io::Error>(())
     })?;

@@ -27,7 +27,12 @@ fn refused(board: &Board, options: MeshOptions, within: Duration) -> u64 {
 }
 
 fn square(x: i64, y: i64, side: i64) -> Component {
-    Component::new(vec![[x, y], [x + side, y], [x + side, y + side], [x, y + side]])
+    Component::new(vec![
+        [x, y],
+        [x + side, y],
+        [x + side, y + side],
+        [x, y + side],
+    ])
 }
 
 #[test]
@@ -36,8 +41,11 @@ fn huge_boards_with_small_maximum_sizes_fail_at_once() {
         let board = Board::new(1 << levels, vec![]).unwrap();
         let options = MeshOptions::new().grid_unit(1).max_size(max);
         let needs = refused(&board, options, Duration::from_millis(50));
-        let side = (1u64 << levels) / (max as u64).next_power_of_two().min(max as u64 * 2) ;
-        assert!(needs >= 2 * side * side / 4, "U = 2^{levels}, max {max}: {needs}");
+        let side = (1u64 << levels) / (max as u64).next_power_of_two().min(max as u64 * 2);
+        assert!(
+            needs >= 2 * side * side / 4,
+            "U = 2^{levels}, max {max}: {needs}"
+        );
     }
     // the 12-byte text board of the report: `size 1073741824`, unit 1, max 1
     let board = Board::new(1 << 30, vec![]).unwrap();
@@ -53,12 +61,19 @@ fn huge_boards_with_small_maximum_sizes_fail_at_once() {
 fn huge_components_in_unit_cells_fail_at_once() {
     let boards = [
         Board::new(1 << 30, vec![square(1, 1, (1 << 30) - 2)]).unwrap(),
-        Board::new(1 << 30, vec![square(7, 9, 1 << 28), square(1 << 29, 1 << 29, 1 << 27)])
-            .unwrap(),
+        Board::new(
+            1 << 30,
+            vec![square(7, 9, 1 << 28), square(1 << 29, 1 << 29, 1 << 27)],
+        )
+        .unwrap(),
         Board::new(1 << 26, vec![square(3, 3, (1 << 26) - 8)]).unwrap(),
     ];
     for board in &boards {
-        let needs = refused(board, MeshOptions::new().grid_unit(1), Duration::from_millis(50));
+        let needs = refused(
+            board,
+            MeshOptions::new().grid_unit(1),
+            Duration::from_millis(50),
+        );
         // at least one unit cell per six unit steps of outline
         assert!(needs >= board.perimeter_steps() / 3, "{needs}");
         // the chapter's entry point gives the same refusal as a board error
@@ -95,7 +110,11 @@ fn size_functions_forcing_unit_cells_stop_at_the_budget() {
         // unit cells in a disc of radius 0.8 U around (hot * U, hot * U), which the board alone cannot show
         let f = move |p: [f64; 2]| {
             let d = (p[0] - hot * u).hypot(p[1] - hot * u);
-            if d < 0.8 * u { 0.5 } else { f64::INFINITY }
+            if d < 0.8 * u {
+                0.5
+            } else {
+                f64::INFINITY
+            }
         };
         for mode in [Mode::Book, Mode::Coarsest] {
             let options = MeshOptions::new()
@@ -127,7 +146,10 @@ fn boards_within_the_budget_mesh_as_without_it() {
             let default = MeshOptions::new().mode(mode).generate(board).unwrap().mesh;
             assert_eq!(default, mesh);
             // the limit is exact: n triangles fit a limit of n, not of n - 1
-            let tight = MeshOptions::new().mode(mode).max_triangles(n).generate(board);
+            let tight = MeshOptions::new()
+                .mode(mode)
+                .max_triangles(n)
+                .generate(board);
             assert_eq!(tight.unwrap().mesh, mesh);
             let below = MeshOptions::new().mode(mode).max_triangles(n - 1);
             assert_eq!(refused(board, below, Duration::from_secs(5)), n);

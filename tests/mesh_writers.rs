@@ -5,7 +5,9 @@
 
 use orthtree::io::svg::{mesh_svg, write_mesh_svg, MESH_SVG_DETAIL_TRIANGLES};
 use orthtree::io::{triangle, vtk};
-use orthtree::mesh::{random_board, sample_board, Board, Component, Mesh, MeshOptions, Mode, SegmentKind};
+use orthtree::mesh::{
+    random_board, sample_board, Board, Component, Mesh, MeshOptions, Mode, SegmentKind,
+};
 use std::collections::HashMap;
 use std::fmt::Write as _;
 
@@ -80,7 +82,11 @@ fn reference_vtk(mesh: &Mesh) -> String {
     for _ in 0..t {
         out.push_str("5\n");
     }
-    writeln!(out, "CELL_DATA {t}\nSCALARS region int 1\nLOOKUP_TABLE default").unwrap();
+    writeln!(
+        out,
+        "CELL_DATA {t}\nSCALARS region int 1\nLOOKUP_TABLE default"
+    )
+    .unwrap();
     for r in &mesh.regions {
         writeln!(out, "{r}").unwrap();
     }
@@ -98,10 +104,22 @@ fn boards() -> Vec<Board> {
         sample_board(),
         random_board(1, 1 << 10, 30),
         random_board(5, 1 << 14, 50),
-        Board::new(16, vec![Component::new(vec![[1, 14], [2, 14], [2, 15], [1, 15]])]).unwrap(),
+        Board::new(
+            16,
+            vec![Component::new(vec![[1, 14], [2, 14], [2, 15], [1, 15]])],
+        )
+        .unwrap(),
         Board::new(1, vec![]).unwrap(),
         // coordinates and indices of many digits
-        Board::new(1 << 30, vec![Component::new(vec![[1 << 20, 3 << 20], [9 << 22, 3 << 20], [9 << 22, (3 << 20) + (9 << 22) - (1 << 20)]])]).unwrap(),
+        Board::new(
+            1 << 30,
+            vec![Component::new(vec![
+                [1 << 20, 3 << 20],
+                [9 << 22, 3 << 20],
+                [9 << 22, (3 << 20) + (9 << 22) - (1 << 20)],
+            ])],
+        )
+        .unwrap(),
     ]
 }
 
@@ -110,9 +128,18 @@ fn streamed_files_equal_the_reference_layout() {
     for board in boards() {
         for mode in [Mode::Book, Mode::Coarsest] {
             let mesh = MeshOptions::new().mode(mode).generate(&board).unwrap().mesh;
-            assert_eq!(written(|o| triangle::write_node(&mesh, o)), reference_node(&mesh));
-            assert_eq!(written(|o| triangle::write_ele(&mesh, o)), reference_ele(&mesh));
-            assert_eq!(written(|o| triangle::write_edge(&mesh, o)), reference_edge(&mesh));
+            assert_eq!(
+                written(|o| triangle::write_node(&mesh, o)),
+                reference_node(&mesh)
+            );
+            assert_eq!(
+                written(|o| triangle::write_ele(&mesh, o)),
+                reference_ele(&mesh)
+            );
+            assert_eq!(
+                written(|o| triangle::write_edge(&mesh, o)),
+                reference_edge(&mesh)
+            );
             assert_eq!(written(|o| vtk::write_vtk(&mesh, o)), reference_vtk(&mesh));
         }
     }
@@ -143,7 +170,11 @@ fn large_meshes_are_drawn_merged_and_bounded() {
     for (seed, levels, count) in [(3, 14, 60), (7, 16, 200), (11, 18, 120)] {
         let board = random_board(seed, 1 << levels, count);
         let mesh = MeshOptions::new().generate(&board).unwrap().mesh;
-        assert!(mesh.triangles.len() > MESH_SVG_DETAIL_TRIANGLES, "{}", mesh.triangles.len());
+        assert!(
+            mesh.triangles.len() > MESH_SVG_DETAIL_TRIANGLES,
+            "{}",
+            mesh.triangles.len()
+        );
         let mut out = Vec::new();
         write_mesh_svg(&mesh, &board, &mut out).unwrap();
         let svg = String::from_utf8(out).unwrap();
@@ -163,7 +194,11 @@ fn large_meshes_are_drawn_merged_and_bounded() {
 #[test]
 fn small_meshes_are_drawn_triangle_by_triangle() {
     for board in boards() {
-        let mesh = MeshOptions::new().mode(Mode::Coarsest).generate(&board).unwrap().mesh;
+        let mesh = MeshOptions::new()
+            .mode(Mode::Coarsest)
+            .generate(&board)
+            .unwrap()
+            .mesh;
         if mesh.triangles.len() <= MESH_SVG_DETAIL_TRIANGLES {
             let svg = mesh_svg(&mesh, &board);
             assert_eq!(svg.matches("<polygon").count(), mesh.triangles.len());

@@ -134,7 +134,19 @@ mod tests {
     fn integers_as_std_formats_them() {
         let mut v = Vec::new();
         let mut out = TextOut::new(&mut v);
-        let values = [0, 1, -1, 9, 10, 99, 100, 12345, i64::MAX, i64::MIN, -1073741824];
+        let values = [
+            0,
+            1,
+            -1,
+            9,
+            10,
+            99,
+            100,
+            12345,
+            i64::MAX,
+            i64::MIN,
+            -1073741824,
+        ];
         for x in values {
             out.i(x).sp();
         }

@@ -119,7 +119,13 @@ fn node_unchecked(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
     let mut o = TextOut::new(out);
     o.u(mesh.vertices.len() as u64).s(" 2 0 1").nl()?;
     for (i, (p, &b)) in mesh.vertices.iter().zip(&on_boundary).enumerate() {
-        o.u(i as u64 + 1).sp().i(p[0]).sp().i(p[1]).sp().u(u64::from(b));
+        o.u(i as u64 + 1)
+            .sp()
+            .i(p[0])
+            .sp()
+            .i(p[1])
+            .sp()
+            .u(u64::from(b));
         o.nl()?;
     }
     o.finish()
@@ -137,7 +143,15 @@ fn ele_unchecked(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
     o.u(mesh.triangles.len() as u64).s(" 3 1").nl()?;
     for (i, (t, &r)) in mesh.triangles.iter().zip(&mesh.regions).enumerate() {
         let [a, b, c] = t.map(|v| u64::from(v) + 1);
-        o.u(i as u64 + 1).sp().u(a).sp().u(b).sp().u(c).sp().u(u64::from(r));
+        o.u(i as u64 + 1)
+            .sp()
+            .u(a)
+            .sp()
+            .u(b)
+            .sp()
+            .u(c)
+            .sp()
+            .u(u64::from(r));
         o.nl()?;
     }
     o.finish()

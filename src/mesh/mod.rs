@@ -2,8 +2,8 @@
 //! triangle [`Mesh`] that respects the input, with every angle in [45, 90] degrees, out.
 
 mod board;
-mod budget;
 mod box_index;
+mod budget;
 mod check;
 mod error;
 mod generate;

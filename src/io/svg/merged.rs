@@ -84,7 +84,8 @@ pub(super) fn write(mesh: &Mesh, board: &Board, out: &mut impl Write) -> io::Res
     let (w, h) = svg.size_px();
     let mut o = TextOut::new(out);
     o.s(&svg.header());
-    o.s("<rect width=\"100%\" height=\"100%\" fill=\"white\"/>").nl()?;
+    o.s("<rect width=\"100%\" height=\"100%\" fill=\"white\"/>")
+        .nl()?;
 
     // Regions: the board, then each component's outline filled.
     let board_style = Style::solid().stroke("none").fill(BOARD_FILL);
@@ -92,7 +93,9 @@ pub(super) fn write(mesh: &Mesh, board: &Board, out: &mut impl Write) -> io::Res
     write_rect(&mut o, &svg, &view)?;
     o.s("</g>").nl()?;
     for (i, c) in board.components().iter().enumerate() {
-        o.s("<path fill=\"").s(&escape(region_fill(i as u32 + 1))).s("\" d=\"");
+        o.s("<path fill=\"")
+            .s(&escape(region_fill(i as u32 + 1)))
+            .s("\" d=\"");
         write_ring(&mut o, &svg, &c.outline)?;
         o.s("\"/>").nl()?;
     }

@@ -161,7 +161,20 @@ fn all_zero_dash_is_solid_and_numbers_are_short() {
 #[test]
 fn numbers_without_allocation_match() {
     let mut buf = [0u8; 40];
-    for x in [0.0, -0.0, 1.0, -0.0001, 2.5, 0.0625, 1e7, -1e7, 1e300, f64::NAN, 123.4567, -3.1] {
+    for x in [
+        0.0,
+        -0.0,
+        1.0,
+        -0.0001,
+        2.5,
+        0.0625,
+        1e7,
+        -1e7,
+        1e300,
+        f64::NAN,
+        123.4567,
+        -3.1,
+    ] {
         assert_eq!(format::num_into(x, &mut buf), num(x).as_bytes(), "{x}");
     }
 }
