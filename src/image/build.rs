@@ -49,8 +49,9 @@ impl<const D: usize> RegionTree<D> {
     ) -> Result<Self, ImageError> {
         let depth = Self::depth_for(extent)?;
         let mut w = Writer::<D>::with_capacity(64);
-        // (min, level, child being visited) of each open cell
-        let mut stack: Vec<([u32; D], u8, u8)> = Vec::with_capacity(32);
+        // (min, level, child being visited) of each open cell; the child counts in a `u16`, as
+        // it reaches 2^D = 256 in 8-D
+        let mut stack: Vec<([u32; D], u8, u16)> = Vec::with_capacity(32);
         let (mut min, mut level) = ([0u32; D], 0u8);
         loop {
             let side = 1u32 << (depth - level);

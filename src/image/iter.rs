@@ -27,10 +27,11 @@ pub struct Blocks<'a, const D: usize> {
     /// the cell of the node at `pos`
     cur: ([u32; D], u8),
     /// (min, level, child being read) of each open internal node
-    stack: SmallVec<[([u32; D], u8, u8); 32]>,
+    /// (the child counts in a `u16`: it reaches 2^D = 256 in 8-D)
+    stack: SmallVec<[([u32; D], u8, u16); 32]>,
 }
 
-fn child<const D: usize>(min: [u32; D], level: u8, depth: u8, c: u8) -> [u32; D] {
+fn child<const D: usize>(min: [u32; D], level: u8, depth: u8, c: u16) -> [u32; D] {
     let half = 1u32 << (depth - level - 1);
     core::array::from_fn(|a| min[a] + ((c >> a) & 1) as u32 * half)
 }
