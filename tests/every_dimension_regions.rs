@@ -76,6 +76,9 @@ fn assert_image<const D: usize>(t: &RegionTree<D>, extent: [u32; D], want: &[boo
     assert_eq!(from_blocks, count, "D = {D}: {what} black blocks");
 }
 
+/// A Boolean operation on two pixels.
+type PixelOp = fn(bool, bool) -> bool;
+
 fn check_image<const D: usize>(rng: &mut SmallRng, extent: [u32; D]) {
     let noise = [0.0, 0.05, 0.5][rng.gen_range(0..3)];
     let (pa, pb) = (
@@ -120,7 +123,7 @@ fn check_image<const D: usize>(rng: &mut SmallRng, extent: [u32; D]) {
         "from_boxes",
     );
 
-    let ops: [(BoolOp, fn(bool, bool) -> bool); 4] = [
+    let ops: [(BoolOp, PixelOp); 4] = [
         (BoolOp::And, |x, y| x && y),
         (BoolOp::Or, |x, y| x || y),
         (BoolOp::Xor, |x, y| x != y),
