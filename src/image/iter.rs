@@ -153,8 +153,8 @@ impl<const D: usize> RegionTree<D> {
     }
 }
 
-/// Sets bits `lo .. hi` of a packed bitmap.
-fn set_bits(words: &mut [u64], lo: usize, hi: usize) {
+/// Sets bits `lo .. hi` of a packed bitmap (or row).
+pub(super) fn set_bits(words: &mut [u64], lo: usize, hi: usize) {
     if lo >= hi {
         return;
     }

@@ -14,6 +14,7 @@
 //! time, bit-packed, with O(w + k) memory beyond the tree: for each level it keeps the internal
 //! nodes and the black leaves of that level crossing the current row.
 
+use super::iter::set_bits;
 use super::ops::subtree_end;
 use super::{ImageError, ImageTree, RegionTree, BLACK, INTERNAL, WHITE};
 
@@ -403,23 +404,6 @@ impl RegionTree<2> {
         }
         Ok(())
     }
-}
-
-/// Sets bits `lo .. hi` of a packed row.
-fn set_bits(words: &mut [u64], lo: usize, hi: usize) {
-    if lo >= hi {
-        return;
-    }
-    let (wl, wh) = (lo / 64, (hi - 1) / 64);
-    let first = !0u64 << (lo % 64);
-    let last = !0u64 >> (63 - (hi - 1) % 64);
-    if wl == wh {
-        words[wl] |= first & last;
-        return;
-    }
-    words[wl] |= first;
-    words[wl + 1..wh].fill(!0);
-    words[wh] |= last;
 }
 
 #[cfg(test)]
