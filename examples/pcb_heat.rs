@@ -161,6 +161,10 @@ fn parse(cli: &mut Cli) -> Result<Args, CliError> {
                 "--size {size} with --random: the random board's side is its U"
             )));
         }
+    } else if let (Some(size), None) = (args.size, &args.board) {
+        return Err(CliError::new(format!(
+            "--size {size} needs a board file (the built-in board has its own size)"
+        )));
     }
     Ok(args)
 }
