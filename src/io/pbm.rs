@@ -411,30 +411,26 @@ pub fn from_bytes_with_limits(bytes: &[u8], limits: Limits) -> Result<ImageTree,
             Some(b'#') => c.comment(),
             Some(b) if is_space(b) => c.bump(),
             None => return Err(c.truncated(u64::from(w).div_ceil(8) * u64::from(h), 0, true)),
-            Some(_) => {
-                return Err(PbmError::MissingWhitespace {
-                    after: "height",
-                    offset: c.pos,
-                    line: c.line,
-                    found: c.token(),
-                })
-            }
+            Some(_) => return Err(no_space_after_height(&c)),
         }
         read_raw(&mut c, [w, h], budget)
     } else {
         match c.peek() {
             Some(b) if b == b'#' || is_space(b) => {}
             None => return Err(c.truncated(u64::from(w) * u64::from(h), 0, false)),
-            Some(_) => {
-                return Err(PbmError::MissingWhitespace {
-                    after: "height",
-                    offset: c.pos,
-                    line: c.line,
-                    found: c.token(),
-                })
-            }
+            Some(_) => return Err(no_space_after_height(&c)),
         }
         read_plain(&mut c, [w, h], budget)
+    }
+}
+
+/// The error for a byte after the height that is neither whitespace nor a comment.
+fn no_space_after_height(c: &Cursor<'_>) -> PbmError {
+    PbmError::MissingWhitespace {
+        after: "height",
+        offset: c.pos,
+        line: c.line,
+        found: c.token(),
     }
 }
 
