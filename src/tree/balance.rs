@@ -1,216 +1,279 @@
-//! The reference 2:1 balance: the chapter's BALANCEQUADTREE (section 14.2, Theorem 14.4) generalised to D
-//! dimensions, to face, edge and corner connectivity, and to the weak balance of exercise 14.6
-//! (adjacent leaves may differ by a factor 4, i.e. two levels).
+//! Level-by-level 2:1 balance: every split forced, each internal node examined once, no worklist
+//! of leaves and no searches below neighbours.
 //!
-//! A worklist holds leaves to examine. A leaf must be split when some leaf adjacent to it (under
-//! the chosen connectivity) is more than `max_level_difference` levels deeper; that is found with
-//! [`Tree::neighbor`]: the same-level neighbour has an internal descendant touching the shared
-//! side `max_level_difference` levels down. After a split, its 2^D children are examined, and so
-//! is every neighbour leaf now too coarse next to them. Every split is forced, so the result is
-//! the coarsest balanced refinement.
+//! The test. A tree is balanced (adjacent leaves differ by at most k levels under a connectivity)
+//! exactly when, for every internal node C at level l and every direction δ allowed by the
+//! connectivity that leaves C's parent P on every axis it moves along, the neighbour search from C
+//! ([`Tree::neighbor`]) ends at level l - (k - 1) or deeper. (Any leaf adjacent to a child of C is
+//! found in such a direction; directions that stay inside P lead to siblings, which exist; and
+//! directions that leave P on only some of their axes reach the same node as their restriction to
+//! those axes.) Testing this costs one neighbour search per internal node and outward direction
+//! ((2^D - 1) at most, D with face connectivity); [`Tree::is_balanced`] (`balance_check.rs`)
+//! tests the same condition without searches.
 //!
-//! The crate's [`Tree::balance`] (in `ripple.rs`) gives the same tree faster; this one stays as the
-//! oracle it is tested against, and is where [`BalanceOptions`] lives.
+//! The repair. Internal nodes are taken by level, deepest first. For each outward direction whose
+//! search ends too shallow, the search's path is followed down, splitting the leaf met at each
+//! level, until level l - (k - 1) is reached. Those splits are forced: the node C is internal in
+//! every refinement, so any balanced refinement has them. They create internal nodes only at
+//! levels below l - k + 1 <= l, which are examined later, so once all levels are done the test
+//! holds for every internal node: the result is the coarsest balanced refinement, whatever order
+//! the nodes of one level are taken in.
 //!
-//! Splits: the chapter's charging argument carries over to D dimensions and to every connectivity
-//! and ratio: each split cell has an original (pre-balance) cell among its 3^D - 1 same-size
-//! neighbours, so balancing a tree of m nodes makes at most (3^D - 1) m splits (8m in 2D).
-//! Time: O((d + 1)(m + splits)) with d the depth.
+//! Cost: O(1) amortised per search on trees of bounded neighbour depth, O(d) worst case
+//! (Theorem 14.3), for (2^D - 1)(m + 2^D s) searches with m nodes and s splits; memory 4 bytes per
+//! internal node for the lists by level.
 
-use super::{NodeId, Tree};
-use crate::geom::{Connectivity, Direction};
-use core::num::NonZeroU8;
-
-/// What "balanced" means: which leaves are adjacent and how far their levels may differ.
-///
-/// The level difference is private so that no value outside
-/// 1..=[`BalanceOptions::MAX_LEVEL_DIFFERENCE`] can be built: [`BalanceOptions::new`] gives 1 (2:1
-/// balance), [`BalanceOptions::weak`] 2, and [`BalanceOptions::with_max_level_difference`] any
-/// other value, checked.
-///
-/// ```
-/// use orthtree::{BalanceOptions, Connectivity};
-/// let strict = BalanceOptions::new(Connectivity::Face); // the chapter's 2:1 balance
-/// let weak = strict.weak();                              // exercise 14.6: factor 4
-/// assert_eq!((strict.max_level_difference(), weak.max_level_difference()), (1, 2));
-/// let three = strict.with_max_level_difference(3).unwrap();
-/// assert_eq!(three.max_level_difference(), 3);
-/// let err = strict.with_max_level_difference(0).unwrap_err();
-/// assert_eq!(err.to_string(), "max_level_difference 0 is outside 1..=32");
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct BalanceOptions {
-    /// Which leaves count as adjacent.
-    pub connectivity: Connectivity,
-    /// The largest allowed difference in level between adjacent leaves, in
-    /// 1..=[`BalanceOptions::MAX_LEVEL_DIFFERENCE`].
-    max_level_difference: NonZeroU8,
-}
-
-impl BalanceOptions {
-    /// The largest level difference accepted: the deepest level of any tree
-    /// ([`crate::Cell::MAX_LEVEL`] is at most 32), beyond which every tree is balanced.
-    pub const MAX_LEVEL_DIFFERENCE: u8 = 32;
-
-    /// 2:1 balance with `connectivity`.
-    pub const fn new(connectivity: Connectivity) -> Self {
-        BalanceOptions {
-            connectivity,
-            max_level_difference: NonZeroU8::MIN,
-        }
-    }
-
-    /// The same, weakened to a factor 4 between adjacent leaves.
-    pub const fn weak(self) -> Self {
-        BalanceOptions {
-            max_level_difference: NonZeroU8::MIN.saturating_add(1),
-            ..self
-        }
-    }
-
-    /// The same with `max_level_difference` levels allowed between adjacent leaves (1 is 2:1
-    /// balance, 2 the weak balance of exercise 14.6).
-    ///
-    /// # Errors
-    /// [`LevelDifferenceError`] when `max_level_difference` is 0 or above
-    /// [`BalanceOptions::MAX_LEVEL_DIFFERENCE`].
-    pub const fn with_max_level_difference(
-        self,
-        max_level_difference: u8,
-    ) -> Result<Self, LevelDifferenceError> {
-        match NonZeroU8::new(max_level_difference) {
-            Some(k) if max_level_difference <= Self::MAX_LEVEL_DIFFERENCE => Ok(BalanceOptions {
-                max_level_difference: k,
-                ..self
-            }),
-            _ => Err(LevelDifferenceError {
-                value: max_level_difference,
-            }),
-        }
-    }
-
-    /// The largest allowed difference in level between adjacent leaves: 1 is 2:1 balance, 2 is
-    /// the weak (4:1) balance of exercise 14.6.
-    #[inline]
-    pub const fn max_level_difference(&self) -> u8 {
-        self.max_level_difference.get()
-    }
-}
-
-/// Why [`BalanceOptions::with_max_level_difference`] refused: the level difference is 0 or above
-/// [`BalanceOptions::MAX_LEVEL_DIFFERENCE`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct LevelDifferenceError {
-    /// The level difference asked for.
-    pub value: u8,
-}
-
-impl core::fmt::Display for LevelDifferenceError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        write!(
-            f,
-            "max_level_difference {} is outside 1..={}",
-            self.value,
-            BalanceOptions::MAX_LEVEL_DIFFERENCE
-        )
-    }
-}
-
-impl std::error::Error for LevelDifferenceError {}
-
-impl From<Connectivity> for BalanceOptions {
-    fn from(connectivity: Connectivity) -> Self {
-        BalanceOptions::new(connectivity)
-    }
-}
+use super::{BalanceOptions, NodeId, Tree};
+use crate::geom::{Cell, Connectivity, Dim, Direction};
+use smallvec::SmallVec;
 
 impl<const D: usize> Tree<D> {
-    /// The chapter's BALANCEQUADTREE, generalised: the same result as [`Tree::balance`], by a
-    /// worklist of leaves and neighbour searches below each neighbour. Kept as the reference that
-    /// [`Tree::balance`] is tested against; slower by a constant factor.
+    /// Refines the tree to the coarsest balanced tree containing it, level by level (see the
+    /// module doc), and returns the leaves it split, each after its parent (a consumer moves its
+    /// payload from each split leaf to the leaf's children, in this order).
     ///
-    /// Refines the tree to the coarsest balanced tree containing it and returns the leaves it
-    /// split, in the order it split them (each split leaf's children follow from
-    /// [`Tree::children`]; the list may hold leaves created by earlier splits in it).
+    /// Splits: at most (3^D - 1) m for a tree of m nodes (Theorem 14.4, generalised in the
+    /// module doc of the reference balance, `balance_reference.rs`); time O(d + 1) per neighbour search, one
+    /// search per internal node and outward direction.
     ///
-    /// Complexity: at most (3^D - 1) m splits for a tree of m nodes (Theorem 14.4, generalised
-    /// in the module doc), O(d + 1) per neighbour query.
-    pub fn balance_chapter(&mut self, options: impl Into<BalanceOptions>) -> Vec<NodeId> {
+    /// ```
+    /// use orthtree::{Connectivity, NodeId, Tree};
+    /// let mut t = Tree::<2>::new();
+    /// // refine towards the centre from the SW quadrant, down to level 4
+    /// let mut v = t.split(NodeId::ROOT); // the SW child
+    /// for _ in 0..3 {
+    ///     t.split(v);
+    ///     v = t.child(v, 3).unwrap(); // its NE child
+    /// }
+    /// assert!(!t.is_balanced(Connectivity::Face));
+    /// let split = t.balance(Connectivity::Face);
+    /// assert!(t.is_balanced(Connectivity::Face));
+    /// // SE and NW (level 1) split, then their children next to the centre, and that
+    /// // propagates: NE (level 1) now borders level-3 leaves and splits too
+    /// assert_eq!(split.len(), 5);
+    /// ```
+    pub fn balance(&mut self, options: impl Into<BalanceOptions>) -> Vec<NodeId> {
         let options = options.into();
-        let k = options.max_level_difference();
-        let directions: Vec<Direction> = Direction::all::<D>(options.connectivity).collect();
-        let mut work: Vec<NodeId> = self.leaves().map(|(id, _)| id).collect();
-        let mut split = Vec::new();
-        while let Some(leaf) = work.pop() {
-            if !self.is_leaf(leaf) || !self.must_split(leaf, &directions, k) {
-                continue;
-            }
-            let first = self.split(leaf);
-            split.push(leaf);
-            let child_level = self.level(first);
-            work.extend(self.children(leaf));
-            for &d in &directions {
-                if let Some(n) = self.neighbor(leaf, d) {
-                    if self.is_leaf(n) && self.level(n) + k < child_level {
-                        work.push(n);
-                    }
+        let outward = outward_directions::<D>(options.connectivity);
+        let mut levels = Levels::new(self, options);
+        while let Some((nodes, min_level)) = levels.next_level() {
+            for &c in &nodes {
+                for &d in &outward[self.child_index(c)] {
+                    levels.reach(self, c, d, min_level);
                 }
             }
         }
-        split
+        levels.split
     }
 
-    /// The reference check for [`Tree::is_balanced`]: for every leaf and direction, looks for a
-    /// too-deep leaf below the neighbour. `true` when no two adjacent leaves (under `options`'
-    /// connectivity) differ by more than `options.max_level_difference()` levels. O((d + 1) m).
-    pub fn is_balanced_chapter(&self, options: impl Into<BalanceOptions>) -> bool {
-        let options = options.into();
-        let directions: Vec<Direction> = Direction::all::<D>(options.connectivity).collect();
-        self.leaves()
-            .all(|(leaf, _)| !self.must_split(leaf, &directions, options.max_level_difference()))
-    }
-
-    /// `true` when some leaf adjacent to `leaf` in one of `directions` is more than `k` levels
-    /// deeper.
-    fn must_split(&self, leaf: NodeId, directions: &[Direction], k: u8) -> bool {
-        let level = self.level(leaf);
-        directions.iter().any(|&d| {
-            let Some(n) = self.neighbor(leaf, d) else {
-                return false;
-            };
-            if self.level(n) != level || self.is_leaf(n) {
-                return false;
+    /// Where the neighbour search from `id` in `direction` stops short: the leaf above
+    /// `min_level` it ends at, with the child indices still to take below it (innermost last), or
+    /// `None` when the search reaches `min_level` (nothing to split).
+    #[cfg(feature = "rayon")]
+    pub(super) fn shortfall(
+        &self,
+        id: NodeId,
+        direction: Direction,
+        min_level: u8,
+    ) -> Option<(NodeId, Steps)> {
+        let (mut v, mut path) = self.neighbor_path(id, direction)?;
+        while let Some(&c) = path.last() {
+            if self.level(v) >= min_level {
+                return None;
             }
-            let mut too_deep = false;
-            self.touching_leaves(n, d.opposite(), k as usize, |v| {
-                too_deep |= !self.is_leaf(v);
-            });
-            too_deep
-        })
+            match self.child(v, c as usize) {
+                Some(child) => v = child,
+                None => return Some((v, Steps::from_slice(&path))),
+            }
+            path.pop();
+        }
+        None
     }
+
+    /// Follows the neighbour search from `id` in `direction`, splitting every leaf met above
+    /// `min_level` on the way down (calling `on_split` after each split), until the path reaches
+    /// `min_level` or its end.
+    pub(super) fn reach(
+        &mut self,
+        id: NodeId,
+        direction: Direction,
+        min_level: u8,
+        on_split: impl FnMut(&Self, NodeId),
+    ) {
+        if let Some((v, path)) = self.neighbor_path(id, direction) {
+            self.split_down(v, &path, min_level, on_split);
+        }
+    }
+
+    /// The descent of [`Tree::reach`] from `v`, taking the child indices of `path` from its end.
+    pub(super) fn split_down(
+        &mut self,
+        mut v: NodeId,
+        path: &[u8],
+        min_level: u8,
+        mut on_split: impl FnMut(&Self, NodeId),
+    ) {
+        for &c in path.iter().rev() {
+            if self.level(v) >= min_level {
+                return;
+            }
+            if self.is_leaf(v) {
+                self.split(v);
+                on_split(self, v);
+            }
+            v = self.child(v, c as usize).expect("v is internal");
+        }
+    }
+}
+
+/// The child indices a neighbour search still has to take below the leaf where it stopped.
+#[cfg(feature = "rayon")]
+pub(super) type Steps = SmallVec<[u8; 8]>;
+
+/// The state of one level-by-level balance (see the module doc): the internal nodes still to
+/// examine, by level, and the splits made so far.
+pub(super) struct Levels {
+    slack: u8,
+    by_level: Vec<Vec<NodeId>>,
+    /// The next level to examine, plus one (0 when done).
+    level: usize,
+    /// The leaves split, each after its parent.
+    pub(super) split: Vec<NodeId>,
+}
+
+impl Levels {
+    /// Lists the internal nodes of `tree` by level.
+    pub(super) fn new<const D: usize>(tree: &Tree<D>, options: BalanceOptions) -> Levels {
+        let mut by_level: Vec<Vec<NodeId>> = vec![Vec::new(); Cell::<D>::MAX_LEVEL as usize + 1];
+        for i in 0..tree.node_count() as u32 {
+            let id = NodeId(i);
+            if !tree.is_leaf(id) {
+                by_level[tree.level(id) as usize].push(id);
+            }
+        }
+        Levels {
+            slack: options.max_level_difference() - 1,
+            level: by_level.len(),
+            by_level,
+            split: Vec::new(),
+        }
+    }
+
+    /// The internal nodes of the next level to examine (deepest first, the root's level never)
+    /// and the level their neighbour searches must reach; `None` when every level is done.
+    pub(super) fn next_level(&mut self) -> Option<(Vec<NodeId>, u8)> {
+        while self.level > 1 {
+            self.level -= 1;
+            if let Some(min_level) = (self.level as u8).checked_sub(self.slack) {
+                return Some((core::mem::take(&mut self.by_level[self.level]), min_level));
+            }
+        }
+        None
+    }
+
+    /// [`Tree::reach`], recording each split and the new internal node's level.
+    pub(super) fn reach<const D: usize>(
+        &mut self,
+        tree: &mut Tree<D>,
+        id: NodeId,
+        direction: Direction,
+        min_level: u8,
+    ) {
+        tree.reach(id, direction, min_level, |tree, leaf| {
+            self.record(tree, leaf)
+        });
+    }
+
+    /// [`Tree::split_down`], recording each split and the new internal node's level.
+    #[cfg(feature = "rayon")]
+    pub(super) fn split_down<const D: usize>(
+        &mut self,
+        tree: &mut Tree<D>,
+        v: NodeId,
+        path: &[u8],
+        min_level: u8,
+    ) {
+        tree.split_down(v, path, min_level, |tree, leaf| self.record(tree, leaf));
+    }
+
+    fn record<const D: usize>(&mut self, tree: &Tree<D>, leaf: NodeId) {
+        self.split.push(leaf);
+        self.by_level[tree.level(leaf) as usize].push(leaf);
+    }
+}
+
+/// For each child index c, the directions allowed by `connectivity` that move outward (away from
+/// the parent's centre) on every axis they use: one per non-empty subset of axes.
+pub(super) fn outward_directions<const D: usize>(
+    connectivity: Connectivity,
+) -> Vec<SmallVec<[Direction; 8]>> {
+    // Masks over the axes count in `usize`: `1u8 << D` overflows in 8-D.
+    (0..Dim::<D>::CHILDREN)
+        .map(|c| {
+            (1..Dim::<D>::CHILDREN)
+                .filter(|axes| connectivity.allows(axes.count_ones()))
+                .map(|axes| {
+                    let (plus, minus) = (axes & c, axes & !c);
+                    Direction::from_masks(axis_mask(plus), axis_mask(minus))
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// A mask over the axes (below 2^D <= 256) as a [`Direction`]'s `u8` mask.
+fn axis_mask(axes: usize) -> u8 {
+    u8::try_from(axes).expect("a mask over at most 8 axes fits a u8")
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rand::{Rng, SeedableRng};
+
+    fn random_tree<const D: usize>(rng: &mut impl Rng, splits: usize, max_level: u8) -> Tree<D> {
+        let mut t = Tree::<D>::new();
+        for _ in 0..splits {
+            let leaves: Vec<NodeId> = t.leaves().map(|(id, _)| id).collect();
+            // prefer deep leaves so that the trees are unbalanced
+            let deepest = leaves.iter().map(|&l| t.level(l)).max().unwrap_or(0);
+            let pick = if rng.gen_bool(0.6) {
+                *leaves.iter().rfind(|&&l| t.level(l) == deepest).unwrap()
+            } else {
+                leaves[rng.gen_range(0..leaves.len())]
+            };
+            if t.level(pick) < max_level {
+                t.split(pick);
+            }
+        }
+        t
+    }
+
+    fn agrees_with_the_chapters_algorithm<const D: usize>(seed: u64, splits: usize) {
+        let mut rng = rand::rngs::SmallRng::seed_from_u64(seed);
+        for _ in 0..40 {
+            let t = random_tree::<D>(&mut rng, splits, 7);
+            for conn in Connectivity::ALL {
+                for opts in [BalanceOptions::new(conn), BalanceOptions::new(conn).weak()] {
+                    assert_eq!(t.is_balanced(opts), t.is_balanced_chapter(opts));
+                    let (mut a, mut b) = (t.clone(), t.clone());
+                    let sa = a.balance(opts);
+                    let sb = b.balance_chapter(opts);
+                    assert_eq!(sa.len(), sb.len());
+                    let la: Vec<_> = a.leaves().map(|(_, c)| c).collect();
+                    let lb: Vec<_> = b.leaves().map(|(_, c)| c).collect();
+                    assert_eq!(la, lb);
+                    assert!(a.is_balanced(opts) && a.is_balanced_chapter(opts));
+                }
+            }
+        }
+    }
 
     #[test]
-    fn weak_balance_allows_two_levels() {
-        let mut t = Tree::<2>::new();
-        let f = t.split(NodeId::ROOT);
-        let g = t.split(f); // SW at level 1 split: level-2 leaves next to level-1 SE
-        assert!(t.is_balanced_chapter(Connectivity::Corner));
-        t.split(NodeId(g.0 + 3)); // level-3 leaves touch SE (level 1) at a corner... and face
-        assert!(!t.is_balanced_chapter(Connectivity::Face));
-        assert!(t.is_balanced_chapter(BalanceOptions::new(Connectivity::Corner).weak()));
-        let split = t.balance_chapter(BalanceOptions::new(Connectivity::Face).weak());
-        assert!(split.is_empty());
-        let split = t.balance_chapter(Connectivity::Face);
-        assert_eq!(split.len(), 2); // SE and NW
-        assert!(t.is_balanced_chapter(Connectivity::Face));
-        // NE (level 1) still touches a level-3 leaf at the centre point
-        assert!(!t.is_balanced_chapter(Connectivity::Corner));
-        assert_eq!(t.balance_chapter(Connectivity::Corner).len(), 1);
-        assert!(t.is_balanced_chapter(Connectivity::Corner));
+    fn level_balance_equals_the_chapters_balance() {
+        agrees_with_the_chapters_algorithm::<1>(1, 12);
+        agrees_with_the_chapters_algorithm::<2>(2, 14);
+        agrees_with_the_chapters_algorithm::<3>(3, 8);
+        agrees_with_the_chapters_algorithm::<4>(4, 5);
     }
 }

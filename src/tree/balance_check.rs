@@ -1,14 +1,14 @@
 //! [`Tree::is_balanced`]: one top-down pass over a compact table of the internal nodes that hands
 //! every internal node its neighbours, with no neighbour search at all; or, for trees shallow
 //! enough, the test of the same condition on a dense bitmap of internal cells
-//! (`balance_dense.rs`), which is faster still (two sequential passes, no walk).
+//! (`balance_check_dense.rs`), which is faster still (two sequential passes, no walk).
 //!
 //! The test. A tree is balanced (adjacent leaves differ by at most k levels under a connectivity)
 //! exactly when, for every internal node C at level l and every direction δ allowed by the
 //! connectivity, the neighbour search from C in δ ends at level l - (k - 1) or deeper (or leaves
 //! the root cell). If it ends at a leaf N shallower than that, the child of C on N's side is (or
 //! holds) a leaf at level l + 1 or deeper next to N: more than k levels apart. If it never does,
-//! every leaf has its adjacent leaves within k levels (the argument of `ripple.rs`'s module doc).
+//! every leaf has its adjacent leaves within k levels (the argument of `balance.rs`'s module doc).
 //!
 //! The pass. A depth-first walk keeps, for the node at each level of the current path, the result
 //! of the neighbour search in every allowed direction: the same-level neighbour when it is
@@ -30,7 +30,7 @@
 //! internal children themselves. Nothing recurses; memory is one row per level of the current
 //! path, plus the table (two words per internal node up to D = 4).
 
-use super::balance_dense::Dense;
+use super::balance_check_dense::Dense;
 use super::inner::Inner;
 use super::{BalanceOptions, NodeId, Tree};
 use crate::geom::{Dim, Direction};
@@ -218,7 +218,7 @@ impl<const D: usize> Tree<D> {
     }
 }
 
-/// How to test a tree: nothing to test (a single leaf), the dense test of `balance_dense.rs`
+/// How to test a tree: nothing to test (a single leaf), the dense test of `balance_check_dense.rs`
 /// (with the rule and the allowed level difference) where it applies, else the walk.
 enum Plan<const D: usize> {
     Leaf,

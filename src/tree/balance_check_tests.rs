@@ -1,5 +1,5 @@
 //! Property tests of [`Tree::is_balanced`]'s two paths, the walk over the table of internal
-//! nodes (`balance_check.rs`, `inner.rs`) and the dense bitmap test (`balance_dense.rs`), against
+//! nodes (`balance_check.rs`, `inner.rs`) and the dense bitmap test (`balance_check_dense.rs`), against
 //! the chapter's neighbour-search check ([`Tree::is_balanced_chapter`]), on random trees with
 //! splits and merges (so that blocks are reused, some before their parents), in 1 to 4
 //! dimensions, every connectivity and allowed level difference 1 to 3; and on their balanced

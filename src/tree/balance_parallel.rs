@@ -1,11 +1,11 @@
 //! Parallel 2:1 balance and balance test (feature `rayon`): the level-by-level balance of
-//! `ripple.rs` with each level's neighbour searches spread over threads, and the top-down test of
+//! `balance.rs` with each level's neighbour searches spread over threads, and the top-down test of
 //! `balance_check.rs` with its subtrees spread over threads.
 //!
 //! Balance. Within one level, the searches that decide which splits are forced only read the
 //! tree, and splits made for one node never undo another's finding: a search that ends deep
 //! enough still does after any split (splits only deepen the tree), and a split for a node at
-//! level l creates internal nodes above level l only (see `ripple.rs`). So each level runs in two
+//! level l creates internal nodes above level l only (see `balance.rs`). So each level runs in two
 //! phases: every (node, outward direction) pair is searched in parallel, keeping, in node order,
 //! the leaf where each search that ends too shallow stops and the steps still to take below it;
 //! then those descents are made one after another with the serial repair, splitting leaves (a
@@ -13,7 +13,7 @@
 //! result is the same tree as [`Tree::balance`] (the coarsest balanced refinement is unique);
 //! node ids may differ, since splits happen in another order.
 
-use super::ripple::{outward_directions, Levels, Steps};
+use super::balance::{outward_directions, Levels, Steps};
 use super::{BalanceOptions, NodeId, Tree};
 use rayon::prelude::*;
 
