@@ -6,8 +6,8 @@
 use orthtree::io::svg::mesh_svg;
 use orthtree::io::{gmsh, triangle, vtk};
 use orthtree::mesh::{
-    generate_mesh, random_board, sample_board, Board, Component, HalfEdgeError, Mesh, Point,
-    Segment, SegmentKind,
+    generate_mesh, random_board, sample_board, Board, Component, HalfEdgeError, Mesh,
+    MeshValidationError as V, Point, RegionRule, Segment, SegmentKind,
 };
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
@@ -156,8 +156,19 @@ fn t_junction_fails_conforming_and_euler() {
     };
     assert_eq!(failed(&mesh, &board), ["conforming", "euler"]);
     let report = mesh.validate(&board);
-    assert!(report.conforming.message.contains("triangle 0"), "{report}");
-    assert!(report.conforming.message.contains("2 -> 0"), "{report}");
+    assert!(
+        matches!(
+            report.conforming.error(),
+            Some(V::UnpairedEdge {
+                from: 2,
+                to: 0,
+                triangle: 0,
+                points: [[2, 2], [0, 0]]
+            })
+        ),
+        "{report}"
+    );
+    assert!(report.to_string().contains("2 -> 0"), "{report}");
 }
 
 #[test]
@@ -171,13 +182,34 @@ fn wrong_region_fails_regions_only() {
     mesh.regions[0] = 0;
     let report = mesh.validate(&board);
     assert_eq!(report.failed(), ["regions"]);
-    assert!(report.regions.message.contains("triangle 0"), "{report}");
+    assert!(
+        matches!(
+            report.regions.error(),
+            Some(V::WrongRegion {
+                triangle: 0,
+                region: 0,
+                expected: 1,
+                rule: RegionRule::LeftOfOutline(1),
+                ..
+            })
+        ),
+        "{report}"
+    );
     // a region number beyond the components
     let (_, mut mesh) = square_board();
     mesh.regions[7] = 5;
     let report = mesh.validate(&board);
     assert_eq!(report.failed(), ["regions"]);
-    assert!(report.regions.message.contains("region 5"), "{report}");
+    assert_eq!(
+        report.regions.error(),
+        Some(&V::RegionOutOfRange {
+            triangle: 7,
+            vertices: mesh.triangles[7],
+            region: 5,
+            components: 1
+        }),
+        "{report}"
+    );
 }
 
 /// U = 4 fanned from (2, 1): the bottom triangle has a 126.9-degree angle (and 26.6-degree
@@ -193,7 +225,13 @@ fn obtuse_triangle_fails_angles_only() {
     };
     let report = mesh.validate(&board);
     assert_eq!(report.failed(), ["angles"], "{report}");
-    assert!(report.angles.message.contains("triangle 0"), "{report}");
+    assert!(
+        matches!(
+            report.angles.error(),
+            Some(V::Angle { triangle: 0, vertex: 0, point: [0, 0], dot, cross, .. }) if dot > cross
+        ),
+        "{report}"
+    );
     let [lo, hi] = report.angle_range_deg.unwrap();
     assert!((hi - 126.87).abs() < 0.01, "{hi}");
     assert!((lo - 26.57).abs() < 0.01, "{lo}");
@@ -215,17 +253,26 @@ fn clockwise_triangle_fails_orientation() {
         "{report}"
     );
     assert!(
-        report.orientation.message.contains("triangle 0"),
+        matches!(
+            report.orientation.error(),
+            Some(V::NotCounterClockwise { triangle: 0, doubled_area, .. }) if *doubled_area < 0
+        ),
         "{report}"
     );
-    assert!(report.orientation.message.contains("clockwise"), "{report}");
+    assert!(
+        report.orientation.to_string().contains("clockwise"),
+        "{report}"
+    );
     // a flipped board triangle away from the component
     let (_, mut mesh) = square_board();
     mesh.triangles[6].swap(0, 1);
     let report = mesh.validate(&board);
     assert!(report.failed().contains(&"orientation"));
     assert!(
-        report.orientation.message.contains("triangle 6"),
+        matches!(
+            report.orientation.error(),
+            Some(V::NotCounterClockwise { triangle: 6, .. })
+        ),
         "{report}"
     );
 }
@@ -246,9 +293,17 @@ fn missing_triangle_fails_conforming_and_area() {
         ["conforming", "area", "segments"],
         "{report}"
     );
-    assert!(report.area.message.contains("3.5"), "{report}");
+    assert_eq!(
+        report.area.error(),
+        Some(&V::Area {
+            doubled_area: 7,
+            size: 2
+        }),
+        "{report}"
+    );
+    assert!(report.area.to_string().contains("3.5"), "{report}");
     assert!(
-        report.segments.message.contains("not a mesh edge"),
+        matches!(report.segments.error(), Some(V::SegmentNotEdge { .. })),
         "{report}"
     );
 
@@ -257,7 +312,16 @@ fn missing_triangle_fails_conforming_and_area() {
     mesh.regions.remove(3);
     let report = mesh.validate(&board);
     assert_eq!(report.failed(), ["conforming", "area", "euler"], "{report}");
-    assert!(report.euler.message.contains("= 0"), "{report}");
+    assert_eq!(
+        report.euler.error(),
+        Some(&V::Euler {
+            vertices: 9,
+            edges: 16,
+            triangles: 7
+        }),
+        "{report}"
+    );
+    assert!(report.euler.to_string().contains("= 0"), "{report}");
 }
 
 /// A valid tiling whose shared diagonal is not Delaunay: (2, 3) lies inside the circumcircle of
@@ -280,8 +344,18 @@ fn non_delaunay_fails_delaunay_and_angles() {
     };
     let report = mesh.validate(&board);
     assert_eq!(report.failed(), ["angles", "delaunay"], "{report}");
-    assert!(report.delaunay.message.contains("edge 2-0"), "{report}");
-    assert!(report.delaunay.message.contains("vertex 5"), "{report}");
+    assert!(
+        matches!(
+            report.delaunay.error(),
+            Some(V::NotDelaunay {
+                edge: [2, 0],
+                vertex: 5,
+                point: [2, 3],
+                ..
+            })
+        ),
+        "{report}"
+    );
 }
 
 /// A triangular component (0, 0), (1, 0), (1, 1) in a mesh cut along the other diagonal: its
@@ -309,7 +383,15 @@ fn missing_input_edge_fails_respects_input() {
         "{report}"
     );
     assert!(
-        report.respects_input.message.contains("[1, 1] -> [0, 0]"),
+        matches!(
+            report.respects_input.error(),
+            Some(V::OutlineEdgeBroken {
+                component: 1,
+                from: [1, 1],
+                to: [0, 0],
+                ..
+            })
+        ),
         "{report}"
     );
     // cut along the right diagonal, it is valid
@@ -373,8 +455,19 @@ fn overlapping_duplicate_fails_conforming() {
     mesh.regions.push(0);
     let report = mesh.validate(&board);
     // its edges are used by three triangles, or twice in one direction
-    let m = &report.conforming.message;
-    assert!(m.contains("[1, 4, 8]") || m.contains("4 and 8"), "{report}");
+    assert!(
+        matches!(
+            report.conforming.error(),
+            Some(V::EdgeInMoreThanTwoTriangles { triangles, .. }) if triangles == &[1, 4, 8]
+        ) || matches!(
+            report.conforming.error(),
+            Some(V::RepeatedDirectedEdge {
+                triangles: [4, 8],
+                ..
+            })
+        ),
+        "{report}"
+    );
     assert!(report.failed().contains(&"area"));
     // two vertices at one point
     let (_, mut mesh) = square_board();
@@ -382,7 +475,7 @@ fn overlapping_duplicate_fails_conforming() {
     let last = mesh.vertices.len() as u32 - 1;
     mesh.triangles[6][2] = last; // (1,1),(2,1),(2,2) now uses the copy
     let report = mesh.validate(&board);
-    assert!(!report.conforming.ok, "{report}");
+    assert!(!report.conforming.is_ok(), "{report}");
 }
 
 /// Indices out of range, regions missing, vertices far outside the board: reported, never a
@@ -404,7 +497,7 @@ fn malformed_meshes_are_reported_not_panics() {
         let mut mesh = base.clone();
         edit(&mut mesh);
         let report = mesh.validate(&board);
-        assert!(!report.indices.ok, "{what}: {report}");
+        assert!(!report.indices.is_ok(), "{what}: {report}");
         let _ = report.to_string();
         let _ = mesh_svg(&mesh, &board);
         let _ = mesh.half_edges();

@@ -4,11 +4,9 @@
 //!
 //! The layout, the cost of construction and the memory used are described at [`HalfEdges`].
 
+use super::pairing::{edge_key, key_vertices, pair, PairDefect, NONE};
 use super::Mesh;
 use core::fmt;
-
-/// The "no half-edge" value in the stored arrays.
-const NONE: u32 = u32::MAX;
 
 /// Why a mesh has no doubly-connected edge list. Triangles and vertices are 0-based indices into
 /// the mesh's arrays.
@@ -109,8 +107,10 @@ impl std::error::Error for HalfEdgeError {}
 /// edge lists. Half-edges on the mesh boundary have no twin (the book's outer face is left
 /// implicit).
 ///
-/// Construction sorts the 3T undirected edge keys (`u64`, the smaller vertex in the high 32 bits) with their
-/// half-edges, so it takes O(T log T) time, and pairs equal keys. A mesh that is not a manifold
+/// Construction sorts the 3T undirected edge keys (`u64`, the smaller vertex in the high 32
+/// bits) with their half-edges, by a counting sort on the smaller vertex and a sort of each
+/// vertex's few edges, and pairs equal keys: O(T + V) time plus O(d log d) per vertex of degree
+/// d. A mesh that is not a manifold
 /// is an error, never a panic: a vertex index out of range, a triangle repeating a vertex, an edge
 /// used twice in the same direction or by more than two triangles, or a vertex whose triangles
 /// form more than one fan (two triangles touching only at a vertex).
@@ -119,7 +119,7 @@ impl std::error::Error for HalfEdgeError {}
 /// outgoing half-edge), about 14 bytes per triangle for the chapter's meshes (about half as many
 /// vertices as triangles; 14.0 measured on [`sample_board`](super::sample_board)'s 367,672
 /// triangles), on top of the mesh itself. Construction needs 48 more bytes per triangle for the
-/// sorted keys and 4 per vertex, freed on return.
+/// sorted keys and 8 per vertex, freed on return.
 ///
 /// The accessors taking a half-edge or a vertex panic if it is out of range, like slice indexing.
 ///
@@ -187,95 +187,103 @@ impl Iterator for Outgoing<'_, '_> {
 
 impl Mesh {
     /// The doubly-connected edge list of this mesh; see [`HalfEdges::new`].
+    ///
+    /// # Errors
+    /// As [`HalfEdges::new`].
     pub fn half_edges(&self) -> Result<HalfEdges<'_>, HalfEdgeError> {
         HalfEdges::new(self)
     }
 }
 
+/// The triangles' vertex indices checked: in range, three distinct per triangle, and few enough
+/// triangles for `u32` half-edge indices.
+fn check_triangles(triangles: &[[u32; 3]], nv: usize) -> Result<(), HalfEdgeError> {
+    let n = triangles.len();
+    if n > (NONE as usize - 1) / 3 {
+        return Err(HalfEdgeError::TooManyTriangles { triangles: n });
+    }
+    for (t, tri) in triangles.iter().enumerate() {
+        if let Some(&vertex) = tri.iter().find(|&&v| v as usize >= nv) {
+            return Err(HalfEdgeError::VertexOutOfRange {
+                triangle: t as u32,
+                vertex,
+            });
+        }
+        if tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0] {
+            return Err(HalfEdgeError::DegenerateTriangle { triangle: t as u32 });
+        }
+    }
+    Ok(())
+}
+
+/// The error for an edge whose half-edges do not pair.
+fn pairing_error(triangles: &[[u32; 3]], defect: PairDefect) -> HalfEdgeError {
+    let origin = |h: u32| triangles[h as usize / 3][h as usize % 3];
+    let target = |h: u32| triangles[h as usize / 3][(h as usize % 3 + 1) % 3];
+    match defect {
+        PairDefect::SameDirection([g, h]) => HalfEdgeError::RepeatedDirectedEdge {
+            from: origin(g),
+            to: target(g),
+            triangles: [g / 3, h / 3],
+        },
+        PairDefect::Crowded(half_edges) => HalfEdgeError::EdgeInMoreThanTwoTriangles {
+            edge: key_vertices(edge_key(origin(half_edges[0]), target(half_edges[0]))),
+            triangles: [half_edges[0] / 3, half_edges[1] / 3, half_edges[2] / 3],
+        },
+    }
+}
+
+/// One outgoing half-edge per vertex, the boundary one if any (a fan is walked
+/// counter-clockwise from it), and each vertex's number of outgoing half-edges; a second
+/// boundary one means two fans.
+fn first_outgoing(
+    triangles: &[[u32; 3]],
+    twins: &[u32],
+    nv: usize,
+) -> Result<(Vec<u32>, Vec<u32>), HalfEdgeError> {
+    let mut first_out = vec![NONE; nv];
+    let mut degree = vec![0u32; nv];
+    for h in 0..twins.len() as u32 {
+        let v = triangles[h as usize / 3][h as usize % 3] as usize;
+        degree[v] += 1;
+        let slot = &mut first_out[v];
+        if twins[h as usize] == NONE {
+            if *slot != NONE && twins[*slot as usize] == NONE {
+                return Err(HalfEdgeError::NonManifoldVertex { vertex: v as u32 });
+            }
+            *slot = h;
+        } else if *slot == NONE {
+            *slot = h;
+        }
+    }
+    Ok((first_out, degree))
+}
+
 impl<'a> HalfEdges<'a> {
-    /// Builds the doubly-connected edge list of `mesh` in O(T log T) time for T triangles, or
-    /// says why the mesh is not a manifold (see [`HalfEdgeError`]). Vertices that no triangle
-    /// uses are allowed; they have no outgoing half-edges.
+    /// Builds the doubly-connected edge list of `mesh`. Vertices that no triangle uses are
+    /// allowed; they have no outgoing half-edges. The half-edges are paired as
+    /// [`Mesh::validate`] pairs them (one shared routine).
+    ///
+    /// # Errors
+    /// The [`HalfEdgeError`] saying why the mesh is not a manifold: too many triangles, a vertex
+    /// index out of range, a triangle repeating a vertex, an edge used twice in one direction or
+    /// by more than two triangles (the first such edge in vertex order), or a vertex whose
+    /// triangles form more than one fan.
+    ///
+    /// # Complexity
+    /// O(T + V) time plus O(d log d) per vertex of degree d, for T triangles and V vertices
+    /// (the edge keys are sorted by a counting sort on their smaller vertex).
     pub fn new(mesh: &'a Mesh) -> Result<Self, HalfEdgeError> {
         let triangles = &mesh.triangles[..];
-        let n = triangles.len();
-        if n > (NONE as usize - 1) / 3 {
-            return Err(HalfEdgeError::TooManyTriangles { triangles: n });
-        }
         let nv = mesh.vertices.len();
-        for (t, tri) in triangles.iter().enumerate() {
-            if let Some(&vertex) = tri.iter().find(|&&v| v as usize >= nv) {
-                return Err(HalfEdgeError::VertexOutOfRange {
-                    triangle: t as u32,
-                    vertex,
-                });
-            }
-            if tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0] {
-                return Err(HalfEdgeError::DegenerateTriangle { triangle: t as u32 });
-            }
+        check_triangles(triangles, nv)?;
+        let pairing = pair(triangles, nv, |_| true);
+        if let Some(defect) = pairing.defect {
+            return Err(pairing_error(triangles, defect));
         }
-        let origin = |h: u32| triangles[h as usize / 3][h as usize % 3];
-        let target = |h: u32| triangles[h as usize / 3][(h as usize % 3 + 1) % 3];
-
-        // Pair half-edges by their undirected edge.
-        let mut keys: Vec<(u64, u32)> = (0..3 * n as u32)
-            .map(|h| {
-                let (a, b) = (origin(h), target(h));
-                ((u64::from(a.min(b)) << 32) | u64::from(a.max(b)), h)
-            })
-            .collect();
-        keys.sort_unstable();
-        let mut twins = vec![NONE; 3 * n];
-        let mut i = 0;
-        while i < keys.len() {
-            let mut j = i + 1;
-            while j < keys.len() && keys[j].0 == keys[i].0 {
-                j += 1;
-            }
-            let face = |k: usize| keys[k].1 / 3;
-            match j - i {
-                1 => {}
-                2 => {
-                    let (g, h) = (keys[i].1, keys[i + 1].1);
-                    if origin(g) == origin(h) {
-                        return Err(HalfEdgeError::RepeatedDirectedEdge {
-                            from: origin(g),
-                            to: target(g),
-                            triangles: [face(i), face(i + 1)],
-                        });
-                    }
-                    twins[g as usize] = h;
-                    twins[h as usize] = g;
-                }
-                _ => {
-                    let (a, b) = (keys[i].0 >> 32, keys[i].0 & u64::from(u32::MAX));
-                    return Err(HalfEdgeError::EdgeInMoreThanTwoTriangles {
-                        edge: [a as u32, b as u32],
-                        triangles: [face(i), face(i + 1), face(i + 2)],
-                    });
-                }
-            }
-            i = j;
-        }
-        drop(keys);
-
-        // One outgoing half-edge per vertex, the boundary one if any (a fan is walked
-        // counter-clockwise from it); a second boundary one means two fans.
-        let mut first_out = vec![NONE; nv];
-        let mut degree = vec![0u32; nv];
-        for h in 0..3 * n as u32 {
-            let v = origin(h) as usize;
-            degree[v] += 1;
-            let slot = &mut first_out[v];
-            if twins[h as usize] == NONE {
-                if *slot != NONE && twins[*slot as usize] == NONE {
-                    return Err(HalfEdgeError::NonManifoldVertex { vertex: v as u32 });
-                }
-                *slot = h;
-            } else if *slot == NONE {
-                *slot = h;
-            }
-        }
+        drop(pairing.keys);
+        let twins = pairing.twins;
+        let (first_out, degree) = first_outgoing(triangles, &twins, nv)?;
         let he = HalfEdges {
             triangles,
             twins,

@@ -1,9 +1,10 @@
-//! The validator behind [`Mesh::validate`](super::Mesh::validate): one method per check, sharing
-//! the edge pairing (by sorting) and the lookups the checks need.
+//! The validator behind [`Mesh::validate`](super::Mesh::validate): the data the checks share
+//! (the half-edge pairing, used vertices by position, one half-edge leaving each vertex), built
+//! once, and one function per check, each taking what it reads and returning its [`Check`] with
+//! what later checks need.
 
 use super::*;
-
-pub(super) const NONE: u32 = u32::MAX;
+use crate::mesh::pairing::{edge_key, pair, PairDefect, Pairing, NONE};
 
 /// What an input step makes of a half-edge: the component on its left, or on its right.
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -13,75 +14,138 @@ pub(super) enum Input {
     Right(u32),
 }
 
-/// State shared by the checks. Half-edge `3t + i` runs from `triangles[t][i]` to
-/// `triangles[t][(i + 1) % 3]`; edges are found by sorting, not hashing, which keeps the
-/// validation of a mesh with a million triangles well under a second.
+/// What `respects_input` found along the component edges, for `regions` and `segments`.
+pub(super) struct InputEdges {
+    /// The input step on each half-edge, if any.
+    pub(super) sides: Vec<Input>,
+    /// The mesh edges along the component edges, in board order, with their component (from 1).
+    pub(super) steps: Vec<((u32, u32), u32)>,
+}
+
+/// What the checks share, built from the triangles that passed `indices` ("good"): read-only
+/// once built. Half-edge `3t + i` runs from `triangles[t][i]` to `triangles[t][(i + 1) % 3]`.
 pub(super) struct Validator<'m> {
     pub(super) mesh: &'m Mesh,
     pub(super) board: &'m Board,
     /// Triangles whose indices are in range and vertices inside the board.
     pub(super) good: Vec<bool>,
-    /// Doubled signed area of each good triangle (0 for the others).
-    pub(super) area2: Vec<i128>,
-    /// (undirected edge key, half-edge) of the good triangles' half-edges, sorted.
-    pub(super) keys: Vec<(u64, u32)>,
-    /// The opposite half-edge of each half-edge, [`NONE`] if there is none (or more than one).
-    pub(super) twins: Vec<u32>,
+    /// The good triangles' half-edges sorted by edge, and their twins.
+    pairing: Pairing,
     /// Used vertices sorted by position.
     pub(super) points: Vec<(Point, u32)>,
-    /// Undirected board-boundary edges, in half-edge order.
-    pub(super) boundary_edges: Vec<(u32, u32)>,
-    /// The input step on each half-edge, if any.
-    pub(super) input: Vec<Input>,
-    /// The mesh edges along the component edges, in board order, with their component (from 1).
-    pub(super) input_steps: Vec<((u32, u32), u32)>,
     /// One half-edge leaving each used vertex, [`NONE`] for the others.
     pub(super) leaving: Vec<u32>,
 }
 
-/// Sorts (edge key, half-edge) pairs as `sort_unstable` would: a counting sort on the edge's
-/// smaller vertex (the key's high half, below `vertices`), then a sort of each vertex's few edges.
-/// O(n + V) plus O(d log d) per vertex of degree d.
-fn sort_edge_keys(keys: Vec<(u64, u32)>, vertices: usize) -> Vec<(u64, u32)> {
-    let mut start = vec![0usize; vertices + 1];
-    for k in &keys {
-        start[(k.0 >> 32) as usize + 1] += 1;
+/// Runs every check in turn, each handed what the earlier ones produced.
+pub(super) fn run(mesh: &Mesh, board: &Board) -> ValidationReport {
+    let (indices, good) = indices(mesh, board);
+    let v = Validator::new(mesh, board, good);
+    let (orientation, area2) = v.orientation();
+    let (conforming, boundary_edges) = v.conforming();
+    let area = area(&area2, board.size());
+    let (respects_input, input) = v.respects_input();
+    let (angles, angle_range_deg) = v.angles();
+    let regions = v.regions(&area2, &input.sides);
+    let (euler, vertices_used, edges) = v.euler();
+    let delaunay = v.delaunay(&area2);
+    let segments = v.segments(&boundary_edges, &input.steps);
+    ValidationReport {
+        indices,
+        orientation,
+        conforming,
+        area,
+        respects_input,
+        angles,
+        regions,
+        euler,
+        delaunay,
+        segments,
+        vertices_used,
+        edges,
+        triangles: mesh.triangles.len(),
+        angle_range_deg,
     }
-    for v in 0..vertices {
-        start[v + 1] += start[v];
-    }
-    let mut out = vec![(0u64, 0u32); keys.len()];
-    let mut next = start.clone();
-    for k in keys {
-        let b = (k.0 >> 32) as usize;
-        out[next[b]] = k;
-        next[b] += 1;
-    }
-    for v in 0..vertices {
-        out[start[v]..start[v + 1]].sort_unstable();
-    }
-    out
 }
 
-/// The sort key of an undirected edge.
-fn edge_key(a: u32, b: u32) -> u64 {
-    (u64::from(a.min(b)) << 32) | u64::from(a.max(b))
+/// `indices`, and which triangles are good (indices in range, vertices inside the board, and
+/// few enough triangles for `u32` half-edge indices).
+fn indices(mesh: &Mesh, board: &Board) -> (Check, Vec<bool>) {
+    let (nv, u) = (mesh.vertices.len(), board.size());
+    let mut f = Finding::default();
+    f.keep(mesh.check_indices().err());
+    let fits = 3 * mesh.triangles.len() < NONE as usize;
+    if !fits {
+        f.fail(|| MeshValidationError::TooManyTriangles {
+            triangles: mesh.triangles.len(),
+        });
+    }
+    let inside = |p: &Point| (0..=u).contains(&p[0]) && (0..=u).contains(&p[1]);
+    if let Some((vertex, &point)) = mesh.vertices.iter().enumerate().find(|(_, p)| !inside(p)) {
+        f.fail(|| MeshValidationError::VertexOutsideBoard {
+            vertex,
+            point,
+            size: u,
+        });
+    }
+    let good = (mesh.triangles.iter())
+        .map(|tri| {
+            fits && tri
+                .iter()
+                .all(|&v| mesh.vertices.get(v as usize).is_some_and(inside))
+        })
+        .collect();
+    let check = f.finish(|| {
+        format!(
+            "{} vertices, {} triangles, {} segments",
+            nv,
+            mesh.triangles.len(),
+            mesh.segments.len()
+        )
+    });
+    (check, good)
+}
+
+/// `area`, from the doubled areas of the good triangles.
+fn area(area2: &[i128], size: i64) -> Check {
+    let total: i128 = area2.iter().sum();
+    let u = i128::from(size);
+    if total == 2 * u * u {
+        Check::Passed(format!("{} = U^2", u * u))
+    } else {
+        Check::Failed(MeshValidationError::Area {
+            doubled_area: total,
+            size,
+        })
+    }
 }
 
 impl<'m> Validator<'m> {
-    pub(super) fn new(mesh: &'m Mesh, board: &'m Board) -> Self {
+    /// The shared data of the good triangles: paired half-edges, used vertices by position, one
+    /// half-edge leaving each vertex.
+    fn new(mesh: &'m Mesh, board: &'m Board, good: Vec<bool>) -> Self {
+        let nv = mesh.vertices.len();
+        let pairing = pair(&mesh.triangles, nv, |t| good[t]);
+        let mut used = vec![false; nv];
+        let mut leaving = vec![NONE; nv];
+        for (t, tri) in mesh.triangles.iter().enumerate().filter(|&(t, _)| good[t]) {
+            for (i, &v) in tri.iter().enumerate() {
+                used[v as usize] = true;
+                leaving[v as usize] = (3 * t + i) as u32;
+            }
+        }
+        let mut points: Vec<(Point, u32)> = (used.iter().enumerate())
+            .filter(|(_, &u)| u)
+            .map(|(v, _)| (mesh.vertices[v], v as u32))
+            .collect();
+        points.sort_unstable();
         Validator {
             mesh,
             board,
-            good: Vec::new(),
-            area2: Vec::new(),
-            keys: Vec::new(),
-            twins: Vec::new(),
-            points: Vec::new(),
-            boundary_edges: Vec::new(),
-            input: Vec::new(),
-            input_steps: Vec::new(),
-            leaving: Vec::new(),
+            good,
+            pairing,
+            points,
+            leaving,
         }
     }
 
@@ -102,7 +166,12 @@ impl<'m> Validator<'m> {
     }
 
     pub(super) fn twin(&self, h: u32) -> Option<u32> {
-        Some(self.twins[h as usize]).filter(|&g| g != NONE)
+        Some(self.pairing.twins[h as usize]).filter(|&g| g != NONE)
+    }
+
+    /// The number of half-edges, 3 per triangle (good or not).
+    pub(super) fn half_edge_count(&self) -> usize {
+        self.pairing.twins.len()
     }
 
     /// The good triangles with their indices.
@@ -122,8 +191,9 @@ impl<'m> Validator<'m> {
     /// A half-edge running from `a` to `b`, if any.
     pub(super) fn find(&self, a: u32, b: u32) -> Option<u32> {
         let key = edge_key(a, b);
-        let start = self.keys.partition_point(|&(k, _)| k < key);
-        (self.keys[start..].iter())
+        let keys = &self.pairing.keys;
+        let start = keys.partition_point(|&(k, _)| k < key);
+        (keys[start..].iter())
             .take_while(|&&(k, _)| k == key)
             .map(|&(_, h)| h)
             .find(|&h| self.origin(h) == a)
@@ -131,8 +201,9 @@ impl<'m> Validator<'m> {
 
     pub(super) fn is_edge(&self, a: u32, b: u32) -> bool {
         let key = edge_key(a, b);
-        let i = self.keys.partition_point(|&(k, _)| k < key);
-        self.keys.get(i).is_some_and(|&(k, _)| k == key)
+        let keys = &self.pairing.keys;
+        let i = keys.partition_point(|&(k, _)| k < key);
+        keys.get(i).is_some_and(|&(k, _)| k == key)
     }
 
     /// The used vertex at `p`, if any.
@@ -148,339 +219,273 @@ impl<'m> Validator<'m> {
         self.mesh.regions.get(t).copied()
     }
 
-    pub(super) fn run(mut self) -> ValidationReport {
-        let indices = self.indices();
-        let orientation = self.orientation();
-        let conforming = self.conforming();
-        let area = self.area();
-        let respects_input = self.respects_input();
-        let (angles, angle_range_deg) = self.angles();
-        let regions = self.regions();
-        let (euler, vertices_used, edges) = self.euler();
-        let delaunay = self.delaunay();
-        let segments = self.segments();
-        ValidationReport {
-            indices,
-            orientation,
-            conforming,
-            area,
-            respects_input,
-            angles,
-            regions,
-            euler,
-            delaunay,
-            segments,
-            vertices_used,
-            edges,
-            triangles: self.mesh.triangles.len(),
-            angle_range_deg,
+    /// `orientation`, and the doubled signed area of each good triangle (0 for the others).
+    fn orientation(&self) -> (Check, Vec<i128>) {
+        let mut f = Finding::default();
+        let mut area2 = vec![0; self.mesh.triangles.len()];
+        for (triangle, vertices) in self.good_triangles() {
+            let points = self.tri_points(triangle);
+            let [a, b, c] = points;
+            let doubled_area = cross(a, b, c);
+            area2[triangle] = doubled_area;
+            if doubled_area <= 0 {
+                f.fail(|| MeshValidationError::NotCounterClockwise {
+                    triangle,
+                    vertices,
+                    points,
+                    doubled_area,
+                });
+            }
         }
+        let check = f.finish(|| "every triangle counter-clockwise".into());
+        (check, area2)
     }
 
-    fn indices(&mut self) -> Check {
-        let mesh = self.mesh;
-        let (nv, u) = (mesh.vertices.len(), self.board.size());
+    /// `conforming`: the pairing, the boundary cover and distinct vertices; and the undirected
+    /// board-boundary edges, in half-edge order, for `segments`.
+    fn conforming(&self) -> (Check, Vec<(u32, u32)>) {
         let mut f = Finding::default();
-        if let Err(problem) = mesh.check_indices() {
-            f.fail(|| problem);
-        }
-        if 3 * mesh.triangles.len() >= NONE as usize {
-            f.fail(|| format!("{} triangles: too many to check", mesh.triangles.len()));
-        }
-        let inside = |p: &Point| (0..=u).contains(&p[0]) && (0..=u).contains(&p[1]);
-        if let Some((v, p)) = mesh.vertices.iter().enumerate().find(|(_, p)| !inside(p)) {
-            f.fail(|| format!("vertex {v} at {p:?} lies outside the board [0, {u}]^2"));
-        }
-        let fits = 3 * mesh.triangles.len() < NONE as usize;
-        self.good = (mesh.triangles.iter())
-            .map(|tri| {
-                fits && tri
-                    .iter()
-                    .all(|&v| mesh.vertices.get(v as usize).is_some_and(inside))
-            })
-            .collect();
-        f.finish(|| {
+        f.keep(self.pairing_violation());
+        let (cover, boundary_edges) = self.boundary_cover();
+        f.keep(cover);
+        f.keep(self.coincident_vertices());
+        let check = f.finish(|| {
             format!(
-                "{} vertices, {} triangles, {} segments",
-                nv,
-                mesh.triangles.len(),
-                mesh.segments.len()
+                "interior edges paired, {} edges cover the board boundary",
+                boundary_edges.len()
             )
+        });
+        (check, boundary_edges)
+    }
+
+    /// The first edge whose half-edges do not pair.
+    fn pairing_violation(&self) -> Option<MeshValidationError> {
+        Some(match self.pairing.defect.as_ref()? {
+            PairDefect::SameDirection([g, h]) => MeshValidationError::RepeatedDirectedEdge {
+                from: self.origin(*g),
+                to: self.target(*g),
+                triangles: [g / 3, h / 3],
+            },
+            PairDefect::Crowded(half_edges) => MeshValidationError::EdgeInMoreThanTwoTriangles {
+                edge: [self.origin(half_edges[0]), self.target(half_edges[0])],
+                triangles: half_edges.iter().map(|h| h / 3).collect(),
+            },
         })
     }
 
-    fn orientation(&mut self) -> Check {
-        let mut f = Finding::default();
-        let mut area2 = vec![0; self.mesh.triangles.len()];
-        for (t, tri) in self.good_triangles() {
-            let [a, b, c] = self.tri_points(t);
-            let a2 = cross(a, b, c);
-            area2[t] = a2;
-            if a2 <= 0 {
-                let what = if a2 == 0 { "degenerate" } else { "clockwise" };
-                f.fail(|| {
-                    format!(
-                        "triangle {t} {tri:?} at {a:?}, {b:?}, {c:?} is {what} (doubled area {a2})"
-                    )
-                });
-            }
-        }
-        self.area2 = area2;
-        f.finish(|| "every triangle counter-clockwise".into())
-    }
-
-    fn conforming(&mut self) -> Check {
+    /// The half-edges without twin: each must run counter-clockwise along the board boundary,
+    /// and together they must cover each side exactly. The first violation, and those edges
+    /// (undirected, in half-edge order).
+    fn boundary_cover(&self) -> (Option<MeshValidationError>, Vec<(u32, u32)>) {
         let mut f = Finding::default();
         let u = self.board.size();
-        let keys: Vec<(u64, u32)> = self
-            .half_edges()
-            .map(|(h, a, b)| (edge_key(a, b), h))
-            .collect();
-        let keys = sort_edge_keys(keys, self.mesh.vertices.len());
-        let mut twins = vec![NONE; 3 * self.mesh.triangles.len()];
-        for group in keys.chunk_by(|x, y| x.0 == y.0) {
-            let (g, h) = (group[0].1, group.get(1).map_or(NONE, |x| x.1));
-            if group.len() > 2 {
-                let (a, b) = (self.origin(g), self.target(g));
-                f.fail(|| {
-                    let ts: Vec<u32> = group.iter().map(|x| x.1 / 3).collect();
-                    format!("edge {a}-{b} belongs to {} triangles {ts:?}", ts.len())
-                });
-            } else if h != NONE && self.origin(g) == self.origin(h) {
-                let (a, b) = (self.origin(g), self.target(g));
-                f.fail(|| {
-                    format!(
-                        "triangles {} and {} both use the directed edge {a} -> {b}",
-                        g / 3,
-                        h / 3
-                    )
-                });
-            } else if h != NONE {
-                twins[g as usize] = h;
-                twins[h as usize] = g;
-            }
-        }
-        self.keys = keys;
-        self.twins = twins;
-
         let mut sides: [Vec<(i64, i64, u32)>; 4] = Default::default();
         let mut boundary_edges = Vec::new();
-        for (h, a, b) in self.half_edges() {
-            if self.twins[h as usize] != NONE {
-                continue;
-            }
-            let (pa, pb) = (self.point(a), self.point(b));
-            match boundary_side(pa, pb, u) {
+        for (h, a, b) in self
+            .half_edges()
+            .filter(|&(h, _, _)| self.twin(h).is_none())
+        {
+            let points = [self.point(a), self.point(b)];
+            match boundary_side(points[0], points[1], u) {
                 Some((side, s, e)) => {
                     sides[side].push((s, e, h));
                     boundary_edges.push(undirected(a, b));
                 }
-                None => f.fail(|| {
-                    format!(
-                        "edge {a} -> {b} ({pa:?} -> {pb:?}) of triangle {} has no triangle on \
-                         its other side and does not run counter-clockwise along the board boundary",
-                        h / 3
-                    )
+                None => f.fail(|| MeshValidationError::UnpairedEdge {
+                    from: a,
+                    to: b,
+                    points,
+                    triangle: h / 3,
                 }),
             }
         }
-        self.boundary_edges = boundary_edges;
-        for (side, edges) in sides.iter_mut().enumerate() {
+        for (side, mut edges) in BoardSide::ALL.into_iter().zip(sides) {
             edges.sort_unstable();
-            let mut at = 0;
-            for &(s, e, h) in edges.iter() {
-                if s != at {
-                    let what = if s > at { "a gap" } else { "an overlap" };
-                    f.fail(|| {
-                        format!(
-                            "the boundary edges on the {} side have {what} at {} (triangle {})",
-                            SIDES[side],
-                            s.min(at),
-                            h / 3
-                        )
-                    });
-                }
-                at = at.max(e);
-            }
-            if at != u {
-                f.fail(|| {
-                    format!(
-                        "the boundary edges on the {} side end at {at}, not at U = {u}",
-                        SIDES[side]
-                    )
-                });
-            }
+            f.keep(side_cover(side, &edges, u));
         }
+        (f.0, boundary_edges)
+    }
 
-        let mut used = vec![false; self.mesh.vertices.len()];
-        for (_, tri) in self.good_triangles() {
-            for v in tri {
-                used[v as usize] = true;
-            }
-        }
-        let mut points: Vec<(Point, u32)> = (used.iter().enumerate())
-            .filter(|(_, &u)| u)
-            .map(|(v, _)| (self.point(v as u32), v as u32))
-            .collect();
-        points.sort_unstable();
-        if let Some(w) = points.windows(2).find(|w| w[0].0 == w[1].0) {
-            f.fail(|| {
-                format!(
-                    "vertices {} and {} are both at {:?}",
-                    w[0].1, w[1].1, w[0].0
-                )
-            });
-        }
-        self.points = points;
-        f.finish(|| {
-            format!(
-                "interior edges paired, {} edges cover the board boundary",
-                self.boundary_edges.len()
-            )
+    /// Two used vertices at one point, if any.
+    fn coincident_vertices(&self) -> Option<MeshValidationError> {
+        let w = self.points.windows(2).find(|w| w[0].0 == w[1].0)?;
+        Some(MeshValidationError::CoincidentVertices {
+            vertices: [w[0].1, w[1].1],
+            point: w[0].0,
         })
     }
 
-    fn area(&self) -> Check {
-        let total: i128 = self.area2.iter().sum();
-        let u = self.board.size() as i128;
-        if total == 2 * u * u {
-            Check::pass(format!("{} = U^2", u * u))
-        } else {
-            Check {
-                ok: false,
-                message: format!(
-                    "the triangles cover area {}, not U^2 = {}",
-                    half(total),
-                    u * u
-                ),
-            }
-        }
-    }
-
-    fn regions(&self) -> Check {
+    /// `regions`, from the doubled areas and the input steps on the half-edges.
+    fn regions(&self, area2: &[i128], sides: &[Input]) -> Check {
         let mut f = Finding::default();
         let k = self.board.components().len() as u32;
         let mut area = vec![0i128; k as usize + 1];
-        for (t, tri) in self.good_triangles() {
-            let Some(r) = self.region(t) else { continue };
-            if r > k {
-                f.fail(|| {
-                    format!("triangle {t} {tri:?} has region {r}, but the board has {k} components")
+        for (triangle, vertices) in self.good_triangles() {
+            let Some(region) = self.region(triangle) else {
+                continue;
+            };
+            if region > k {
+                f.fail(|| MeshValidationError::RegionOutOfRange {
+                    triangle,
+                    vertices,
+                    region,
+                    components: k,
                 });
             } else {
-                area[r as usize] += self.area2[t];
+                area[region as usize] += area2[triangle];
             }
         }
         for (h, a, b) in self.half_edges() {
-            let t = h as usize / 3;
-            let Some(r) = self.region(t) else { continue };
-            let (expected, why) = match (self.input[h as usize], self.twin(h)) {
-                (Input::Left(c), _) if r != c => (c, format!("left of component {c}'s outline")),
-                (Input::Right(c), _) if r != 0 => (0, format!("right of component {c}'s outline")),
-                (Input::None, Some(g)) => match self.region(g as usize / 3) {
-                    Some(other) if other != r => (
-                        other,
-                        format!("across a non-input edge from triangle {}", g / 3),
-                    ),
-                    _ => continue,
-                },
-                _ => continue,
-            };
-            f.fail(|| {
-                format!(
-                    "triangle {t} has region {r}, but it lies {why} (edge {a} -> {b}), so \
-                     region {expected}"
-                )
-            });
+            f.keep(self.region_across(h, [a, b], sides[h as usize]));
         }
         for (ci, comp) in self.board.components().iter().enumerate() {
             let (got, want) = (area[ci + 1], comp.doubled_area().abs());
             if got != want {
-                f.fail(|| {
-                    format!(
-                        "the triangles of region {} cover area {}, component {} has area {}",
-                        ci + 1,
-                        half(got),
-                        ci + 1,
-                        half(want)
-                    )
+                f.fail(|| MeshValidationError::RegionArea {
+                    region: ci as u32 + 1,
+                    doubled_area: got,
+                    expected_doubled_area: want,
                 });
             }
         }
         f.finish(|| format!("{} regions consistent", k + 1))
     }
 
-    fn euler(&self) -> (Check, usize, usize) {
-        let v = self.points.len();
-        let e = self.keys.chunk_by(|x, y| x.0 == y.0).count();
-        let t = self.good.iter().filter(|&&g| g).count();
-        let chi = v as i64 - e as i64 + t as i64;
-        let text = format!("V - E + F = {v} - {e} + {t} = {chi}");
-        let check = if chi == 1 {
-            Check::pass(text)
-        } else {
-            Check {
-                ok: false,
-                message: format!("{text}, not 1"),
-            }
+    /// The region the triangle of half-edge `h` (running along `edge`) breaks, if any: the
+    /// component on the left of an outline, the board on its right, or the same region as
+    /// across a non-input edge.
+    fn region_across(&self, h: u32, edge: [u32; 2], side: Input) -> Option<MeshValidationError> {
+        let triangle = h as usize / 3;
+        let region = self.region(triangle)?;
+        let (expected, rule) = match (side, self.twin(h)) {
+            (Input::Left(c), _) if region != c => (c, RegionRule::LeftOfOutline(c)),
+            (Input::Right(c), _) if region != 0 => (0, RegionRule::RightOfOutline(c)),
+            (Input::None, Some(g)) => match self.region(g as usize / 3) {
+                Some(other) if other != region => (other, RegionRule::AcrossFrom(g / 3)),
+                _ => return None,
+            },
+            _ => return None,
         };
-        (check, v, e)
+        Some(MeshValidationError::WrongRegion {
+            triangle,
+            region,
+            expected,
+            edge,
+            rule,
+        })
     }
 
-    fn segments(&self) -> Check {
+    /// `euler`, with the numbers of used vertices and of distinct edges.
+    fn euler(&self) -> (Check, usize, usize) {
+        let vertices = self.points.len();
+        let edges = (self.pairing.keys).chunk_by(|x, y| x.0 == y.0).count();
+        let triangles = self.good.iter().filter(|&&g| g).count();
+        let chi = vertices as i64 - edges as i64 + triangles as i64;
+        let check = if chi == 1 {
+            Check::Passed(format!(
+                "V - E + F = {vertices} - {edges} + {triangles} = {chi}"
+            ))
+        } else {
+            Check::Failed(MeshValidationError::Euler {
+                vertices,
+                edges,
+                triangles,
+            })
+        };
+        (check, vertices, edges)
+    }
+
+    /// `segments`, against the board-boundary edges of `conforming` and the input steps of
+    /// `respects_input`.
+    fn segments(&self, boundary_edges: &[(u32, u32)], steps: &[((u32, u32), u32)]) -> Check {
         let mut f = Finding::default();
-        let nv = self.mesh.vertices.len() as u64;
-        let mut marked: FastMap<((u32, u32), SegmentKind), usize> = FastMap::default();
-        for (k, s) in self.mesh.segments.iter().enumerate() {
-            let [a, b] = s.vertices;
-            if u64::from(a) >= nv || u64::from(b) >= nv {
-                f.fail(|| {
-                    format!(
-                        "segment {k} {:?} refers to a vertex out of range",
-                        s.vertices
-                    )
-                });
-                continue;
-            }
-            if !self.is_edge(a, b) {
-                f.fail(|| format!("segment {k} {a}-{b} ({:?}) is not a mesh edge", s.kind));
-            }
-            if let Some(&j) = marked.get(&(undirected(a, b), s.kind)) {
-                f.fail(|| format!("segments {j} and {k} both mark {a}-{b} as {:?}", s.kind));
-            } else {
-                marked.insert((undirected(a, b), s.kind), k);
-            }
-        }
+        let marked = self.marked_segments(&mut f);
         let mut expected: FastMap<((u32, u32), SegmentKind), ()> = FastMap::default();
-        for &e in &self.boundary_edges {
+        for &e in boundary_edges {
             expected.insert((e, SegmentKind::Boundary), ());
             if !marked.contains_key(&(e, SegmentKind::Boundary)) {
-                f.fail(|| {
-                    format!(
-                        "board boundary edge {}-{} has no Boundary segment",
-                        e.0, e.1
-                    )
+                f.fail(|| MeshValidationError::MissingBoundarySegment { edge: [e.0, e.1] });
+            }
+        }
+        for &((a, b), component) in steps {
+            let key = (undirected(a, b), SegmentKind::Component(component));
+            expected.insert(key, ());
+            if !marked.contains_key(&key) {
+                f.fail(|| MeshValidationError::MissingOutlineSegment {
+                    edge: [a, b],
+                    component,
                 });
             }
         }
-        for &((a, b), c) in &self.input_steps {
-            let key = (undirected(a, b), SegmentKind::Component(c));
-            expected.insert(key, ());
-            if !marked.contains_key(&key) {
-                f.fail(|| format!("edge {a}-{b} of component {c}'s outline has no segment"));
-            }
-        }
-        for (k, s) in self.mesh.segments.iter().enumerate() {
+        let nv = self.mesh.vertices.len() as u64;
+        for (segment, s) in self.mesh.segments.iter().enumerate() {
             let [a, b] = s.vertices;
             let in_range = u64::from(a) < nv && u64::from(b) < nv;
             if in_range && !expected.contains_key(&(undirected(a, b), s.kind)) {
-                let what = match s.kind {
-                    SegmentKind::Boundary => "the board boundary".to_string(),
-                    SegmentKind::Component(c) => format!("component {c}'s outline"),
-                };
-                f.fail(|| format!("segment {k} {a}-{b} is marked as on {what}, but is not"));
+                f.fail(|| MeshValidationError::SegmentWrongKind {
+                    segment,
+                    vertices: s.vertices,
+                    kind: s.kind,
+                });
             }
         }
         f.finish(|| format!("{} segments", self.mesh.segments.len()))
     }
+
+    /// The segments by (undirected edge, kind), each mapped to its first index; violations of
+    /// the segments themselves (out of range, not a mesh edge, repeated) recorded in `f`.
+    fn marked_segments(&self, f: &mut Finding) -> FastMap<((u32, u32), SegmentKind), usize> {
+        let vertex_count = self.mesh.vertices.len();
+        let mut marked: FastMap<((u32, u32), SegmentKind), usize> = FastMap::default();
+        for (segment, s) in self.mesh.segments.iter().enumerate() {
+            let [a, b] = s.vertices;
+            if a as usize >= vertex_count || b as usize >= vertex_count {
+                f.fail(|| MeshValidationError::SegmentVertexOutOfRange {
+                    segment,
+                    vertices: s.vertices,
+                    vertex_count,
+                });
+                continue;
+            }
+            if !self.is_edge(a, b) {
+                f.fail(|| MeshValidationError::SegmentNotEdge {
+                    segment,
+                    vertices: s.vertices,
+                    kind: s.kind,
+                });
+            }
+            if let Some(&j) = marked.get(&(undirected(a, b), s.kind)) {
+                f.fail(|| MeshValidationError::RepeatedSegment {
+                    segments: [j, segment],
+                    vertices: s.vertices,
+                    kind: s.kind,
+                });
+            } else {
+                marked.insert((undirected(a, b), s.kind), segment);
+            }
+        }
+        marked
+    }
+}
+
+/// The first gap or overlap among the boundary edges on one side of the board, given as
+/// (start, end, half-edge) measured along the side and sorted, or their not ending at U.
+fn side_cover(side: BoardSide, edges: &[(i64, i64, u32)], u: i64) -> Option<MeshValidationError> {
+    let mut at = 0;
+    for &(s, e, h) in edges {
+        if s != at {
+            return Some(MeshValidationError::BoundaryCover {
+                side,
+                at: s.min(at),
+                gap: s > at,
+                triangle: h / 3,
+            });
+        }
+        at = at.max(e);
+    }
+    (at != u).then_some(MeshValidationError::BoundaryEnd {
+        side,
+        end: at,
+        size: u,
+    })
 }

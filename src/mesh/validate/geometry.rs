@@ -7,6 +7,7 @@ use super::checks::Validator;
 use super::*;
 
 impl Validator<'_> {
+    /// `angles`, and the smallest and largest angle in degrees.
     pub(super) fn angles(&self) -> (Check, Option<[f64; 2]>) {
         let mut f = Finding::default();
         // The smallest and largest angle as (dot, |cross|): vectors in the closed upper half
@@ -31,14 +32,13 @@ impl Validator<'_> {
                     ],
                 });
                 if dot < 0 || dot > cr {
-                    let what = if dot < 0 { "above 90" } else { "below 45" };
-                    f.fail(|| {
-                        format!(
-                            "triangle {t} {tri:?}: the angle at vertex {} {a:?} is {:.2} \
-                             degrees, {what}",
-                            tri[i],
-                            degrees(angle)
-                        )
+                    f.fail(|| MeshValidationError::Angle {
+                        triangle: t,
+                        vertices: tri,
+                        vertex: tri[i],
+                        point: a,
+                        dot,
+                        cross: cr,
                     });
                 }
             }
@@ -51,13 +51,14 @@ impl Validator<'_> {
         (check, range)
     }
 
-    pub(super) fn delaunay(&self) -> Check {
+    /// `delaunay`, over the interior edges between triangles of positive doubled area `area2`.
+    pub(super) fn delaunay(&self, area2: &[i128]) -> Check {
         let mut f = Finding::default();
         let mut pairs = 0usize;
         for (h, a, b) in self.half_edges() {
             let Some(g) = self.twin(h) else { continue };
             let (s, t) = (h as usize / 3, g as usize / 3);
-            if h > g || self.area2[s] <= 0 || self.area2[t] <= 0 {
+            if h > g || area2[s] <= 0 || area2[t] <= 0 {
                 continue;
             }
             pairs += 1;
@@ -66,11 +67,13 @@ impl Validator<'_> {
             let d = self.point(d_index);
             if incircle(p0, p1, p2, d) > 0 {
                 let c = self.mesh.triangles[s][(h as usize % 3 + 2) % 3];
-                f.fail(|| {
-                    format!(
-                        "across edge {a}-{b}: vertex {d_index} {d:?} of triangle {t} lies \
-                         strictly inside the circumcircle of triangle {s} (opposite vertex {c})"
-                    )
+                f.fail(|| MeshValidationError::NotDelaunay {
+                    edge: [a, b],
+                    vertex: d_index,
+                    point: d,
+                    triangle: t,
+                    circumcircle_of: s,
+                    opposite: c,
                 });
             }
         }

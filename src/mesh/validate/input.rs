@@ -3,43 +3,48 @@
 //! (edges of any length, so the coarsest mode's long mesh edges are followed too), with the
 //! component on the proper side of each step.
 
-use super::checks::{Input, Validator, NONE};
+use super::checks::{Input, InputEdges, Validator};
 use super::*;
+use crate::mesh::pairing::NONE;
 
 impl Validator<'_> {
-    pub(super) fn respects_input(&mut self) -> Check {
+    /// `respects_input`, and the input steps found: the side of each half-edge along a
+    /// component edge, and the mesh edges along the component edges.
+    pub(super) fn respects_input(&self) -> (Check, InputEdges) {
         let mut f = Finding::default();
-        let mut input = vec![Input::None; self.twins.len()];
+        let mut input = vec![Input::None; self.half_edge_count()];
         let mut steps = Vec::new();
-        let mut leaving = vec![NONE; self.mesh.vertices.len()];
-        for (h, a, _) in self.half_edges() {
-            leaving[a as usize] = h;
-        }
-        self.leaving = leaving;
         for (ci, comp) in self.board.components().iter().enumerate() {
             let c = ci as u32 + 1;
             for (k, (p, q)) in comp.edges().enumerate() {
                 let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
                 if (dx == 0 && dy == 0) || (dx != 0 && dy != 0 && dx.abs() != dy.abs()) {
-                    f.fail(|| {
-                        format!("component {c} edge {k} {p:?} -> {q:?} is not a lattice direction")
+                    f.fail(|| MeshValidationError::NotLatticeDirection {
+                        component: c,
+                        edge: k,
+                        from: p,
+                        to: q,
                     });
                     continue;
                 }
                 let d = [dx.signum(), dy.signum()];
                 let Some(first) = self.vertex_at(p) else {
-                    f.fail(|| format!("component {c} vertex {p:?} is not a mesh vertex"));
+                    f.fail(|| MeshValidationError::OutlineVertexMissing {
+                        component: c,
+                        point: p,
+                    });
                     continue;
                 };
                 let (mut at, mut from) = (p, first);
                 while at != q {
                     let left = (q[0] - at[0]).abs().max((q[1] - at[1]).abs());
                     let Some((to, next)) = self.step_along(from, at, d, left) else {
-                        f.fail(|| {
-                            format!(
-                                "component {c} edge {k} {p:?} -> {q:?}: no mesh edge leaves \
-                                 {at:?} along it"
-                            )
+                        f.fail(|| MeshValidationError::OutlineEdgeBroken {
+                            component: c,
+                            edge: k,
+                            from: p,
+                            to: q,
+                            at,
                         });
                         break;
                     };
@@ -61,9 +66,8 @@ impl Validator<'_> {
                 }
             }
         }
-        self.input = input;
-        self.input_steps = steps;
-        f.finish(|| {
+        let steps_len = steps.len();
+        let check = f.finish(|| {
             format!(
                 "{} component edges are chains of {} mesh edges",
                 self.board
@@ -71,9 +75,14 @@ impl Validator<'_> {
                     .iter()
                     .map(|c| c.outline.len())
                     .sum::<usize>(),
-                self.input_steps.len()
+                steps_len
             )
-        })
+        });
+        let found = InputEdges {
+            sides: input,
+            steps,
+        };
+        (check, found)
     }
 
     /// The half-edges leaving `v`, found by turning around it through the triangles (both ways,

@@ -8,56 +8,63 @@ use super::{Board, Mesh, Point, SegmentKind};
 use crate::hash::FastMap;
 use core::fmt;
 
-/// The outcome of one check of [`Mesh::validate`].
+/// The outcome of one check of [`Mesh::validate`]: a short summary if the property holds, else
+/// the first broken invariant, naming the offending triangle, edge or vertex (0-based indices).
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Check {
-    /// `true` if the property holds.
-    pub ok: bool,
-    /// On failure, what is wrong, naming the first offending triangle, edge or vertex (0-based
-    /// indices); on success, a short summary.
-    pub message: String,
+pub enum Check {
+    /// The property holds; a short summary of what was checked.
+    Passed(String),
+    /// The first violation found.
+    Failed(MeshValidationError),
 }
 
 impl Check {
-    fn pass(message: impl Into<String>) -> Self {
-        Check {
-            ok: true,
-            message: message.into(),
-        }
-    }
-
     /// `true` if the property holds.
     pub fn is_ok(&self) -> bool {
-        self.ok
+        matches!(self, Check::Passed(_))
+    }
+
+    /// The violation found, `None` if the property holds.
+    pub fn error(&self) -> Option<&MeshValidationError> {
+        match self {
+            Check::Passed(_) => None,
+            Check::Failed(e) => Some(e),
+        }
     }
 }
 
 impl fmt::Display for Check {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.ok {
-            write!(f, "ok ({})", self.message)
-        } else {
-            write!(f, "FAILED: {}", self.message)
+        match self {
+            Check::Passed(summary) => write!(f, "ok ({summary})"),
+            Check::Failed(e) => write!(f, "FAILED: {e}"),
         }
     }
 }
 
 /// The first failure of a check, or a summary if none.
 #[derive(Default)]
-struct Finding(Option<String>);
+struct Finding(Option<MeshValidationError>);
 
 impl Finding {
-    /// Records `message` unless a failure is already recorded (the first one is kept).
-    fn fail(&mut self, message: impl FnOnce() -> String) {
+    /// Records the violation unless one is already recorded (the first one is kept).
+    fn fail(&mut self, violation: impl FnOnce() -> MeshValidationError) {
         if self.0.is_none() {
-            self.0 = Some(message());
+            self.0 = Some(violation());
+        }
+    }
+
+    /// Records `violation` unless one is already recorded.
+    fn keep(&mut self, violation: Option<MeshValidationError>) {
+        if self.0.is_none() {
+            self.0 = violation;
         }
     }
 
     fn finish(self, summary: impl FnOnce() -> String) -> Check {
         match self.0 {
-            Some(message) => Check { ok: false, message },
-            None => Check::pass(summary()),
+            Some(e) => Check::Failed(e),
+            None => Check::Passed(summary()),
         }
     }
 }
@@ -112,8 +119,7 @@ impl Finding {
 ///
 /// Validation never panics on a malformed mesh: indices out of range, vertices outside the board,
 /// missing regions and degenerate triangles are reported, and the triangles concerned skipped.
-/// Time: O(n log n) for n triangles (edges are paired by sorting), plus O(1) per mesh edge
-/// along the component edges and O(1) expected per segment.
+/// Time: see [`Mesh::validate`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct ValidationReport {
     /// Vertex indices in range, one region per triangle, vertices inside the board.
@@ -152,7 +158,7 @@ pub struct ValidationReport {
 impl ValidationReport {
     /// `true` if every check passed.
     pub fn is_ok(&self) -> bool {
-        self.checks().iter().all(|(_, c)| c.ok)
+        self.checks().iter().all(|(_, c)| c.is_ok())
     }
 
     /// The checks with their field names, in the order of the struct.
@@ -175,7 +181,7 @@ impl ValidationReport {
     pub fn failed(&self) -> Vec<&'static str> {
         self.checks()
             .iter()
-            .filter(|(_, c)| !c.ok)
+            .filter(|(_, c)| !c.is_ok())
             .map(|(name, _)| *name)
             .collect()
     }
@@ -198,8 +204,8 @@ impl fmt::Display for ValidationReport {
             write!(f, ", angles {lo:.1} to {hi:.1} degrees")?;
         }
         for (name, check) in self.checks() {
-            if !check.ok {
-                write!(f, "\n  {name}: {}", check.message)?;
+            if let Some(e) = check.error() {
+                write!(f, "\n  {name}: {e}")?;
             }
         }
         Ok(())
@@ -208,10 +214,17 @@ impl fmt::Display for ValidationReport {
 
 impl Mesh {
     /// The cheap part of [`Mesh::validate`] that a file writer needs: every triangle and segment
-    /// vertex index in range, and one region per triangle. The error names the first offender.
+    /// vertex index in range, and one region per triangle.
+    ///
+    /// # Errors
+    /// The first offender: [`MeshValidationError::TriangleVertexOutOfRange`],
+    /// [`MeshValidationError::RegionCount`] or [`MeshValidationError::SegmentVertexOutOfRange`].
+    ///
+    /// # Complexity
+    /// O(T + S) for T triangles and S segments, no allocation.
     ///
     /// ```
-    /// use orthtree::mesh::Mesh;
+    /// use orthtree::mesh::{Mesh, MeshValidationError};
     /// let mut mesh = Mesh {
     ///     vertices: vec![[0, 0], [1, 0], [1, 1]],
     ///     triangles: vec![[0, 1, 2]],
@@ -220,31 +233,42 @@ impl Mesh {
     /// };
     /// assert!(mesh.check_indices().is_ok());
     /// mesh.triangles[0][2] = 3;
-    /// assert!(mesh.check_indices().unwrap_err().contains("triangle 0"));
+    /// let err = mesh.check_indices().unwrap_err();
+    /// assert_eq!(
+    ///     err,
+    ///     MeshValidationError::TriangleVertexOutOfRange {
+    ///         triangle: 0,
+    ///         vertices: [0, 1, 3],
+    ///         vertex_count: 3
+    ///     }
+    /// );
+    /// assert!(err.to_string().contains("triangle 0"));
     /// ```
-    pub fn check_indices(&self) -> Result<(), String> {
-        let nv = self.vertices.len();
-        if let Some((t, tri)) = (self.triangles.iter().enumerate())
-            .find(|(_, tri)| tri.iter().any(|&v| v as usize >= nv))
+    pub fn check_indices(&self) -> Result<(), MeshValidationError> {
+        let vertex_count = self.vertices.len();
+        if let Some((triangle, tri)) = (self.triangles.iter().enumerate())
+            .find(|(_, tri)| tri.iter().any(|&v| v as usize >= vertex_count))
         {
-            return Err(format!(
-                "triangle {t} {tri:?} refers to a vertex out of range (there are {nv} vertices)"
-            ));
+            return Err(MeshValidationError::TriangleVertexOutOfRange {
+                triangle,
+                vertices: *tri,
+                vertex_count,
+            });
         }
         if self.regions.len() != self.triangles.len() {
-            return Err(format!(
-                "{} regions for {} triangles",
-                self.regions.len(),
-                self.triangles.len()
-            ));
+            return Err(MeshValidationError::RegionCount {
+                regions: self.regions.len(),
+                triangles: self.triangles.len(),
+            });
         }
-        if let Some((k, s)) = (self.segments.iter().enumerate())
-            .find(|(_, s)| s.vertices.iter().any(|&v| v as usize >= nv))
+        if let Some((segment, s)) = (self.segments.iter().enumerate())
+            .find(|(_, s)| s.vertices.iter().any(|&v| v as usize >= vertex_count))
         {
-            return Err(format!(
-                "segment {k} {:?} refers to a vertex out of range (there are {nv} vertices)",
-                s.vertices
-            ));
+            return Err(MeshValidationError::SegmentVertexOutOfRange {
+                segment,
+                vertices: s.vertices,
+                vertex_count,
+            });
         }
         Ok(())
     }
@@ -279,8 +303,8 @@ fn half(doubled: i128) -> String {
     }
 }
 
-/// The side of the board a directed edge lies on, running counter-clockwise, with its extent
-/// measured along that side from the side's start.
+/// The side of the board a directed edge lies on, running counter-clockwise (as an index into
+/// [`BoardSide::ALL`]), with its extent measured along that side from the side's start.
 fn boundary_side(a: Point, b: Point, u: i64) -> Option<(usize, i64, i64)> {
     if a[1] == 0 && b[1] == 0 && b[0] > a[0] {
         Some((0, a[0], b[0]))
@@ -295,13 +319,6 @@ fn boundary_side(a: Point, b: Point, u: i64) -> Option<(usize, i64, i64)> {
     }
 }
 
-const SIDES: [&str; 4] = [
-    "bottom (y = 0)",
-    "right (x = U)",
-    "top (y = U)",
-    "left (x = 0)",
-];
-
 /// An undirected edge key, smaller vertex first.
 fn undirected(a: u32, b: u32) -> (u32, u32) {
     (a.min(b), a.max(b))
@@ -312,7 +329,7 @@ impl Mesh {
     /// never panicking on malformed meshes.
     ///
     /// ```
-    /// use orthtree::mesh::{Board, Mesh, Segment, SegmentKind};
+    /// use orthtree::mesh::{Board, Mesh, MeshValidationError, Segment, SegmentKind};
     /// // the board U = 1 cut along its rising diagonal
     /// let board = Board::new(1, vec![]).unwrap();
     /// let side = |a, b| Segment { vertices: [a, b], kind: SegmentKind::Boundary };
@@ -327,19 +344,26 @@ impl Mesh {
     /// assert_eq!(report.angle_range_deg, Some([45.0, 90.0]));
     /// mesh.triangles[1] = [0, 3, 2]; // clockwise
     /// let report = mesh.validate(&board);
-    /// assert!(!report.orientation.ok);
-    /// assert!(report.orientation.message.contains("triangle 1"));
+    /// assert!(matches!(
+    ///     report.orientation.error(),
+    ///     Some(MeshValidationError::NotCounterClockwise { triangle: 1, doubled_area: -1, .. })
+    /// ));
     /// ```
+    ///
+    /// # Complexity
+    /// O(T + V) time plus O(d log d) per vertex of degree d for T triangles and V vertices
+    /// (edges are paired by a counting sort), plus O(1) per mesh edge along the component edges
+    /// and O(1) expected per segment.
     pub fn validate(&self, board: &Board) -> ValidationReport {
-        Validator::new(self, board).run()
+        checks::run(self, board)
     }
 }
 
-/// No half-edge.
 mod checks;
 mod geometry;
 mod input;
 #[cfg(test)]
 mod tests;
+mod violation;
 
-use checks::Validator;
+pub use violation::{BoardSide, MeshValidationError, RegionRule};
