@@ -123,7 +123,7 @@ fn area(area2: &[i128], size: i64) -> Check {
 impl<'m> Validator<'m> {
     /// The shared data of the good triangles: paired half-edges, used vertices by position, one
     /// half-edge leaving each vertex.
-    fn new(mesh: &'m Mesh, board: &'m Board, good: Vec<bool>) -> Self {
+    pub(super) fn new(mesh: &'m Mesh, board: &'m Board, good: Vec<bool>) -> Self {
         let nv = mesh.vertices.len();
         let pairing = pair(&mesh.triangles, nv, |t| good[t]);
         let mut used = vec![false; nv];
@@ -307,7 +307,7 @@ impl<'m> Validator<'m> {
     }
 
     /// Two used vertices at one point, if any.
-    fn coincident_vertices(&self) -> Option<MeshValidationError> {
+    pub(super) fn coincident_vertices(&self) -> Option<MeshValidationError> {
         let w = self.points.windows(2).find(|w| w[0].0 == w[1].0)?;
         Some(MeshValidationError::CoincidentVertices {
             vertices: [w[0].1, w[1].1],
@@ -470,7 +470,11 @@ impl<'m> Validator<'m> {
 
 /// The first gap or overlap among the boundary edges on one side of the board, given as
 /// (start, end, half-edge) measured along the side and sorted, or their not ending at U.
-fn side_cover(side: BoardSide, edges: &[(i64, i64, u32)], u: i64) -> Option<MeshValidationError> {
+pub(super) fn side_cover(
+    side: BoardSide,
+    edges: &[(i64, i64, u32)],
+    u: i64,
+) -> Option<MeshValidationError> {
     let mut at = 0;
     for &(s, e, h) in edges {
         if s != at {
