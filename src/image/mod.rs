@@ -73,11 +73,13 @@ mod iter;
 mod operators;
 mod ops;
 mod rows;
+mod validate;
 
 pub use build::Coverage;
 pub use iter::{Block, Blocks};
 pub use ops::BoolOp;
 pub use rows::RowBuilder;
+pub use validate::Malformation;
 
 use core::fmt;
 
@@ -142,8 +144,8 @@ pub enum ImageError {
     Malformed {
         /// The index of the offending node in pre-order.
         position: usize,
-        /// What is wrong there.
-        reason: &'static str,
+        /// The invariant of the canonical form broken there.
+        invariant: Malformation,
     },
     /// Building the tree would hold more bytes than the budget allows
     /// ([`RowBuilder::max_bytes`]).
@@ -203,9 +205,10 @@ impl fmt::Display for ImageError {
             ImageError::BitmapLength { expected, found } => {
                 write!(f, "bitmap has length {found}, expected {expected}")
             }
-            ImageError::Malformed { position, reason } => {
-                write!(f, "malformed region tree at node {position}: {reason}")
-            }
+            ImageError::Malformed {
+                position,
+                invariant,
+            } => write!(f, "malformed region tree at node {position}: {invariant}"),
             ImageError::MemoryLimit { needed, limit } => write!(
                 f,
                 "building the region tree needs more than {needed} bytes; the limit is {limit}"
@@ -384,80 +387,6 @@ impl<const D: usize> RegionTree<D> {
                 x => return x == BLACK,
             }
         }
-    }
-
-    /// Checks the canonical form: a well-formed pre-order sequence (every internal node has 2^D
-    /// complete subtrees, no trailing nodes, no leaf deeper than k), no internal node whose
-    /// children are leaves of one colour, and no black pixel outside the extent.
-    ///
-    /// Every constructor and operation returns canonical trees; this is the check tests run
-    /// after each of them.
-    pub fn validate(&self) -> Result<(), ImageError> {
-        let bad = |position, reason| Err(ImageError::Malformed { position, reason });
-        let n = 1usize << D;
-        // (index of the internal node, next child, cell min)
-        let mut stack: Vec<(usize, usize, [u32; D])> = Vec::new();
-        let mut min = [0u32; D];
-        let mut i = 0;
-        loop {
-            let Some(&x) = self.nodes.get(i) else {
-                return bad(i, "sequence ends inside the tree");
-            };
-            let level = stack.len() as u8;
-            let side = 1u64 << (self.depth - level);
-            match x {
-                INTERNAL if level == self.depth => {
-                    return bad(i, "internal node at the pixel level")
-                }
-                INTERNAL => {
-                    stack.push((i, 0, min));
-                    i += 1;
-                    continue;
-                }
-                BLACK => {
-                    let inside = (0..D).all(|a| min[a] as u64 + side <= self.extent[a] as u64);
-                    if !inside {
-                        return bad(i, "black leaf outside the extent");
-                    }
-                }
-                WHITE => {}
-                _ => return bad(i, "unknown node kind"),
-            }
-            i += 1;
-            // the node just read is complete: move to the next sibling, closing parents
-            loop {
-                let open = stack.len() as u8;
-                let Some(top) = stack.last_mut() else {
-                    if i != self.nodes.len() {
-                        return bad(i, "trailing nodes after the root's subtree");
-                    }
-                    return Ok(());
-                };
-                top.1 += 1;
-                if top.1 < n {
-                    let child_side = 1u32 << (self.depth - open);
-                    let (c, base) = (top.1, top.2);
-                    min = core::array::from_fn(|a| base[a] + ((c >> a) as u32 & 1) * child_side);
-                    break;
-                }
-                let (start, _, _) = stack.pop().expect("non-empty");
-                let first = self.nodes[start + 1];
-                if i == start + 1 + n
-                    && first != INTERNAL
-                    && self.nodes[start + 1..i].iter().all(|&y| y == first)
-                {
-                    return bad(
-                        start,
-                        "internal node whose children are leaves of one colour",
-                    );
-                }
-            }
-        }
-    }
-
-    /// Whether [`RegionTree::validate`] passes.
-    pub fn is_canonical(&self) -> bool {
-        self.validate().is_ok()
     }
 }
 
