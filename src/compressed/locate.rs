@@ -133,6 +133,8 @@ impl PointLocator {
         Ok(locator)
     }
 
+    /// Builds the nodes top-down from the root task (see the module doc), with an explicit
+    /// stack of tasks.
     fn build(&mut self, split_edges: bool) -> Result<(), SubdivisionError> {
         let s = &self.subdivision;
         // The exercise's rule has no size bound in the input size: stop it before memory runs out.
@@ -148,103 +150,139 @@ impl PointLocator {
             if split_edges && self.nodes.len() >= limit {
                 return Err(SubdivisionError::TooManySquares { limit });
             }
-            let cell = if task.parent == NIL {
-                task.cell
-            } else {
-                self.shrink(task.cell, &task.vertices, &task.edges)
-            };
-            let id = self.nodes.len() as u32;
-            if task.parent != NIL {
-                let parent = &mut self.nodes[task.parent as usize];
-                parent.children[task.quadrant] = id;
-                if cell != task.cell {
-                    // The quadrant outside the shrunk cell: sample a corner the cell misses.
-                    let qb = self.geometry.cell_box(&task.cell);
-                    let cb = self.geometry.cell_box(&cell);
-                    let corners = [0, 1, 2, 3].map(|c: usize| {
-                        let pick = |a: usize| {
-                            if (c >> a) & 1 == 0 {
-                                qb.min[a]
-                            } else {
-                                qb.max[a]
-                            }
-                        };
-                        [pick(0), pick(1)]
-                    });
-                    let sample = corners
-                        .into_iter()
-                        .find(|p| !cb.contains(p))
-                        .unwrap_or(qb.min);
-                    let face = self.face_near(&sample, &qb, &task.edges).0;
-                    self.nodes[task.parent as usize].faces[task.quadrant] = face;
-                }
-            }
-            let mut node = Node {
-                cell,
-                key: cell.aligned_key(),
-                children: [NIL; 4],
-                faces: [NIL; 4],
-                vertex: NIL,
-                list: (0, 0),
-                leaf: true,
-            };
-            let incident = |v: u32| {
-                task.edges
-                    .iter()
-                    .all(|&e| s.edges()[e as usize].contains(&v))
-            };
-            let simple = match task.vertices[..] {
-                [] => !split_edges || task.edges.len() <= 1,
-                [v] => incident(v),
-                _ => false,
-            };
+            let cell = self.attach(&task);
+            let simple = self.is_simple(&task, split_edges);
             if simple || cell.level() == Cell::<2>::MAX_LEVEL {
-                if !simple || (task.vertices.is_empty() && task.edges.len() > 1) {
-                    check_crossings(s, &task.edges)?;
-                } else if let [v] = task.vertices[..] {
-                    node.vertex = v;
-                }
-                node.list = (
-                    self.lists.len() as u32,
-                    (self.lists.len() + task.edges.len()) as u32,
-                );
-                self.lists.extend(&task.edges);
-                self.nodes.push(node);
-                continue;
+                self.push_leaf(cell, &task, simple)?;
+            } else {
+                self.push_internal(cell, &task, &mut stack);
             }
-            node.leaf = false;
-            let bbox = self.geometry.cell_box(&cell);
-            for q in 0..4 {
-                let child = cell.child(q);
-                let cb = self.geometry.cell_box(&child);
-                let vertices: Vec<u32> = task
-                    .vertices
-                    .iter()
-                    .copied()
-                    .filter(|&v| cb.contains(&s.vertices()[v as usize]))
-                    .collect();
-                let edges: Vec<u32> = task
-                    .edges
-                    .iter()
-                    .copied()
-                    .filter(|&e| clip(s, e, &cb).is_some())
-                    .collect();
-                if vertices.is_empty() && edges.is_empty() {
-                    let centre = [0.5 * (cb.min[0] + cb.max[0]), 0.5 * (cb.min[1] + cb.max[1])];
-                    node.faces[q] = self.face_near(&centre, &bbox, &task.edges).0;
-                } else {
-                    stack.push(Task {
-                        parent: id,
-                        quadrant: q,
-                        cell: child,
-                        vertices,
-                        edges,
-                    });
-                }
-            }
-            self.nodes.push(node);
         }
         Ok(())
+    }
+
+    /// The cell of `task`'s node (its cell shrunk to its contents, except at the root), linked
+    /// into its parent with the face of the part of the quadrant outside it.
+    fn attach(&mut self, task: &Task) -> Cell<2> {
+        if task.parent == NIL {
+            return task.cell;
+        }
+        let cell = self.shrink(task.cell, &task.vertices, &task.edges);
+        let id = self.nodes.len() as u32;
+        self.nodes[task.parent as usize].children[task.quadrant] = id;
+        if cell != task.cell {
+            let face = self.outside_face(task.cell, cell, &task.edges);
+            self.nodes[task.parent as usize].faces[task.quadrant] = face;
+        }
+        cell
+    }
+
+    /// The face of the points of `quadrant` outside its shrunk `cell`: that region meets no
+    /// edge, so the face near a corner the cell misses is the face of all of it.
+    fn outside_face(&self, quadrant: Cell<2>, cell: Cell<2>, edges: &[u32]) -> u32 {
+        let qb = self.geometry.cell_box(&quadrant);
+        let cb = self.geometry.cell_box(&cell);
+        let corners = [0, 1, 2, 3].map(|c: usize| {
+            let pick = |a: usize| {
+                if (c >> a) & 1 == 0 {
+                    qb.min[a]
+                } else {
+                    qb.max[a]
+                }
+            };
+            [pick(0), pick(1)]
+        });
+        let sample = corners
+            .into_iter()
+            .find(|p| !cb.contains(p))
+            .unwrap_or(qb.min);
+        self.face_near(&sample, &qb, edges).0
+    }
+
+    /// Whether `task`'s square stops splitting: no vertex (and, under the exercise's rule, at
+    /// most one edge), or one vertex and only edges incident to it.
+    fn is_simple(&self, task: &Task, split_edges: bool) -> bool {
+        let s = &self.subdivision;
+        let incident = |v: u32| {
+            task.edges
+                .iter()
+                .all(|&e| s.edges()[e as usize].contains(&v))
+        };
+        match task.vertices[..] {
+            [] => !split_edges || task.edges.len() <= 1,
+            [v] => incident(v),
+            _ => false,
+        }
+    }
+
+    /// A new node at `cell` with no children yet.
+    fn node(cell: Cell<2>) -> Node {
+        Node {
+            cell,
+            key: cell.aligned_key(),
+            children: [NIL; 4],
+            faces: [NIL; 4],
+            vertex: NIL,
+            list: (0, 0),
+            leaf: true,
+        }
+    }
+
+    /// Stores `task`'s square as a leaf with its edges (and its vertex when `simple`); a leaf
+    /// holding several edges and no vertex, or stopped at the finest level, is checked for
+    /// crossing edges.
+    fn push_leaf(
+        &mut self,
+        cell: Cell<2>,
+        task: &Task,
+        simple: bool,
+    ) -> Result<(), SubdivisionError> {
+        let mut node = Self::node(cell);
+        if !simple || (task.vertices.is_empty() && task.edges.len() > 1) {
+            check_crossings(&self.subdivision, &task.edges)?;
+        } else if let [v] = task.vertices[..] {
+            node.vertex = v;
+        }
+        node.list = (
+            self.lists.len() as u32,
+            (self.lists.len() + task.edges.len()) as u32,
+        );
+        self.lists.extend(&task.edges);
+        self.nodes.push(node);
+        Ok(())
+    }
+
+    /// Stores `task`'s square as an internal node: each quadrant's contents become a task, an
+    /// empty quadrant gets its face.
+    fn push_internal(&mut self, cell: Cell<2>, task: &Task, stack: &mut Vec<Task>) {
+        let s = &self.subdivision;
+        let id = self.nodes.len() as u32;
+        let mut node = Self::node(cell);
+        node.leaf = false;
+        let bbox = self.geometry.cell_box(&cell);
+        for q in 0..4 {
+            let child = cell.child(q);
+            let cb = self.geometry.cell_box(&child);
+            let vertices: Vec<u32> = (task.vertices.iter().copied())
+                .filter(|&v| cb.contains(&s.vertices()[v as usize]))
+                .collect();
+            let edges: Vec<u32> = (task.edges.iter().copied())
+                .filter(|&e| clip(s, e, &cb).is_some())
+                .collect();
+            if vertices.is_empty() && edges.is_empty() {
+                let centre = [0.5 * (cb.min[0] + cb.max[0]), 0.5 * (cb.min[1] + cb.max[1])];
+                node.faces[q] = self.face_near(&centre, &bbox, &task.edges).0;
+            } else {
+                stack.push(Task {
+                    parent: id,
+                    quadrant: q,
+                    cell: child,
+                    vertices,
+                    edges,
+                });
+            }
+        }
+        self.nodes.push(node);
     }
 
     /// The smallest cell inside `cell` whose closed box holds the vertices and the parts of the

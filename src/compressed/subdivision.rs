@@ -143,57 +143,76 @@ fn angle(a: [f64; 2], b: [f64; 2]) -> f64 {
     (b[1] - a[1]).atan2(b[0] - a[0])
 }
 
-impl Subdivision {
-    /// Checks the graph and computes its faces. O((V + E) log(V + E)).
-    ///
-    /// Errors: a non-finite or repeated vertex; an edge naming a missing vertex, joining a vertex
-    /// to itself, or repeated; a vertex not connected to vertex 0.
-    pub fn new(vertices: Vec<[f64; 2]>, edges: Vec<[u32; 2]>) -> Result<Self, SubdivisionError> {
+/// Checks the vertices: few enough (with the edges) for `u32` half-edge indices, finite, and
+/// no two at one point.
+fn check_vertices(vertices: &[[f64; 2]], edge_count: usize) -> Result<(), SubdivisionError> {
+    let n = vertices.len();
+    if n >= u32::MAX as usize / 2 || edge_count >= u32::MAX as usize / 2 {
+        return Err(SubdivisionError::TooLarge);
+    }
+    for (vertex, p) in vertices.iter().enumerate() {
+        if let Some(axis) = p.iter().position(|x| !x.is_finite()) {
+            return Err(SubdivisionError::NotFinite { vertex, axis });
+        }
+    }
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| {
+        vertices[a]
+            .partial_cmp(&vertices[b])
+            .expect("finite")
+            .then(a.cmp(&b))
+    });
+    for w in order.windows(2) {
+        if vertices[w[0]] == vertices[w[1]] {
+            return Err(SubdivisionError::DuplicateVertex {
+                first: w[0],
+                vertex: w[1],
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Checks the edges against `n` vertices: existing ends, no loop, no edge twice.
+fn check_edges(n: usize, edges: &[[u32; 2]]) -> Result<(), SubdivisionError> {
+    let mut pairs = Vec::with_capacity(edges.len());
+    for (edge, &[a, b]) in edges.iter().enumerate() {
+        if let Some(&vertex) = [a, b].iter().find(|&&x| x as usize >= n) {
+            return Err(SubdivisionError::NoSuchVertex { edge, vertex });
+        }
+        if a == b {
+            return Err(SubdivisionError::Loop { edge });
+        }
+        pairs.push((a.min(b), a.max(b), edge));
+    }
+    pairs.sort_unstable();
+    for w in pairs.windows(2) {
+        if (w[0].0, w[0].1) == (w[1].0, w[1].1) {
+            return Err(SubdivisionError::DuplicateEdge {
+                first: w[0].2.min(w[1].2),
+                edge: w[0].2.max(w[1].2),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The rotation system: the outgoing half-edges of each vertex sorted by angle (half-edge
+/// `2e` runs along edge `e`, `2e + 1` back).
+struct Rotation {
+    /// Outgoing half-edges of vertex `v`: `around[start[v]..start[v + 1]]`.
+    start: Vec<u32>,
+    around: Vec<u32>,
+    /// The direction angle of each entry of `around`.
+    angle: Vec<f64>,
+    /// The index in `around` of each half-edge.
+    position: Vec<u32>,
+}
+
+impl Rotation {
+    /// Sorts the half-edges around each vertex (a counting sort by origin, then small sorts).
+    fn new(vertices: &[[f64; 2]], edges: &[[u32; 2]]) -> Self {
         let n = vertices.len();
-        if n >= u32::MAX as usize / 2 || edges.len() >= u32::MAX as usize / 2 {
-            return Err(SubdivisionError::TooLarge);
-        }
-        for (vertex, p) in vertices.iter().enumerate() {
-            if let Some(axis) = p.iter().position(|x| !x.is_finite()) {
-                return Err(SubdivisionError::NotFinite { vertex, axis });
-            }
-        }
-        let mut order: Vec<usize> = (0..n).collect();
-        order.sort_by(|&a, &b| {
-            vertices[a]
-                .partial_cmp(&vertices[b])
-                .expect("finite")
-                .then(a.cmp(&b))
-        });
-        for w in order.windows(2) {
-            if vertices[w[0]] == vertices[w[1]] {
-                return Err(SubdivisionError::DuplicateVertex {
-                    first: w[0],
-                    vertex: w[1],
-                });
-            }
-        }
-        let mut pairs = Vec::with_capacity(edges.len());
-        for (edge, &[a, b]) in edges.iter().enumerate() {
-            if let Some(&vertex) = [a, b].iter().find(|&&x| x as usize >= n) {
-                return Err(SubdivisionError::NoSuchVertex { edge, vertex });
-            }
-            if a == b {
-                return Err(SubdivisionError::Loop { edge });
-            }
-            pairs.push((a.min(b), a.max(b), edge));
-        }
-        pairs.sort_unstable();
-        for w in pairs.windows(2) {
-            if (w[0].0, w[0].1) == (w[1].0, w[1].1) {
-                return Err(SubdivisionError::DuplicateEdge {
-                    first: w[0].2.min(w[1].2),
-                    edge: w[0].2.max(w[1].2),
-                });
-            }
-        }
-        check_connected(n, &edges)?;
-        // Half-edges around each vertex, by angle (a counting sort by origin, then small sorts).
         let origin = |h: u32| edges[(h / 2) as usize][(h % 2) as usize];
         let target = |h: u32| edges[(h / 2) as usize][1 - (h % 2) as usize];
         let mut start = vec![0u32; n + 1];
@@ -220,31 +239,69 @@ impl Subdivision {
         for (i, &h) in around.iter().enumerate() {
             position[h as usize] = i as u32;
         }
-        // next(u -> v): the outgoing half-edge of v just clockwise of v -> u.
-        let next = |h: u32| {
-            let twin = h ^ 1;
-            let v = origin(twin) as usize;
-            let (s, e) = (start[v], start[v + 1]);
-            let at = position[twin as usize];
-            around[if at == s { e - 1 } else { at - 1 } as usize]
-        };
-        let mut face = vec![u32::MAX; around.len()];
-        let mut areas = Vec::new();
-        for h0 in 0..around.len() as u32 {
-            if face[h0 as usize] != u32::MAX {
-                continue;
-            }
-            let id = areas.len() as u32;
-            let mut area = 0.0;
-            let mut h = h0;
-            while face[h as usize] == u32::MAX {
-                face[h as usize] = id;
-                let (a, b) = (vertices[origin(h) as usize], vertices[target(h) as usize]);
-                area += a[0] * b[1] - a[1] * b[0];
-                h = next(h);
-            }
-            areas.push(area);
+        Rotation {
+            start,
+            around,
+            angle: angle_of,
+            position,
         }
+    }
+
+    /// next(u -> v): the outgoing half-edge of v just clockwise of v -> u.
+    fn next(&self, edges: &[[u32; 2]], h: u32) -> u32 {
+        let twin = h ^ 1;
+        let v = edges[(twin / 2) as usize][(twin % 2) as usize] as usize;
+        let (s, e) = (self.start[v], self.start[v + 1]);
+        let at = self.position[twin as usize];
+        self.around[if at == s { e - 1 } else { at - 1 } as usize]
+    }
+}
+
+/// The faces: the face left of each half-edge, found by walking every face cycle once, and
+/// the doubled signed area of each face (the outer face's is the most negative).
+fn trace_faces(
+    vertices: &[[f64; 2]],
+    edges: &[[u32; 2]],
+    rotation: &Rotation,
+) -> (Vec<u32>, Vec<f64>) {
+    let origin = |h: u32| edges[(h / 2) as usize][(h % 2) as usize];
+    let target = |h: u32| edges[(h / 2) as usize][1 - (h % 2) as usize];
+    let mut face = vec![u32::MAX; rotation.around.len()];
+    let mut areas = Vec::new();
+    for h0 in 0..face.len() as u32 {
+        if face[h0 as usize] != u32::MAX {
+            continue;
+        }
+        let id = areas.len() as u32;
+        let mut area = 0.0;
+        let mut h = h0;
+        while face[h as usize] == u32::MAX {
+            face[h as usize] = id;
+            let (a, b) = (vertices[origin(h) as usize], vertices[target(h) as usize]);
+            area += a[0] * b[1] - a[1] * b[0];
+            h = rotation.next(edges, h);
+        }
+        areas.push(area);
+    }
+    (face, areas)
+}
+
+impl Subdivision {
+    /// Checks the graph and computes its faces.
+    ///
+    /// # Errors
+    /// A [`SubdivisionError`]: too many vertices or edges, a non-finite or repeated vertex; an
+    /// edge naming a missing vertex, joining a vertex to itself, or repeated; a vertex not
+    /// connected to vertex 0.
+    ///
+    /// # Complexity
+    /// O((V + E) log(V + E)) time for V vertices and E edges.
+    pub fn new(vertices: Vec<[f64; 2]>, edges: Vec<[u32; 2]>) -> Result<Self, SubdivisionError> {
+        check_vertices(&vertices, edges.len())?;
+        check_edges(vertices.len(), &edges)?;
+        check_connected(vertices.len(), &edges)?;
+        let rotation = Rotation::new(&vertices, &edges);
+        let (face, areas) = trace_faces(&vertices, &edges, &rotation);
         let outer = (0..areas.len())
             .min_by(|&a, &b| areas[a].total_cmp(&areas[b]))
             .unwrap_or(0) as u32;
@@ -252,9 +309,9 @@ impl Subdivision {
             face_count: areas.len().max(1) as u32,
             vertices,
             edges,
-            start,
-            around,
-            angle: angle_of,
+            start: rotation.start,
+            around: rotation.around,
+            angle: rotation.angle,
             face,
             outer,
         })
