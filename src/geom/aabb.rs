@@ -70,6 +70,10 @@ impl std::error::Error for AabbError {}
 
 impl<S: Scalar, const D: usize> Aabb<S, D> {
     /// A box from its corners; an error if a coordinate is not finite or `min > max` on an axis.
+    ///
+    /// # Errors
+    /// [`AabbError::NonFinite`] naming the first axis with a coordinate that is not finite,
+    /// [`AabbError::Inverted`] the first axis with `min > max`.
     pub fn new(min: [S; D], max: [S; D]) -> Result<Self, AabbError> {
         for axis in 0..D {
             if !min[axis].is_finite_coordinate() || !max[axis].is_finite_coordinate() {
@@ -112,6 +116,9 @@ impl<S: Scalar, const D: usize> Aabb<S, D> {
     /// The box converted to `f64` coordinates exactly: an error when a corner is not finite
     /// ([`AabbError::NonFinite`]) or is an integer `f64` cannot hold ([`AabbError::Inexact`]),
     /// naming the first such axis (the check of [`crate::validate_point`] on both corners).
+    ///
+    /// # Errors
+    /// [`AabbError::NonFinite`] or [`AabbError::Inexact`], naming the first such axis.
     ///
     /// ```
     /// use orthtree::{Aabb, AabbError};

@@ -231,6 +231,9 @@ impl<const D: usize> DeepCell<D> {
 
     /// The [`Cell`] of this cell, or of its ancestor at [`Cell::MAX_LEVEL`] when it is deeper:
     /// where a [`PointTree`](crate::PointTree) over the same root cube keeps its points.
+    ///
+    /// # Panics
+    /// Never: the ancestor's level is at most [`Cell::MAX_LEVEL`], so its coordinates fit.
     #[inline]
     pub fn to_cell(&self) -> Cell<D> {
         let level = self.level.min(Cell::<D>::MAX_LEVEL);

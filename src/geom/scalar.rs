@@ -115,6 +115,12 @@ int_scalar!(i8, i16, i32, i64, u8, u16, u32, u64);
 /// Returns `Err(axis)` for the first axis holding NaN, an infinity or an integer `f64` cannot
 /// hold exactly.
 ///
+/// # Errors
+/// The first axis holding NaN, an infinity or an integer `f64` cannot hold exactly.
+///
+/// # Complexity
+/// O(D).
+///
 /// ```
 /// use orthtree::validate_point;
 /// assert_eq!(validate_point(&[0.0, 1.0]), Ok(()));

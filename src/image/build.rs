@@ -33,6 +33,9 @@ impl<const D: usize> RegionTree<D> {
     /// white); at the pixel level (`side == 1`), `Partial` counts as `Full`. O(n) calls for a
     /// result of n nodes.
     ///
+    /// # Errors
+    /// [`ImageError::TooLarge`] for an extent beyond [`RegionTree::MAX_DEPTH`].
+    ///
     /// ```
     /// use orthtree::image::{Coverage, ImageTree};
     /// // the pixels with x < y, on a 64 x 64 image
@@ -96,7 +99,12 @@ impl<const D: usize> RegionTree<D> {
         }
     }
 
-    /// A tree from a pixel predicate, called once per pixel within the extent in Morton order:
+    /// A tree from a pixel predicate, called once per pixel within the extent in Morton order.
+    ///
+    /// # Errors
+    /// [`ImageError::TooLarge`] for an extent beyond [`RegionTree::MAX_DEPTH`].
+    ///
+    /// # Complexity
     /// O(pixels).
     ///
     /// ```
@@ -122,8 +130,13 @@ impl<const D: usize> RegionTree<D> {
     }
 
     /// A tree from row-major booleans (axis 0 fastest; `true` is black), `extent` the sides.
-    /// O(pixels); [`ImageError::BitmapLength`] if `pixels` does not hold exactly the product
-    /// of the sides.
+    ///
+    /// # Errors
+    /// [`ImageError::TooLarge`] for an extent beyond [`RegionTree::MAX_DEPTH`],
+    /// [`ImageError::BitmapLength`] if `pixels` is not the product of the sides long.
+    ///
+    /// # Complexity
+    /// O(pixels).
     ///
     /// ```
     /// use orthtree::image::ImageTree;
@@ -143,7 +156,14 @@ impl<const D: usize> RegionTree<D> {
     }
 
     /// A tree from a bit-packed bitmap as [`RegionTree::to_packed`] writes it: bit `i % 64` of
-    /// word `i / 64` is the pixel of row-major index `i`. O(pixels).
+    /// word `i / 64` is the pixel of row-major index `i`.
+    ///
+    /// # Errors
+    /// [`ImageError::TooLarge`] for an extent beyond [`RegionTree::MAX_DEPTH`],
+    /// [`ImageError::BitmapLength`] if `words` is not the pixel count over 64, rounded up, long.
+    ///
+    /// # Complexity
+    /// O(pixels).
     ///
     /// ```
     /// use orthtree::image::ImageTree;

@@ -102,7 +102,10 @@ fn combine_len<const D: usize>(a: &[u8], b: &[u8], depth: u8, op: BoolOp) -> u64
 }
 
 impl<const D: usize> RegionTree<D> {
-    /// The number of black pixels (voxels in 3D). O(n).
+    /// The number of black pixels (voxels in 3D).
+    ///
+    /// # Complexity
+    /// O(n) for n nodes.
     ///
     /// ```
     /// use orthtree::image::ImageTree;
@@ -118,7 +121,10 @@ impl<const D: usize> RegionTree<D> {
         self.nodes == [super::WHITE]
     }
 
-    /// The number of black pixels of `op(self, other)`, building nothing. O(n1 + n2).
+    /// The number of black pixels of `op(self, other)`, building nothing.
+    ///
+    /// # Complexity
+    /// O(n1 + n2) for trees of n1 and n2 nodes.
     ///
     /// # Panics
     /// If the extents differ.
@@ -136,7 +142,10 @@ impl<const D: usize> RegionTree<D> {
             .unwrap_or_else(|e| panic!("{e}"))
     }
 
-    /// The number of black pixels of `op(self, other)`, building nothing. O(n1 + n2).
+    /// The number of black pixels of `op(self, other)`, building nothing.
+    ///
+    /// # Complexity
+    /// O(n1 + n2) for trees of n1 and n2 nodes.
     ///
     /// # Errors
     /// [`ImageError::SizeMismatch`] naming both extents if they differ.

@@ -122,6 +122,8 @@ impl<const D: usize> RegionTree<D> {
     }
 
     /// The image as row-major booleans (axis 0 fastest, `true` black), cropped to the extent.
+    ///
+    /// # Complexity
     /// O(pixels + nodes).
     ///
     /// ```
@@ -138,7 +140,10 @@ impl<const D: usize> RegionTree<D> {
     }
 
     /// The image bit-packed: bit `i % 64` of word `i / 64` is the pixel of row-major index `i`
-    /// (axis 0 fastest), cropped to the extent. O(pixels / 64 + nodes + runs).
+    /// (axis 0 fastest), cropped to the extent.
+    ///
+    /// # Complexity
+    /// O(pixels / 64 + nodes + runs).
     ///
     /// ```
     /// use orthtree::image::ImageTree;

@@ -259,6 +259,12 @@ impl<const D: usize> RegionTree<D> {
     /// The depth k of an image of this extent: the smallest k with 2^k >= every side, or
     /// [`ImageError::TooLarge`].
     ///
+    /// # Errors
+    /// [`ImageError::TooLarge`] for an extent beyond [`RegionTree::MAX_DEPTH`].
+    ///
+    /// # Complexity
+    /// O(D).
+    ///
     /// ```
     /// use orthtree::image::ImageTree;
     /// assert_eq!(ImageTree::depth_for([5, 3]), Ok(3));
@@ -279,6 +285,9 @@ impl<const D: usize> RegionTree<D> {
 
     /// The all-white image of this extent: one white leaf.
     ///
+    /// # Errors
+    /// [`ImageError::TooLarge`] for an extent beyond [`RegionTree::MAX_DEPTH`].
+    ///
     /// ```
     /// use orthtree::image::ImageTree;
     /// let e = ImageTree::empty([100, 7]).unwrap();
@@ -294,6 +303,12 @@ impl<const D: usize> RegionTree<D> {
 
     /// The image whose pixels within the extent are all black (one black leaf when the extent is
     /// a power-of-two cube).
+    ///
+    /// # Errors
+    /// [`ImageError::TooLarge`] for an extent beyond [`RegionTree::MAX_DEPTH`].
+    ///
+    /// # Complexity
+    /// O(n) for the n nodes of the result, O(perimeter of the extent).
     ///
     /// ```
     /// use orthtree::image::ImageTree;
@@ -348,6 +363,13 @@ impl<const D: usize> RegionTree<D> {
     /// A tree from its pre-order node kinds (as [`RegionTree::nodes`] returns them), checked by
     /// [`RegionTree::validate`].
     ///
+    /// # Errors
+    /// [`ImageError::TooLarge`] for an extent beyond [`RegionTree::MAX_DEPTH`];
+    /// [`ImageError::Malformed`] naming the first node that breaks the canonical form.
+    ///
+    /// # Complexity
+    /// O(n) for n nodes (one pass of [`RegionTree::validate`]).
+    ///
     /// ```
     /// use orthtree::image::{ImageError, ImageTree};
     /// let t = ImageTree::from_nodes([2, 2], vec![2, 1, 0, 0, 1]).unwrap();
@@ -365,8 +387,10 @@ impl<const D: usize> RegionTree<D> {
         Ok(t)
     }
 
-    /// Whether the pixel at `p` is black; O(n) (a scan of the linear form). Pixels outside the
-    /// extent are white.
+    /// Whether the pixel at `p` is black. Pixels outside the extent are white.
+    ///
+    /// # Complexity
+    /// O(n) for n nodes (a scan of the linear form).
     pub fn contains(&self, p: [u32; D]) -> bool {
         if p.iter().zip(&self.extent).any(|(c, e)| c >= e) {
             return false;

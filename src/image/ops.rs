@@ -157,6 +157,9 @@ impl<const D: usize> RegionTree<D> {
     /// `op` applied pixel by pixel, by simultaneous traversal: O(n1 + n2) time, canonical
     /// result; [`ImageError::SizeMismatch`] if the extents differ.
     ///
+    /// # Errors
+    /// [`ImageError::SizeMismatch`] naming both extents if they differ.
+    ///
     /// ```
     /// use orthtree::image::{BoolOp, ImageTree};
     /// let a = ImageTree::from_boxes([4, 4], &[([0, 0], [2, 4])]).unwrap();
@@ -174,7 +177,13 @@ impl<const D: usize> RegionTree<D> {
         })
     }
 
-    /// The union (`|`); [`ImageError::SizeMismatch`] if the extents differ. O(n1 + n2).
+    /// The union (`|`); [`ImageError::SizeMismatch`] if the extents differ.
+    ///
+    /// # Errors
+    /// [`ImageError::SizeMismatch`] naming both extents if they differ.
+    ///
+    /// # Complexity
+    /// O(n1 + n2) for trees of n1 and n2 nodes.
     ///
     /// ```
     /// use orthtree::image::ImageTree;
@@ -186,7 +195,13 @@ impl<const D: usize> RegionTree<D> {
         self.try_combine(other, BoolOp::Or)
     }
 
-    /// The intersection (`&`); [`ImageError::SizeMismatch`] if the extents differ. O(n1 + n2).
+    /// The intersection (`&`); [`ImageError::SizeMismatch`] if the extents differ.
+    ///
+    /// # Errors
+    /// [`ImageError::SizeMismatch`] naming both extents if they differ.
+    ///
+    /// # Complexity
+    /// O(n1 + n2) for trees of n1 and n2 nodes.
     ///
     /// ```
     /// use orthtree::image::ImageTree;
@@ -200,6 +215,12 @@ impl<const D: usize> RegionTree<D> {
 
     /// The difference `self - other` (`-`); [`ImageError::SizeMismatch`] if the extents differ.
     ///
+    /// # Errors
+    /// [`ImageError::SizeMismatch`] naming both extents if they differ.
+    ///
+    /// # Complexity
+    /// O(n1 + n2) for trees of n1 and n2 nodes.
+    ///
     /// ```
     /// use orthtree::image::ImageTree;
     /// let a = ImageTree::full([4, 4]).unwrap();
@@ -211,6 +232,12 @@ impl<const D: usize> RegionTree<D> {
     }
 
     /// The symmetric difference (`^`); [`ImageError::SizeMismatch`] if the extents differ.
+    ///
+    /// # Errors
+    /// [`ImageError::SizeMismatch`] naming both extents if they differ.
+    ///
+    /// # Complexity
+    /// O(n1 + n2) for trees of n1 and n2 nodes.
     ///
     /// ```
     /// use orthtree::image::ImageTree;
@@ -259,6 +286,9 @@ impl<const D: usize> RegionTree<D> {
     /// power-of-two cube this swaps the leaf colours, O(n); otherwise it is the symmetric
     /// difference with [`RegionTree::full`], O(n + the size of the full image's tree, which is
     /// O(perimeter of the extent)).
+    ///
+    /// # Panics
+    /// Never: the extent was accepted when `self` was built, so its full image exists.
     ///
     /// ```
     /// use orthtree::image::ImageTree;

@@ -200,6 +200,9 @@ impl RowBuilder {
     /// # Errors
     /// [`ImageError::MissingRows`] if fewer rows than the height were pushed;
     /// [`ImageError::MemoryLimit`] past the budget.
+    ///
+    /// # Panics
+    /// Never: once every row is in, the last band has reached the root.
     pub fn finish(mut self) -> Result<ImageTree, ImageError> {
         if self.rows != self.extent[1] {
             return Err(ImageError::MissingRows {

@@ -65,6 +65,10 @@ impl Board {
     /// with at least 3 vertices; no two components touching or overlapping (nor one inside
     /// another). Orients each outline counter-clockwise and drops vertices between collinear
     /// edges.
+    ///
+    /// # Errors
+    /// The first [`BoardError`] found, naming the component, vertex or edge and the rule it
+    /// breaks.
     pub fn new(size: i64, components: Vec<Component>) -> Result<Board, BoardError> {
         super::check::check_board(size, components).map(|components| Board { size, components })
     }

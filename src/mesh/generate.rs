@@ -55,11 +55,13 @@ pub struct MeshOutcome {
 /// meeting a component edge split down to unit size. The same as
 /// `MeshOptions::new().grid_unit(1).generate(board)`; [`MeshOptions`] has the other settings.
 ///
-/// Complexity: O(p(S) log U) triangles, built in O(p(S) log^2 U) (Theorem 14.5).
-///
-/// Errors: [`BoardError::TooManyTriangles`] when the mesh would have more than
+/// # Errors
+/// [`BoardError::TooManyTriangles`] when the mesh would have more than
 /// [`DEFAULT_MAX_TRIANGLES`](super::DEFAULT_MAX_TRIANGLES) triangles (see
 /// [`MeshOptions::max_triangles`]); nothing else for a validated [`Board`].
+///
+/// # Complexity
+/// O(p(S) log U) triangles, built in O(p(S) log^2 U) (Theorem 14.5).
 ///
 /// ```
 /// use orthtree::mesh::{generate_mesh, Board, Component};

@@ -369,7 +369,10 @@ impl<'a> HalfEdges<'a> {
 
     /// The half-edges leaving vertex `v`, counter-clockwise; at a boundary vertex, from the
     /// boundary half-edge leaving `v` round to the one whose previous half-edge enters `v` from
-    /// the boundary. Each step is O(1).
+    /// the boundary.
+    ///
+    /// # Complexity
+    /// O(1) per step.
     pub fn outgoing(&self, v: u32) -> Outgoing<'_, 'a> {
         let start = self.first_out[v as usize];
         Outgoing {

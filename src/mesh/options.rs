@@ -160,14 +160,17 @@ impl MeshOptions {
 
     /// Meshes `board` with these options.
     ///
-    /// Complexity: in book mode with unit 1, as the chapter's algorithm: O(p(S) log U) triangles
-    /// in O(p(S) log^2 U) time (Theorem 14.5); in coarsest mode never more cells are split, and
-    /// the work per split cell is the same.
+    /// # Errors
+    /// An [`OptionsError`]: a grid unit that is not a power of two or does not divide a
+    /// coordinate, a size limit that is not positive or below one grid unit, a size function
+    /// returning NaN or a value that is not positive. Each names the offending value. A mesh of
+    /// more triangles than [`MeshOptions::max_triangles`] is refused with the number it needs at
+    /// least.
     ///
-    /// Errors: a grid unit that is not a power of two or does not divide a coordinate, a size
-    /// limit that is not positive or below one grid unit, a size function returning NaN or a
-    /// value that is not positive. Each names the offending value. A mesh of more triangles than
-    /// [`MeshOptions::max_triangles`] is refused with the number it needs at least.
+    /// # Complexity
+    /// In book mode with unit 1, as the chapter's algorithm: O(p(S) log U) triangles in
+    /// O(p(S) log^2 U) time (Theorem 14.5); in coarsest mode never more cells are split, and the
+    /// work per split cell is the same.
     pub fn generate(&self, board: &Board) -> Result<MeshOutcome, OptionsError> {
         let unit = match self.grid_unit {
             None => board.grid_unit(),

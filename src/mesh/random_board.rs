@@ -232,6 +232,9 @@ pub fn random_board(seed: u64, size: i64, count: usize) -> Board {
 ///
 /// # Examples
 ///
+/// # Panics
+/// Never: every component it places was checked to fit, so the board is valid.
+///
 /// ```
 /// use orthtree::mesh::{try_random_board, RandomBoardError};
 /// let board = try_random_board(7, 256, 40)?;

@@ -230,6 +230,9 @@ fn lower_side(out: &mut Layout, mirror: bool) {
 /// Components are pairwise at least one unit apart; traces stop 2 to 4 units short of the pads
 /// they lead to.
 ///
+/// # Panics
+/// Never: the board is a fixed, valid board (its tests build it).
+///
 /// ```
 /// use orthtree::mesh::{sample_board, Board};
 /// let board = sample_board();

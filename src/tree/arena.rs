@@ -145,6 +145,12 @@ impl<const D: usize> Tree<D> {
     }
 
     /// The cell of `id`, found by walking up to the root: O(level).
+    ///
+    /// # Panics
+    /// If `id` is not a node of this tree (like slice indexing).
+    ///
+    /// # Complexity
+    /// O(level of `id`).
     pub fn cell(&self, id: NodeId) -> Cell<D> {
         let level = self.level(id);
         let mut coords = [0u32; D];
@@ -173,6 +179,13 @@ impl<const D: usize> Tree<D> {
     }
 
     /// Splits the leaf `id`, or says why it cannot be split.
+    ///
+    /// # Errors
+    /// A [`SplitError`]: `id` is not a leaf, it is at [`Cell::MAX_LEVEL`], or the tree already
+    /// has 2^32 - 1 nodes.
+    ///
+    /// # Complexity
+    /// O(2^D).
     pub fn try_split(&mut self, id: NodeId) -> Result<NodeId, SplitError> {
         if !self.is_leaf(id) {
             return Err(SplitError::NotALeaf(id));
@@ -225,7 +238,10 @@ impl<const D: usize> Tree<D> {
             || self.first_child[self.block_parent[b] as usize] as usize == 1 + (b << D)
     }
 
-    /// The deepest node whose cell contains `cell`: O(level of the result).
+    /// The deepest node whose cell contains `cell`.
+    ///
+    /// # Complexity
+    /// O(level of the result).
     pub fn locate_cell(&self, cell: &Cell<D>) -> NodeId {
         let mut v = NodeId::ROOT;
         while let Some(first) = self.child(v, 0) {

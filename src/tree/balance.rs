@@ -32,9 +32,10 @@ impl<const D: usize> Tree<D> {
     /// module doc), and returns the leaves it split, each after its parent (a consumer moves its
     /// payload from each split leaf to the leaf's children, in this order).
     ///
-    /// Splits: at most (3^D - 1) m for a tree of m nodes (Theorem 14.4, generalised in the
-    /// module doc of the reference balance, `balance_reference.rs`); time O(d + 1) per neighbour search, one
-    /// search per internal node and outward direction.
+    /// # Complexity
+    /// At most (3^D - 1) m splits for a tree of m nodes (Theorem 14.4, generalised in the module
+    /// doc of the reference balance, `balance_reference.rs`); O(d + 1) time per neighbour
+    /// search, one search per internal node and outward direction.
     ///
     /// ```
     /// use orthtree::{Connectivity, NodeId, Tree};

@@ -30,7 +30,8 @@ impl<const D: usize> Tree<D> {
     /// split, in the order it split them (each split leaf's children follow from
     /// [`Tree::children`]; the list may hold leaves created by earlier splits in it).
     ///
-    /// Complexity: at most (3^D - 1) m splits for a tree of m nodes (Theorem 14.4, generalised
+    /// # Complexity
+    /// At most (3^D - 1) m splits for a tree of m nodes (Theorem 14.4, generalised
     /// in the module doc), O(d + 1) per neighbour query.
     pub fn balance_chapter(&mut self, options: impl Into<BalanceOptions>) -> Vec<NodeId> {
         let options = options.into();
@@ -59,7 +60,10 @@ impl<const D: usize> Tree<D> {
 
     /// The reference check for [`Tree::is_balanced`]: for every leaf and direction, looks for a
     /// too-deep leaf below the neighbour. `true` when no two adjacent leaves (under `options`'
-    /// connectivity) differ by more than `options.max_level_difference()` levels. O((d + 1) m).
+    /// connectivity) differ by more than `options.max_level_difference()` levels.
+    ///
+    /// # Complexity
+    /// O((d + 1) m) for m nodes and depth d.
     pub fn is_balanced_chapter(&self, options: impl Into<BalanceOptions>) -> bool {
         let options = options.into();
         let directions: Vec<Direction> = Direction::all::<D>(options.connectivity).collect();

@@ -38,6 +38,12 @@ impl<const D: usize> Tree<D> {
     /// Makes `id`, whose children are all leaves, a leaf again, and frees its child block for
     /// reuse by a later split. The ids of the freed children must no longer be used.
     ///
+    /// # Errors
+    /// A [`MergeError`]: `id` is a leaf, or one of its children is not.
+    ///
+    /// # Complexity
+    /// O(2^D), plus O(levels) when the tree's depth drops.
+    ///
     /// ```
     /// use orthtree::{NodeId, Tree};
     /// let mut t = Tree::<2>::new();
@@ -71,6 +77,12 @@ impl<const D: usize> Tree<D> {
 
     /// Merges every node below `id` bottom-up, so that `id` becomes a leaf; returns the number of
     /// blocks freed. O(nodes below `id`).
+    ///
+    /// # Panics
+    /// If `id` is not a node of this tree (like slice indexing).
+    ///
+    /// # Complexity
+    /// O(nodes below `id`).
     pub fn merge_subtree(&mut self, id: NodeId) -> usize {
         // Post-order with an explicit stack: (node, children pushed).
         let mut stack = vec![(id, false)];

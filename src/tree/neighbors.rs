@@ -17,7 +17,8 @@ impl<const D: usize> Tree<D> {
     /// deepest shallower node whose cell contains that cell (then a leaf); `None` when the step
     /// leaves the root cube.
     ///
-    /// Complexity: O(level(id) + 1) (Theorem 14.3), no allocation for depth up to 64.
+    /// # Complexity
+    /// O(level(id) + 1) (Theorem 14.3), no allocation for depth up to 64.
     ///
     /// ```
     /// use orthtree::{Direction, NodeId, Tree};
@@ -68,7 +69,8 @@ impl<const D: usize> Tree<D> {
     /// Appends to `out` every leaf whose cell touches the cell of `id` across the face, edge or
     /// corner given by `direction` (the leaves of the subdivision adjacent there), in Morton order.
     ///
-    /// Complexity: O(level(id) + 1 + k) for k leaves reported, plus the internal nodes on their
+    /// # Complexity
+    /// O(level(id) + 1 + k) for k leaves reported, plus the internal nodes on their
     /// paths below the neighbour.
     ///
     /// ```

@@ -119,7 +119,7 @@ impl Finding {
 ///
 /// Validation never panics on a malformed mesh: indices out of range, vertices outside the board,
 /// missing regions and degenerate triangles are reported, and the triangles concerned skipped.
-/// Time: see [`Mesh::validate`].
+/// Its cost is given at [`Mesh::validate`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct ValidationReport {
     /// Vertex indices in range, one region per triangle, vertices inside the board.
