@@ -67,7 +67,7 @@ fn sample() -> Board {
 fn written() -> [(&'static str, Reader, String); 2] {
     let b = sample();
     [
-        ("poly", read_poly_bytes as Reader, write_poly(&b)),
+        ("poly", read_poly_bytes as Reader, write_poly(&b).unwrap()),
         (
             "text",
             read_board_text_bytes as Reader,
@@ -167,9 +167,11 @@ fn invalid_utf8_names_line_and_offset() {
 /// format, and returns the message.
 fn message_for(field: &str) -> Vec<String> {
     let b = sample();
-    let poly = write_poly(&b).replacen("\n2 3 1\n", &format!("\n2 {field} 1\n"), 1);
+    let poly = write_poly(&b)
+        .unwrap()
+        .replacen("\n2 3 1\n", &format!("\n2 {field} 1\n"), 1);
     let text = write_board_text(&b).replacen("size 16\n1 1", &format!("size 16\n{field} 1"), 1);
-    assert_ne!(poly, write_poly(&b));
+    assert_ne!(poly, write_poly(&b).unwrap());
     assert_ne!(text, write_board_text(&b));
     [
         read_poly_bytes(poly.as_bytes(), None),
@@ -239,9 +241,9 @@ fn extensions_match_without_regard_to_case() {
     std::fs::create_dir_all(&dir).unwrap();
     let b = sample();
     for (name, text) in [
-        ("a.poly", write_poly(&b)),
-        ("b.POLY", write_poly(&b)),
-        ("c.Poly", write_poly(&b)),
+        ("a.poly", write_poly(&b).unwrap()),
+        ("b.POLY", write_poly(&b).unwrap()),
+        ("c.Poly", write_poly(&b).unwrap()),
         ("d.txt", write_board_text(&b)),
         ("e.TXT", write_board_text(&b)),
         ("f.Txt", write_board_text(&b)),
@@ -253,7 +255,7 @@ fn extensions_match_without_regard_to_case() {
     }
     for name in ["g.node", "h", "i.poly.bak", "j.po1y", ".poly"] {
         let path = dir.join(name);
-        std::fs::write(&path, write_poly(&b)).unwrap();
+        std::fs::write(&path, write_poly(&b).unwrap()).unwrap();
         let e = read_board_file(&path, None).unwrap_err();
         assert!(
             matches!(e, BoardFileError::UnknownFormat { .. }),
@@ -267,7 +269,7 @@ fn extensions_match_without_regard_to_case() {
 #[test]
 fn any_reader_gives_the_same_board() {
     for (format, text) in [
-        (BoardFormat::Poly, write_poly(&sample())),
+        (BoardFormat::Poly, write_poly(&sample()).unwrap()),
         (BoardFormat::Text, write_board_text(&sample())),
     ] {
         let b = format.read(text.as_bytes(), None).unwrap();

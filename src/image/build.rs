@@ -13,6 +13,7 @@
 //! per visited cell: O(n) calls for an n-node result, which is how shapes on a 65536^2 image are
 //! built without ever touching its 2^32 pixels.
 
+use super::budget::{ball_estimate, box_estimate, check_estimate, counted, DEFAULT_MAX_NODES};
 use super::{ImageError, RegionTree, Writer, BLACK, INTERNAL, WHITE};
 
 /// How a shape covers a cell, as told by the classifier of [`RegionTree::from_region`].
@@ -46,11 +47,44 @@ impl<const D: usize> RegionTree<D> {
     /// assert_eq!(t.len(), 64 * 63 / 2);
     /// assert!(t.is_canonical());
     /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`ImageError::TooLarge`] for an extent beyond [`RegionTree::MAX_DEPTH`];
+    /// [`ImageError::TooManyNodes`] once more than [`DEFAULT_MAX_NODES`] cells are classified
+    /// (see [`RegionTree::from_region_with_limit`]).
     pub fn from_region(
         extent: [u32; D],
+        classify: impl FnMut([u32; D], u32) -> Coverage,
+    ) -> Result<Self, ImageError> {
+        Self::from_region_with_limit(extent, DEFAULT_MAX_NODES, classify)
+    }
+
+    /// [`RegionTree::from_region`] classifying at most `max_nodes` cells: the construction
+    /// stops with an error as soon as it would classify one more. The nodes written are at most
+    /// 2^D times the cells classified (cells wholly outside the extent are not classified).
+    ///
+    /// ```
+    /// use orthtree::image::{Coverage, ImageError, ImageTree};
+    /// let everywhere_partial = |_: [u32; 2], _: u32| Coverage::Partial;
+    /// // a 4 x 4 image split down to pixels classifies 1 + 4 + 16 cells
+    /// assert!(ImageTree::from_region_with_limit([4, 4], 21, everywhere_partial).is_ok());
+    /// let err = ImageTree::from_region_with_limit([4, 4], 20, everywhere_partial).unwrap_err();
+    /// assert!(matches!(err, ImageError::TooManyNodes { limit: 20, estimated: false, .. }));
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`ImageError::TooLarge`] for an extent beyond [`RegionTree::MAX_DEPTH`];
+    /// [`ImageError::TooManyNodes`] (not estimated) once more than `max_nodes` cells are
+    /// classified.
+    pub fn from_region_with_limit(
+        extent: [u32; D],
+        max_nodes: u64,
         mut classify: impl FnMut([u32; D], u32) -> Coverage,
     ) -> Result<Self, ImageError> {
         let depth = Self::depth_for(extent)?;
+        let mut classified = 0u64;
         let mut w = Writer::<D>::with_capacity(64);
         // (min, level, child being visited) of each open cell; the child counts in a `u16`, as
         // it reaches 2^D = 256 in 8-D
@@ -64,6 +98,10 @@ impl<const D: usize> RegionTree<D> {
             let kind = if outside {
                 WHITE
             } else {
+                classified += 1;
+                if classified > max_nodes {
+                    return Err(counted(max_nodes));
+                }
                 match classify(min, side) {
                     Coverage::Empty => WHITE,
                     Coverage::Full if inside => BLACK,
@@ -112,11 +150,41 @@ impl<const D: usize> RegionTree<D> {
     /// let t = ImageTree::from_fn([5, 5], |[x, y]| (x + y) % 2 == 0).unwrap();
     /// assert_eq!(t.len(), 13);
     /// ```
+    ///
+    /// # Errors
+    ///
+    /// As [`RegionTree::from_fn_with_limit`] with [`DEFAULT_MAX_NODES`].
     pub fn from_fn(
         extent: [u32; D],
+        pixel: impl FnMut([u32; D]) -> bool,
+    ) -> Result<Self, ImageError> {
+        Self::from_fn_with_limit(extent, DEFAULT_MAX_NODES, pixel)
+    }
+
+    /// [`RegionTree::from_fn`] classifying at most `max_nodes` cells. It classifies every cell
+    /// within the extent, at least one per pixel, so an extent of more pixels than `max_nodes`
+    /// is refused before `pixel` is called.
+    ///
+    /// ```
+    /// use orthtree::image::{ImageError, ImageTree};
+    /// let err = ImageTree::from_fn_with_limit([1 << 20, 1 << 20], 1 << 28, |_| true).unwrap_err();
+    /// assert!(matches!(err, ImageError::TooManyNodes { estimated: true, .. }));
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`ImageError::TooLarge`] for an extent beyond [`RegionTree::MAX_DEPTH`];
+    /// [`ImageError::TooManyNodes`] (estimated) for more pixels than `max_nodes`, or (counted)
+    /// once more than `max_nodes` cells are classified.
+    pub fn from_fn_with_limit(
+        extent: [u32; D],
+        max_nodes: u64,
         mut pixel: impl FnMut([u32; D]) -> bool,
     ) -> Result<Self, ImageError> {
-        let mut t = Self::from_region(extent, |min, side| {
+        Self::depth_for(extent)?;
+        let pixels: f64 = extent.iter().map(|&e| f64::from(e)).product();
+        check_estimate(pixels, max_nodes)?;
+        let mut t = Self::from_region_with_limit(extent, max_nodes, |min, side| {
             if side > 1 {
                 Coverage::Partial
             } else if pixel(min) {
@@ -152,7 +220,8 @@ impl<const D: usize> RegionTree<D> {
                 found: pixels.len(),
             });
         }
-        Self::from_fn(extent, |p| pixels[row_major(p, extent)])
+        // Backed by the data: one bool per pixel is held already.
+        Self::from_fn_with_limit(extent, u64::MAX, |p| pixels[row_major(p, extent)])
     }
 
     /// A tree from a bit-packed bitmap as [`RegionTree::to_packed`] writes it: bit `i % 64` of
@@ -179,7 +248,8 @@ impl<const D: usize> RegionTree<D> {
                 found: words.len(),
             });
         }
-        Self::from_fn(extent, |p| {
+        // Backed by the data: one bit per pixel is held already.
+        Self::from_fn_with_limit(extent, u64::MAX, |p| {
             let i = row_major(p, extent);
             (words[i / 64] >> (i % 64)) & 1 == 1
         })
@@ -191,7 +261,9 @@ impl<const D: usize> RegionTree<D> {
     ///
     /// # Errors
     /// [`ImageError::InvertedBox`] naming the box and axis where `lo > hi`;
-    /// [`ImageError::TooLarge`] for an extent beyond [`RegionTree::MAX_DEPTH`].
+    /// [`ImageError::TooLarge`] for an extent beyond [`RegionTree::MAX_DEPTH`];
+    /// [`ImageError::TooManyNodes`] above [`DEFAULT_MAX_NODES`] cells classified (see
+    /// [`RegionTree::from_boxes_with_limit`]).
     ///
     /// ```
     /// use orthtree::image::ImageTree;
@@ -203,6 +275,34 @@ impl<const D: usize> RegionTree<D> {
         extent: [u32; D],
         boxes: &[([u32; D], [u32; D])],
     ) -> Result<Self, ImageError> {
+        Self::from_boxes_with_limit(extent, boxes, DEFAULT_MAX_NODES)
+    }
+
+    /// [`RegionTree::from_boxes`] classifying at most `max_nodes` cells. A single box is
+    /// refused before building when the cells its faces cut (a lower bound of the cells
+    /// classified) pass the limit; several boxes are counted while building only (a box may
+    /// hide another's faces).
+    ///
+    /// ```
+    /// use orthtree::image::{ImageError, VoxelTree};
+    /// let side = 1 << 21; // the deepest in 3-D
+    /// // faces at odd coordinates cut cells at every level: about 2^40 cells
+    /// let odd = ([1, 1, 1], [side - 1, side - 1, side - 1]);
+    /// let err = VoxelTree::from_boxes([side; 3], &[odd]).unwrap_err();
+    /// assert!(matches!(err, ImageError::TooManyNodes { estimated: true, .. }));
+    /// // faces on the grid of the largest cells cost nothing
+    /// let aligned = ([0, 0, 0], [side / 2, side, side]);
+    /// assert_eq!(VoxelTree::from_boxes([side; 3], &[aligned]).unwrap().node_count(), 9);
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// As [`RegionTree::from_boxes`], and [`ImageError::TooManyNodes`] above `max_nodes`.
+    pub fn from_boxes_with_limit(
+        extent: [u32; D],
+        boxes: &[([u32; D], [u32; D])],
+        max_nodes: u64,
+    ) -> Result<Self, ImageError> {
         for (index, (lo, hi)) in boxes.iter().enumerate() {
             if let Some(axis) = (0..D).find(|&a| lo[a] > hi[a]) {
                 return Err(ImageError::InvertedBox {
@@ -213,7 +313,11 @@ impl<const D: usize> RegionTree<D> {
                 });
             }
         }
-        Self::from_region(extent, |min, side| {
+        if let [single] = boxes {
+            let depth = Self::depth_for(extent)?;
+            check_estimate(box_estimate(extent, depth, *single), max_nodes)?;
+        }
+        Self::from_region_with_limit(extent, max_nodes, |min, side| {
             let mut partial = false;
             for (lo, hi) in boxes {
                 let cell_hi = |a: usize| u64::from(min[a]) + u64::from(side);
@@ -255,8 +359,37 @@ impl<const D: usize> RegionTree<D> {
     /// # Errors
     /// [`ImageError::InvalidCentre`] for a NaN or infinite coordinate (naming the axis),
     /// [`ImageError::InvalidRadius`] for a NaN or negative radius, as
-    /// [`Ball::new`](crate::query::Ball::new) refuses them.
+    /// [`Ball::new`](crate::query::Ball::new) refuses them; [`ImageError::TooLarge`] for an
+    /// extent beyond [`RegionTree::MAX_DEPTH`]; [`ImageError::TooManyNodes`] above
+    /// [`DEFAULT_MAX_NODES`] cells classified (see [`RegionTree::from_ball_with_limit`]).
     pub fn from_ball(extent: [u32; D], centre: [f64; D], radius: f64) -> Result<Self, ImageError> {
+        Self::from_ball_with_limit(extent, centre, radius, DEFAULT_MAX_NODES)
+    }
+
+    /// [`RegionTree::from_ball`] classifying at most `max_nodes` cells: refused before building
+    /// when the sphere's surface within the extent, over 2 sqrt(D) (about the boundary pixels,
+    /// each classified), passes the limit, and counted while building.
+    ///
+    /// ```
+    /// use orthtree::image::{ImageError, VoxelTree};
+    /// let side = 1 << 21; // the deepest in 3-D
+    /// let half = f64::from(side / 2);
+    /// // a sphere of radius 2^19 at depth 21: about 10^12 boundary voxels
+    /// let err = VoxelTree::from_ball([side; 3], [half; 3], half / 2.0).unwrap_err();
+    /// assert!(matches!(err, ImageError::TooManyNodes { estimated: true, .. }));
+    /// assert!(err.to_string().contains("the limit is 268435456"));
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// As [`RegionTree::from_ball`], and [`ImageError::TooManyNodes`] above `max_nodes`.
+    pub fn from_ball_with_limit(
+        extent: [u32; D],
+        centre: [f64; D],
+        radius: f64,
+        max_nodes: u64,
+    ) -> Result<Self, ImageError> {
+        Self::depth_for(extent)?;
         if let Some(axis) = (0..D).find(|&a| !centre[a].is_finite()) {
             return Err(ImageError::InvalidCentre {
                 axis,
@@ -280,7 +413,8 @@ impl<const D: usize> RegionTree<D> {
         };
         let centre = centre.map(|c| c * scale);
         let r2 = (radius * scale) * (radius * scale);
-        Self::from_region(extent, |min, side| {
+        check_estimate(ball_estimate(extent, centre, r2, scale), max_nodes)?;
+        Self::from_region_with_limit(extent, max_nodes, |min, side| {
             let (mut near, mut far) = (0.0, 0.0);
             for a in 0..D {
                 let lo = (f64::from(min[a]) + 0.5) * scale;

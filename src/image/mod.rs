@@ -67,6 +67,7 @@
 //! assert_eq!((&a | &b).to_bools()[..5], [true; 5]);
 //! ```
 
+mod budget;
 mod build;
 mod count;
 mod iter;
@@ -75,6 +76,7 @@ mod ops;
 mod rows;
 mod validate;
 
+pub use budget::DEFAULT_MAX_NODES;
 pub use build::Coverage;
 pub use iter::{Block, Blocks};
 pub use ops::BoolOp;
@@ -179,6 +181,17 @@ pub enum ImageError {
         /// The coordinate given.
         value: f64,
     },
+    /// A shape constructor would classify more cells than its limit
+    /// ([`DEFAULT_MAX_NODES`] unless a `_with_limit` form sets another).
+    TooManyNodes {
+        /// The cells it needs: an estimate made before building, or the limit plus one when
+        /// the count passed the limit while building.
+        nodes: u64,
+        /// The limit.
+        limit: u64,
+        /// Whether `nodes` is the estimate made before building.
+        estimated: bool,
+    },
     /// A box has `lo > hi` on an axis.
     InvertedBox {
         /// The index of the box in the list given.
@@ -228,6 +241,20 @@ impl fmt::Display for ImageError {
                     "ball centre has {value} on axis {axis}, expected a finite number"
                 )
             }
+            ImageError::TooManyNodes {
+                nodes,
+                limit,
+                estimated: true,
+            } => write!(
+                f,
+                "this shape needs about {nodes} cells (estimated before building); the limit \
+                 is {limit}"
+            ),
+            ImageError::TooManyNodes { limit, .. } => write!(
+                f,
+                "this shape needs more than {limit} cells (counted while building); the limit \
+                 is {limit}"
+            ),
             ImageError::InvertedBox {
                 index,
                 axis,

@@ -120,6 +120,15 @@ pub enum BoardFileError {
         /// What is wrong.
         error: BoardError,
     },
+    /// The file holds more bytes than the limit ([`MAX_BOARD_FILE_BYTES`] unless
+    /// [`read_board_file_with_limit`] sets another); a device or pipe that never ends (such as
+    /// `/dev/zero`) is stopped there.
+    TooLarge {
+        /// The file.
+        path: PathBuf,
+        /// The limit, in bytes.
+        limit: u64,
+    },
     /// The file's name ends neither in `.poly` nor in `.txt`.
     UnknownFormat {
         /// The file.
@@ -132,6 +141,12 @@ impl core::fmt::Display for BoardFileError {
         match self {
             BoardFileError::Io { path, error } => write!(f, "{}: {error}", path.display()),
             BoardFileError::Board { path, error } => write!(f, "{}: {error}", path.display()),
+            BoardFileError::TooLarge { path, limit } => write!(
+                f,
+                "{}: the file holds more than {limit} bytes; the limit for a board file is \
+                 {limit} bytes",
+                path.display()
+            ),
             BoardFileError::UnknownFormat { path } => write!(
                 f,
                 "{}: unknown board format: the name must end in .poly (Triangle's format) or \
@@ -147,18 +162,25 @@ impl std::error::Error for BoardFileError {
         match self {
             BoardFileError::Io { error, .. } => Some(error),
             BoardFileError::Board { error, .. } => Some(error),
-            BoardFileError::UnknownFormat { .. } => None,
+            BoardFileError::TooLarge { .. } | BoardFileError::UnknownFormat { .. } => None,
         }
     }
 }
 
+/// The most bytes [`read_board_file`] reads: 2^30 (1 GiB), far above the largest board the
+/// mesher's default budget takes (a board of 10 MB already needs about 18 million triangles).
+pub const MAX_BOARD_FILE_BYTES: u64 = 1 << 30;
+
 /// Reads the board in `path`, in the format its name says ([`BoardFormat::from_path`]); `size`
-/// is the caller's choice of U, which must agree with a size the file gives.
+/// is the caller's choice of U, which must agree with a size the file gives. At most
+/// [`MAX_BOARD_FILE_BYTES`] are read, whatever the file is (a regular file, a pipe, a device);
+/// see [`read_board_file_with_limit`].
 ///
 /// # Errors
 ///
 /// [`BoardFileError::UnknownFormat`] for a name ending neither in `.poly` nor in `.txt`
-/// (checked before the file is opened), [`BoardFileError::Io`] when the file cannot be read, and
+/// (checked before the file is opened), [`BoardFileError::Io`] when the file cannot be read,
+/// [`BoardFileError::TooLarge`] for a file of more than [`MAX_BOARD_FILE_BYTES`], and
 /// [`BoardFileError::Board`] with the reader's error (see [`BoardFormat::read_bytes`]).
 ///
 /// # Complexity
@@ -179,14 +201,51 @@ impl std::error::Error for BoardFileError {
 /// assert!(missing.to_string().contains("none.poly"));
 /// ```
 pub fn read_board_file(path: impl AsRef<Path>, size: Option<i64>) -> Result<Board, BoardFileError> {
+    read_board_file_with_limit(path, size, MAX_BOARD_FILE_BYTES)
+}
+
+/// [`read_board_file`] reading at most `max_bytes` bytes: the file is read through a reader
+/// that stops one byte past the limit, so memory stays within `max_bytes + 1` bytes of text
+/// even for a file that never ends.
+///
+/// ```
+/// use orthtree::io::{read_board_file_with_limit, BoardFileError};
+/// let dir = std::env::temp_dir().join("orthtree-doc-board-limit");
+/// std::fs::create_dir_all(&dir).unwrap();
+/// let path = dir.join("b.txt");
+/// std::fs::write(&path, "size 16\n4 4  8 4  8 8  4 8\n").unwrap(); // 27 bytes
+/// assert!(read_board_file_with_limit(&path, None, 27).is_ok());
+/// let err = read_board_file_with_limit(&path, None, 26).unwrap_err();
+/// assert!(matches!(err, BoardFileError::TooLarge { limit: 26, .. }));
+/// ```
+///
+/// # Errors
+///
+/// As [`read_board_file`], with [`BoardFileError::TooLarge`] for more than `max_bytes` bytes.
+pub fn read_board_file_with_limit(
+    path: impl AsRef<Path>,
+    size: Option<i64>,
+    max_bytes: u64,
+) -> Result<Board, BoardFileError> {
     let path = path.as_ref();
     let format = BoardFormat::from_path(path).ok_or_else(|| BoardFileError::UnknownFormat {
         path: path.to_path_buf(),
     })?;
-    let bytes = std::fs::read(path).map_err(|error| BoardFileError::Io {
+    let io_error = |error| BoardFileError::Io {
         path: path.to_path_buf(),
         error,
-    })?;
+    };
+    let file = std::fs::File::open(path).map_err(io_error)?;
+    let mut bytes = Vec::new();
+    file.take(max_bytes.saturating_add(1))
+        .read_to_end(&mut bytes)
+        .map_err(io_error)?;
+    if bytes.len() as u64 > max_bytes {
+        return Err(BoardFileError::TooLarge {
+            path: path.to_path_buf(),
+            limit: max_bytes,
+        });
+    }
     format
         .read_bytes(&bytes, size)
         .map_err(|error| BoardFileError::Board {

@@ -22,32 +22,118 @@
 //! Checked by loading written files with the gmsh 4.15 Python API and with meshio 5.3.
 
 use super::text_out::TextOut;
+use crate::hash::FastMap;
 use crate::mesh::{Mesh, SegmentKind};
-use std::collections::BTreeMap;
 use std::io::{self, BufWriter, Write};
 use std::path::Path;
 
-/// The elements of one entity: its tag, name and element indices (triangles or segments).
+/// The elements of one entity: its tag, name, element indices (triangles or segments) and the
+/// bounding box of their vertices, `[min x, min y, max x, max y]`.
 struct Group {
     tag: u64,
     name: String,
     members: Vec<usize>,
+    bbox: [i64; 4],
 }
 
-/// The bounding box of the given vertices, `[min x, min y, max x, max y]` (zeros if none).
-fn bounding_box(mesh: &Mesh, vertices: impl Iterator<Item = u32>) -> [i64; 4] {
-    let mut bb: Option<[i64; 4]> = None;
-    for v in vertices {
-        let [x, y] = mesh.vertices[v as usize];
-        bb = Some(match bb {
-            None => [x, y, x, y],
-            Some([a, b, c, d]) => [a.min(x), b.min(y), c.max(x), d.max(y)],
-        });
+/// The entities of a mesh: surfaces (one per region with triangles) and curves (one per
+/// segment kind present), each in order of tag.
+struct Entities {
+    surfaces: Vec<Group>,
+    curves: Vec<Group>,
+}
+
+/// Adds element `member` with the given vertices to the group of `tag`, made by `name` if it
+/// is new; `last` caches the position of the group of the previous element, as neighbouring
+/// elements mostly share one.
+fn add_member(
+    groups: &mut Vec<Group>,
+    index: &mut FastMap<u64, usize>,
+    last: &mut Option<(u64, usize)>,
+    (tag, member): (u64, usize),
+    points: &[[i64; 2]],
+    name: impl FnOnce() -> String,
+) {
+    let at = match *last {
+        Some((t, at)) if t == tag => at,
+        _ => *index.entry(tag).or_insert_with(|| {
+            let [x, y] = points[0];
+            groups.push(Group {
+                tag,
+                name: name(),
+                members: Vec::new(),
+                bbox: [x, y, x, y],
+            });
+            groups.len() - 1
+        }),
+    };
+    *last = Some((tag, at));
+    let g = &mut groups[at];
+    g.members.push(member);
+    for &[x, y] in points {
+        g.bbox = [
+            g.bbox[0].min(x),
+            g.bbox[1].min(y),
+            g.bbox[2].max(x),
+            g.bbox[3].max(y),
+        ];
     }
-    bb.unwrap_or([0; 4])
+}
+
+/// The groups of a mesh whose indices are checked, in one pass over its triangles and one over
+/// its segments.
+fn entities(mesh: &Mesh) -> Entities {
+    let point = |v: u32| mesh.vertices[v as usize];
+    let (mut surfaces, mut index, mut last) = (Vec::new(), FastMap::default(), None);
+    for (t, (tri, &r)) in mesh.triangles.iter().zip(&mesh.regions).enumerate() {
+        let points = tri.map(point);
+        let name = || match r {
+            0 => "board".to_string(),
+            i => format!("component {i}"),
+        };
+        let key = (1 + u64::from(r), t);
+        add_member(&mut surfaces, &mut index, &mut last, key, &points, name);
+    }
+    let (mut curves, mut index, mut last) = (Vec::new(), FastMap::default(), None);
+    for (k, s) in mesh.segments.iter().enumerate() {
+        let (tag, name) = match s.kind {
+            SegmentKind::Boundary => (1, "board boundary".to_string()),
+            SegmentKind::Component(i) => (1 + u64::from(i), format!("outline {i}")),
+        };
+        let points = s.vertices.map(point);
+        add_member(
+            &mut curves,
+            &mut index,
+            &mut last,
+            (tag, k),
+            &points,
+            || name,
+        );
+    }
+    surfaces.sort_unstable_by_key(|g| g.tag);
+    curves.sort_unstable_by_key(|g| g.tag);
+    Entities { surfaces, curves }
+}
+
+/// The bounding box of all vertices (zeros if none).
+fn all_vertices_box(mesh: &Mesh) -> [i64; 4] {
+    let mut it = mesh.vertices.iter();
+    let Some(&[x, y]) = it.next() else {
+        return [0; 4];
+    };
+    it.fold([x, y, x, y], |[a, b, c, d], &[x, y]| {
+        [a.min(x), b.min(y), c.max(x), d.max(y)]
+    })
 }
 
 /// Writes the mesh as MSH 4.1 ASCII (see the module doc).
+///
+/// # Errors
+///
+/// [`std::io::ErrorKind::InvalidInput`] if an index of the mesh is out of range (nothing is
+/// written); else those of `out`.
+///
+/// # Examples
 ///
 /// ```
 /// use orthtree::io::gmsh::write_msh;
@@ -72,93 +158,100 @@ pub fn write_msh(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
 
 /// [`write_msh`] on a mesh whose indices are checked.
 fn write_unchecked(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
-    let mut surfaces: BTreeMap<u64, Group> = BTreeMap::new();
-    for (t, &r) in mesh.regions.iter().enumerate() {
-        let tag = 1 + u64::from(r);
-        (surfaces.entry(tag))
-            .or_insert_with(|| Group {
-                tag,
-                name: match r {
-                    0 => "board".into(),
-                    i => format!("component {i}"),
-                },
-                members: Vec::new(),
-            })
-            .members
-            .push(t);
-    }
-    let mut curves: BTreeMap<u64, Group> = BTreeMap::new();
-    for (k, s) in mesh.segments.iter().enumerate() {
-        let (tag, name) = match s.kind {
-            SegmentKind::Boundary => (1, "board boundary".to_string()),
-            SegmentKind::Component(i) => (1 + u64::from(i), format!("outline {i}")),
-        };
-        (curves.entry(tag))
-            .or_insert_with(|| Group {
-                tag,
-                name,
-                members: Vec::new(),
-            })
-            .members
-            .push(k);
-    }
-    // The entity holding the nodes: the first surface, or a bare surface 1 if there is none.
-    let node_entity = surfaces.keys().next().copied().unwrap_or(1);
-    let bare_surface = surfaces.is_empty() && !mesh.vertices.is_empty();
-
-    writeln!(out, "$MeshFormat\n4.1 0 8\n$EndMeshFormat")?;
-
-    writeln!(out, "$PhysicalNames\n{}", surfaces.len() + curves.len())?;
-    for (dim, groups) in [(2, &surfaces), (1, &curves)] {
-        for g in groups.values() {
-            writeln!(out, "{dim} {} \"{}\"", g.tag, g.name)?;
-        }
-    }
-    writeln!(out, "$EndPhysicalNames")?;
-
-    writeln!(out, "$Entities")?;
-    let surface_count = surfaces.len() + usize::from(bare_surface);
-    writeln!(out, "0 {} {surface_count} 0", curves.len())?;
-    for g in curves.values() {
-        let vertices = g.members.iter().flat_map(|&k| mesh.segments[k].vertices);
-        let [x0, y0, x1, y1] = bounding_box(mesh, vertices);
-        writeln!(out, "{} {x0} {y0} 0 {x1} {y1} 0 1 {} 0", g.tag, g.tag)?;
-    }
-    for g in surfaces.values() {
-        let vertices = g.members.iter().flat_map(|&t| mesh.triangles[t]);
-        let [x0, y0, x1, y1] = bounding_box(mesh, vertices);
-        writeln!(out, "{} {x0} {y0} 0 {x1} {y1} 0 1 {} 0", g.tag, g.tag)?;
-    }
-    if bare_surface {
-        let [x0, y0, x1, y1] = bounding_box(mesh, 0..mesh.vertices.len() as u32);
-        writeln!(out, "1 {x0} {y0} 0 {x1} {y1} 0 0 0")?;
-    }
-    writeln!(out, "$EndEntities")?;
-
+    let entities = entities(mesh);
+    let mut o = TextOut::new(out);
+    o.s("$MeshFormat\n4.1 0 8\n$EndMeshFormat").nl()?;
+    write_physical_names(&mut o, &entities)?;
+    write_entities(&mut o, mesh, &entities)?;
     // Gmsh itself leaves out the sections it has nothing for (and warns about the tag range
     // of an empty $Nodes section).
-    let n = mesh.vertices.len() as u64;
-    let mut o = TextOut::new(out);
-    if n > 0 {
-        o.s("$Nodes\n1 ").u(n).s(" 1 ").u(n).nl()?;
-        o.s("2 ").u(node_entity).s(" 0 ").u(n).nl()?;
-        for i in 1..=n {
-            o.u(i).nl()?;
-        }
-        for p in &mesh.vertices {
-            o.i(p[0]).sp().i(p[1]).s(" 0").nl()?;
-        }
-        o.s("$EndNodes").nl()?;
+    if !mesh.vertices.is_empty() {
+        // The entity holding the nodes: the first surface, or a bare surface 1 if there is none.
+        let node_entity = entities.surfaces.first().map_or(1, |g| g.tag);
+        write_nodes(&mut o, mesh, node_entity)?;
     }
+    if !(mesh.triangles.is_empty() && mesh.segments.is_empty()) {
+        write_elements(&mut o, mesh, &entities)?;
+    }
+    o.finish()
+}
 
-    let elements = (mesh.triangles.len() + mesh.segments.len()) as u64;
-    if elements == 0 {
-        return o.finish();
+/// The `$PhysicalNames` section: the surfaces' groups (dimension 2), then the curves' (1).
+fn write_physical_names<W: Write>(o: &mut TextOut<'_, W>, e: &Entities) -> io::Result<()> {
+    o.s("$PhysicalNames").nl()?;
+    o.u((e.surfaces.len() + e.curves.len()) as u64).nl()?;
+    for (dim, groups) in [("2 ", &e.surfaces), ("1 ", &e.curves)] {
+        for g in groups {
+            o.s(dim).u(g.tag).s(" \"").s(&g.name).s("\"").nl()?;
+        }
     }
+    o.s("$EndPhysicalNames").nl()
+}
+
+/// The `$Entities` section: no points, the curves, the surfaces (a bare surface 1 holding the
+/// nodes when vertices but no triangles), each with its bounding box and physical tag.
+fn write_entities<W: Write>(o: &mut TextOut<'_, W>, mesh: &Mesh, e: &Entities) -> io::Result<()> {
+    let bare_surface = e.surfaces.is_empty() && !mesh.vertices.is_empty();
+    let surface_count = e.surfaces.len() + usize::from(bare_surface);
+    o.s("$Entities").nl()?;
+    o.s("0 ")
+        .u(e.curves.len() as u64)
+        .sp()
+        .u(surface_count as u64)
+        .s(" 0")
+        .nl()?;
+    for g in e.curves.iter().chain(&e.surfaces) {
+        let [x0, y0, x1, y1] = g.bbox;
+        o.u(g.tag)
+            .sp()
+            .i(x0)
+            .sp()
+            .i(y0)
+            .s(" 0 ")
+            .i(x1)
+            .sp()
+            .i(y1)
+            .s(" 0 1 ");
+        o.u(g.tag).s(" 0").nl()?;
+    }
+    if bare_surface {
+        let [x0, y0, x1, y1] = all_vertices_box(mesh);
+        o.s("1 ")
+            .i(x0)
+            .sp()
+            .i(y0)
+            .s(" 0 ")
+            .i(x1)
+            .sp()
+            .i(y1)
+            .s(" 0 0 0")
+            .nl()?;
+    }
+    o.s("$EndEntities").nl()
+}
+
+/// The `$Nodes` section: one block of all vertices on `entity`, tags from 1, z = 0.
+fn write_nodes<W: Write>(o: &mut TextOut<'_, W>, mesh: &Mesh, entity: u64) -> io::Result<()> {
+    let n = mesh.vertices.len() as u64;
+    o.s("$Nodes\n1 ").u(n).s(" 1 ").u(n).nl()?;
+    o.s("2 ").u(entity).s(" 0 ").u(n).nl()?;
+    for i in 1..=n {
+        o.u(i).nl()?;
+    }
+    for p in &mesh.vertices {
+        o.i(p[0]).sp().i(p[1]).s(" 0").nl()?;
+    }
+    o.s("$EndNodes").nl()
+}
+
+/// The `$Elements` section: a block of triangles per surface (triangle `t` tagged `t + 1`),
+/// then a block of lines per curve (tagged on from `T + 1`).
+fn write_elements<W: Write>(o: &mut TextOut<'_, W>, mesh: &Mesh, e: &Entities) -> io::Result<()> {
+    let elements = (mesh.triangles.len() + mesh.segments.len()) as u64;
+    let blocks = (e.surfaces.len() + e.curves.len()) as u64;
     o.s("$Elements").nl()?;
-    let blocks = (surfaces.len() + curves.len()) as u64;
     o.u(blocks).sp().u(elements).s(" 1 ").u(elements).nl()?;
-    for g in surfaces.values() {
+    for g in &e.surfaces {
         o.s("2 ").u(g.tag).s(" 2 ").u(g.members.len() as u64).nl()?;
         for &t in &g.members {
             let [a, b, c] = mesh.triangles[t].map(|v| u64::from(v) + 1);
@@ -166,7 +259,7 @@ fn write_unchecked(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
         }
     }
     let mut tag = mesh.triangles.len() as u64;
-    for g in curves.values() {
+    for g in &e.curves {
         o.s("1 ").u(g.tag).s(" 1 ").u(g.members.len() as u64).nl()?;
         for &k in &g.members {
             tag += 1;
@@ -174,11 +267,15 @@ fn write_unchecked(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
             o.u(tag).sp().u(a).sp().u(b).nl()?;
         }
     }
-    o.s("$EndElements").nl()?;
-    o.finish()
+    o.s("$EndElements").nl()
 }
 
 /// Writes [`write_msh`]'s output to a file (checking the indices before creating it).
+///
+/// # Errors
+///
+/// As [`write_msh`] (no file is created for a mesh with an index out of range), and those of
+/// creating the file.
 pub fn write_msh_to(mesh: &Mesh, path: impl AsRef<Path>) -> io::Result<()> {
     super::triangle::checked(mesh)?;
     let mut out = BufWriter::new(std::fs::File::create(path)?);

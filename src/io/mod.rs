@@ -26,6 +26,9 @@ mod text_out;
 pub mod triangle;
 pub mod vtk;
 
-pub use board_file::{read_board_file, BoardFileError, BoardFormat, BoardReadError};
+pub use board_file::{
+    read_board_file, read_board_file_with_limit, BoardFileError, BoardFormat, BoardReadError,
+    MAX_BOARD_FILE_BYTES,
+};
 pub use limits::{LimitError, Limits};
 pub use svg::{mesh_svg, point_tree_svg, write_mesh_svg, write_mesh_svg_to, Style, Svg};

@@ -1,11 +1,17 @@
-//! [`TextOut`]: the buffered text output of the mesh writers: integers formatted by hand into
-//! one reused byte buffer, handed to the writer in blocks of about 64 KiB, so that writing a
-//! line allocates nothing and costs a few nanoseconds per number.
+//! [`TextOut`]: the buffered text output of the mesh and picture writers. Integers and short
+//! decimals are formatted by hand into one reused byte buffer (no `format!` machinery, nothing
+//! allocated per line), and the buffer is handed to the writer in blocks of about 64 KiB.
+//!
+//! Integers come out as `{}` formats them; decimals as `{:.3}` does, without trailing zeros
+//! (see [`TextOut::f3`]). Both are checked against `format!` by the tests below.
 
 use std::io::{self, Write};
 
 /// The buffer is handed to the writer once it holds this many bytes.
 const BLOCK: usize = 1 << 16;
+
+/// The most bytes one integer takes: `i64::MIN` and `u64::MAX` have 20.
+const INTEGER_BYTES: usize = 20;
 
 /// "00" to "99", two bytes each.
 const PAIRS: &[u8; 200] = b"0001020304050607080910111213141516171819\
@@ -13,6 +19,153 @@ const PAIRS: &[u8; 200] = b"0001020304050607080910111213141516171819\
                             4041424344454647484950515253545556575859\
                             6061626364656667686970717273747576777879\
                             8081828384858687888990919293949596979899";
+
+/// 10^k for k = 0 to 19.
+const POWERS_OF_TEN: [u64; 20] = {
+    let mut p = [1u64; 20];
+    let mut k = 1;
+    while k < 20 {
+        p[k] = p[k - 1] * 10;
+        k += 1;
+    }
+    p
+};
+
+/// The number of decimal digits of `v` (1 for 0), from its bit length: `bits * 1233 / 4096`
+/// is `floor(bits * log10(2))`, one more than or equal to the digit count less one.
+#[inline(always)]
+fn digit_count(v: u64) -> usize {
+    // 0 has as many digits as 1; setting the low bit changes no other digit count.
+    let v = v | 1;
+    let bits = 64 - v.leading_zeros() as usize;
+    let t = (bits * 1233) >> 12;
+    t + 1 - usize::from(v < POWERS_OF_TEN[t])
+}
+
+/// Writes the digits of `v` ending at `digits[end]` (exclusive), two per division, in `T`
+/// arithmetic (`u32` is faster than `u64` for the common small values).
+macro_rules! put_digits {
+    ($digits:expr, $v:expr, $t:ty) => {{
+        let digits: &mut [u8] = $digits;
+        let mut i = digits.len();
+        let mut v: $t = $v;
+        while v >= 100 {
+            let pair = (v % 100) as usize * 2;
+            v /= 100;
+            i -= 2;
+            digits[i..i + 2].copy_from_slice(&PAIRS[pair..pair + 2]);
+        }
+        if v >= 10 {
+            let pair = v as usize * 2;
+            digits[..2].copy_from_slice(&PAIRS[pair..pair + 2]);
+        } else {
+            digits[0] = b'0' + v as u8;
+        }
+    }};
+}
+
+/// Writes `v` in decimal at the start of `dst` (at least [`INTEGER_BYTES`] long); returns the
+/// number of bytes written.
+#[inline(always)]
+fn put_u64(dst: &mut [u8], v: u64) -> usize {
+    let n = digit_count(v);
+    match u32::try_from(v) {
+        Ok(small) => put_digits!(&mut dst[..n], small, u32),
+        Err(_) => put_digits!(&mut dst[..n], v, u64),
+    }
+    n
+}
+
+/// `|x|` rounded to the nearest multiple of 1/1000, in thousandths, exactly as `{:.3}` rounds
+/// the exact binary value (ties to even); `None` if `x` is not finite or the result does not
+/// fit in a `u64`.
+fn thousandths(x: f64) -> Option<u64> {
+    if !x.is_finite() {
+        return None;
+    }
+    let bits = x.abs().to_bits();
+    let biased = (bits >> 52) as i32;
+    let fraction = bits & ((1 << 52) - 1);
+    // |x| = m * 2^e exactly.
+    let (m, e) = match biased {
+        0 => (fraction, -1074),
+        _ => (fraction | 1 << 52, biased - 1075),
+    };
+    let scaled = u128::from(m) * 1000; // below 2^63
+    if e >= 0 {
+        // An integer: exact if it fits.
+        let shifted = scaled.checked_shl(e as u32).filter(|s| s >> e == scaled)?;
+        return u64::try_from(shifted).ok();
+    }
+    let shift = e.unsigned_abs();
+    if shift >= 127 {
+        // Below 2^-64 thousandths: rounds to 0 (no tie, the half is far larger).
+        return Some(0);
+    }
+    let quotient = scaled >> shift;
+    let rest = scaled - (quotient << shift);
+    let half = 1u128 << (shift - 1);
+    let up = rest > half || (rest == half && quotient & 1 == 1);
+    u64::try_from(quotient + u128::from(up)).ok()
+}
+
+/// The most bytes [`put_f3`] writes: a sign, 17 digits, a point and 3 decimals.
+const F3_BYTES: usize = 24;
+
+/// Writes `x` as [`f3_string`] does at the start of `dst` (at least [`F3_BYTES`] long);
+/// returns the number of bytes written, or `None` (nothing written) for the values left to
+/// `format!`.
+#[inline]
+fn put_f3(dst: &mut [u8], x: f64) -> Option<usize> {
+    let q = thousandths(x)?;
+    let dst = &mut dst[..F3_BYTES];
+    let mut pos = 0;
+    if q != 0 && x.is_sign_negative() {
+        dst[0] = b'-';
+        pos = 1;
+    }
+    pos += put_u64(&mut dst[pos..], q / 1000);
+    let mut fraction = (q % 1000) as u32;
+    if fraction != 0 {
+        let mut digits = 3;
+        while fraction % 10 == 0 {
+            fraction /= 10;
+            digits -= 1;
+        }
+        dst[pos] = b'.';
+        for k in (1..=digits).rev() {
+            dst[pos + k] = b'0' + (fraction % 10) as u8;
+            fraction /= 10;
+        }
+        pos += digits + 1;
+    }
+    Some(pos)
+}
+
+/// `x` rounded to three decimals as `format!("{x:.3}")` writes it, less its trailing zeros and
+/// a trailing point, and `0` for any value that rounds to zero (no `-0`): `0.1`, `-2.5`,
+/// `12`, `0.062` for 0.0625 (ties to even, on the exact binary value). Finite values below
+/// 1.8e16 in magnitude are formatted by hand; infinities, NaN and larger values by `format!`.
+pub(crate) fn f3_string(x: f64) -> String {
+    let mut buf = [0u8; F3_BYTES];
+    match put_f3(&mut buf, x) {
+        // The bytes are ASCII digits, a sign and a point.
+        Some(n) => buf[..n].iter().map(|&b| char::from(b)).collect(),
+        None => f3_slow(x),
+    }
+}
+
+/// [`f3_string`] through `format!`, for the values [`put_f3`] does not take.
+#[cold]
+fn f3_slow(x: f64) -> String {
+    let s = format!("{x:.3}");
+    let trimmed = if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.')
+    } else {
+        &s
+    };
+    if trimmed == "-0" { "0" } else { trimmed }.to_string()
+}
 
 /// A byte buffer in front of a writer (see the module doc). Call [`TextOut::finish`] at the end:
 /// bytes still buffered when it is dropped are lost.
@@ -34,54 +187,52 @@ impl<'a, W: Write + ?Sized> TextOut<'a, W> {
     }
 
     /// Makes room for `more` bytes after `pos`.
-    #[inline]
+    #[inline(always)]
     fn room(&mut self, more: usize) {
-        if self.pos + more > self.buf.len() {
-            let len = (self.pos + more).max(2 * self.buf.len());
-            self.buf.resize(len, 0);
+        if self.buf.len() - self.pos < more {
+            self.grow(more);
         }
     }
 
+    /// The rare path of [`TextOut::room`]: a line longer than the buffer.
+    #[cold]
+    #[inline(never)]
+    fn grow(&mut self, more: usize) {
+        let len = (self.pos + more).max(2 * self.buf.len());
+        self.buf.resize(len, 0);
+    }
+
     /// Appends an unsigned integer in decimal.
-    #[inline]
+    #[inline(always)]
     pub fn u(&mut self, v: u64) -> &mut Self {
-        let n = v.checked_ilog10().unwrap_or(0) as usize + 1;
-        self.room(n);
-        let digits = &mut self.buf[self.pos..self.pos + n];
-        let mut i = n;
-        let mut v = v;
-        // Two digits per division.
-        while v >= 100 {
-            let pair = (v % 100) as usize * 2;
-            v /= 100;
-            i -= 2;
-            digits[i..i + 2].copy_from_slice(&PAIRS[pair..pair + 2]);
-        }
-        if v >= 10 {
-            let pair = v as usize * 2;
-            digits[..2].copy_from_slice(&PAIRS[pair..pair + 2]);
-        } else {
-            digits[0] = b'0' + v as u8;
-        }
-        self.pos += n;
+        self.room(INTEGER_BYTES);
+        self.pos += put_u64(&mut self.buf[self.pos..], v);
         self
     }
 
     /// Appends a signed integer in decimal.
-    #[inline]
+    #[inline(always)]
     pub fn i(&mut self, v: i64) -> &mut Self {
+        self.room(INTEGER_BYTES + 1);
         if v < 0 {
-            self.byte(b'-');
+            self.buf[self.pos] = b'-';
+            self.pos += 1;
         }
-        self.u(v.unsigned_abs())
+        self.pos += put_u64(&mut self.buf[self.pos..], v.unsigned_abs());
+        self
     }
 
-    /// Appends one byte.
+    /// Appends `x` as [`f3_string`] writes it.
     #[inline]
-    fn byte(&mut self, b: u8) {
-        self.room(1);
-        self.buf[self.pos] = b;
-        self.pos += 1;
+    pub fn f3(&mut self, x: f64) -> &mut Self {
+        self.room(F3_BYTES);
+        match put_f3(&mut self.buf[self.pos..], x) {
+            Some(n) => self.pos += n,
+            None => {
+                self.s(&f3_slow(x));
+            }
+        }
+        self
     }
 
     /// Appends text.
@@ -95,77 +246,47 @@ impl<'a, W: Write + ?Sized> TextOut<'a, W> {
     }
 
     /// Appends a space.
-    #[inline]
+    #[inline(always)]
     pub fn sp(&mut self) -> &mut Self {
-        self.byte(b' ');
+        self.room(1);
+        self.buf[self.pos] = b' ';
+        self.pos += 1;
         self
     }
 
     /// Ends a line, handing a full block to the writer.
-    #[inline]
+    #[inline(always)]
     pub fn nl(&mut self) -> io::Result<()> {
-        self.byte(b'\n');
+        self.room(1);
+        self.buf[self.pos] = b'\n';
+        self.pos += 1;
         self.spill()
     }
 
     /// Hands a full block to the writer (call between items of a long line).
-    #[inline]
+    #[inline(always)]
     pub fn spill(&mut self) -> io::Result<()> {
         if self.pos >= BLOCK {
-            self.out.write_all(&self.buf[..self.pos])?;
-            self.pos = 0;
+            self.hand_over()?;
         }
+        Ok(())
+    }
+
+    /// Hands the buffered text to the writer.
+    #[inline(never)]
+    fn hand_over(&mut self) -> io::Result<()> {
+        self.out.write_all(&self.buf[..self.pos])?;
+        self.pos = 0;
         Ok(())
     }
 
     /// Hands the rest to the writer and flushes it.
     pub fn finish(mut self) -> io::Result<()> {
-        self.out.write_all(&self.buf[..self.pos])?;
-        self.pos = 0;
+        self.hand_over()?;
         self.out.flush()
     }
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn integers_as_std_formats_them() {
-        let mut v = Vec::new();
-        let mut out = TextOut::new(&mut v);
-        let values = [
-            0,
-            1,
-            -1,
-            9,
-            10,
-            99,
-            100,
-            12345,
-            i64::MAX,
-            i64::MIN,
-            -1073741824,
-        ];
-        for x in values {
-            out.i(x).sp();
-        }
-        out.u(u64::MAX).nl().unwrap();
-        out.finish().unwrap();
-        let mut expected: String = values.iter().map(|x| format!("{x} ")).collect();
-        expected.push_str(&format!("{}\n", u64::MAX));
-        assert_eq!(String::from_utf8(v).unwrap(), expected);
-    }
-
-    #[test]
-    fn long_output_arrives_whole() {
-        let mut v = Vec::new();
-        let mut out = TextOut::new(&mut v);
-        for k in 0..100_000u64 {
-            out.u(k).nl().unwrap();
-        }
-        out.finish().unwrap();
-        let expected: String = (0..100_000).map(|k| format!("{k}\n")).collect();
-        assert_eq!(v, expected.into_bytes());
-    }
-}
+#[path = "text_out_tests.rs"]
+mod tests;

@@ -15,6 +15,7 @@
 //! [`std::io::ErrorKind::InvalidInput`] error, writing nothing, if an index is out of range.
 
 use super::text_out::TextOut;
+use crate::hash::FastMap;
 use crate::mesh::{Mesh, SegmentKind};
 use std::io::{self, BufWriter, Write};
 use std::path::Path;
@@ -50,57 +51,113 @@ fn marker(kind: SegmentKind) -> u64 {
 /// assert_eq!(edges, [([0, 1], 1), ([1, 2], 0), ([2, 0], 0), ([2, 3], 0), ([3, 0], 0)]);
 /// ```
 pub fn edges_with_markers(mesh: &Mesh) -> Vec<([u32; 2], u64)> {
-    // Edges are found again by their smaller endpoint: `slots[start[v]..filled[v]]` holds the
-    // ids of the edges seen so far whose smaller endpoint is v (a handful per vertex), in a
-    // table sized by counting first, so nothing is hashed and nothing grows.
-    let n = mesh.vertices.len();
-    let key = |a: u32, b: u32| (a.min(b) as usize, a.max(b));
-    let mut start = vec![0usize; n + 1];
-    for tri in &mesh.triangles {
-        for i in 0..3 {
-            start[key(tri[i], tri[(i + 1) % 3]).0 + 1] += 1;
-        }
-    }
-    for v in 0..n {
-        start[v + 1] += start[v];
-    }
-    let mut filled = start.clone();
-    let mut slots = vec![0usize; start[n]];
-    let mut edges: Vec<([u32; 2], u64)> = Vec::new();
+    let markers = SegmentMarkers::new(mesh);
+    let mut seen = SeenEdges::new(mesh);
+    // At most one edge per half-edge; reserved, not touched, so only the edges take memory.
+    let mut edges = Vec::with_capacity(seen.larger.len());
     for tri in &mesh.triangles {
         for i in 0..3 {
             let (a, b) = (tri[i], tri[(i + 1) % 3]);
-            let (lo, hi) = key(a, b);
-            let seen = slots[start[lo]..filled[lo]]
-                .iter()
-                .any(|&e| key(edges[e].0[0], edges[e].0[1]).1 == hi);
-            if !seen {
-                slots[filled[lo]] = edges.len();
-                filled[lo] += 1;
-                edges.push(([a, b], 0));
-            }
-        }
-    }
-    for s in &mesh.segments {
-        let (lo, hi) = key(s.vertices[0], s.vertices[1]);
-        let Some(range) = start.get(lo).zip(filled.get(lo)).map(|(&a, &b)| a..b) else {
-            continue;
-        };
-        let found = slots[range]
-            .iter()
-            .find(|&&e| key(edges[e].0[0], edges[e].0[1]).1 == hi);
-        if let Some(&k) = found {
-            let m = &mut edges[k].1;
-            // An outline marker beats the board-boundary marker.
-            if *m <= 1 {
-                *m = marker(s.kind);
+            if seen.insert(a, b) {
+                edges.push(([a, b], markers.get(a, b)));
             }
         }
     }
     edges
 }
 
+/// The `.edge` markers of the mesh's segments, by unordered endpoints (see the module doc).
+struct SegmentMarkers {
+    /// Whether a vertex is an endpoint of a segment: most edges are not looked up.
+    on_segment: Vec<bool>,
+    markers: FastMap<(u32, u32), u64>,
+}
+
+impl SegmentMarkers {
+    fn new(mesh: &Mesh) -> Self {
+        let mut on_segment = vec![false; mesh.vertices.len()];
+        let mut markers = FastMap::default();
+        for s in &mesh.segments {
+            let [a, b] = s.vertices;
+            for v in [a, b] {
+                if let Some(flag) = on_segment.get_mut(v as usize) {
+                    *flag = true;
+                }
+            }
+            let m = markers.entry((a.min(b), a.max(b))).or_insert(0);
+            // An outline marker beats the board-boundary marker.
+            if *m <= 1 {
+                *m = marker(s.kind);
+            }
+        }
+        SegmentMarkers {
+            on_segment,
+            markers,
+        }
+    }
+
+    /// The marker of the edge `a`-`b`: 0 unless it is a segment.
+    #[inline]
+    fn get(&self, a: u32, b: u32) -> u64 {
+        let flagged = |v: u32| self.on_segment.get(v as usize) == Some(&true);
+        if !(flagged(a) && flagged(b)) {
+            return 0;
+        }
+        let key = (a.min(b), a.max(b));
+        self.markers.get(&key).copied().unwrap_or(0)
+    }
+}
+
+/// The edges seen so far, found again by their smaller endpoint: with `(from, to) =
+/// bucket[v]`, `larger[from..to]` holds the larger endpoints of those whose smaller endpoint is
+/// v (a handful per vertex, next to each other in memory), in a table sized by counting first,
+/// so nothing is hashed and nothing grows.
+struct SeenEdges {
+    bucket: Vec<(usize, usize)>,
+    larger: Vec<u32>,
+}
+
+impl SeenEdges {
+    /// The empty table of a mesh whose triangles' indices are in range.
+    fn new(mesh: &Mesh) -> Self {
+        let mut bucket = vec![(0usize, 0usize); mesh.vertices.len()];
+        for tri in &mesh.triangles {
+            for i in 0..3 {
+                bucket[tri[i].min(tri[(i + 1) % 3]) as usize].1 += 1;
+            }
+        }
+        let mut total = 0;
+        for b in &mut bucket {
+            let count = b.1;
+            *b = (total, total);
+            total += count;
+        }
+        SeenEdges {
+            bucket,
+            larger: vec![0; total],
+        }
+    }
+
+    /// Adds the edge `a`-`b` (one of the mesh's); false if it was there already.
+    #[inline]
+    fn insert(&mut self, a: u32, b: u32) -> bool {
+        let (lo, hi) = (a.min(b) as usize, a.max(b));
+        let (from, to) = self.bucket[lo];
+        if self.larger[from..to].contains(&hi) {
+            return false;
+        }
+        self.larger[to] = hi;
+        self.bucket[lo].1 += 1;
+        true
+    }
+}
+
 /// Writes the `.node` file (see the module doc).
+///
+/// # Errors
+///
+/// [`std::io::ErrorKind::InvalidInput`] if an index of the mesh is out of range (nothing is
+/// written); else those of `out`.
 pub fn write_node(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
     checked(mesh)?;
     node_unchecked(mesh, out)
@@ -132,6 +189,11 @@ fn node_unchecked(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
 }
 
 /// Writes the `.ele` file (see the module doc).
+///
+/// # Errors
+///
+/// [`std::io::ErrorKind::InvalidInput`] if an index of the mesh is out of range (nothing is
+/// written); else those of `out`.
 pub fn write_ele(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
     checked(mesh)?;
     ele_unchecked(mesh, out)
@@ -158,6 +220,11 @@ fn ele_unchecked(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
 }
 
 /// Writes the `.edge` file (see the module doc and [`edges_with_markers`]).
+///
+/// # Errors
+///
+/// [`std::io::ErrorKind::InvalidInput`] if an index of the mesh is out of range (nothing is
+/// written); else those of `out`.
 pub fn write_edge(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
     checked(mesh)?;
     edge_unchecked(mesh, out)
@@ -177,7 +244,14 @@ fn edge_unchecked(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
 }
 
 /// Writes `<stem>.node`, `<stem>.ele` and `<stem>.edge` (the suffix is appended, so a stem such
-/// as `board.1` keeps its dot). Checks the indices before creating any file.
+/// as `board.1` keeps its dot), each through a buffer, the three files on threads of their own.
+/// Checks the indices before creating any file.
+///
+/// # Errors
+///
+/// [`std::io::ErrorKind::InvalidInput`] if an index of the mesh is out of range (no file is
+/// created); else the first error, in the order `.node`, `.ele`, `.edge`, met in creating or
+/// writing a file (the other files are still written).
 pub fn write_triangle_files(mesh: &Mesh, stem: impl AsRef<Path>) -> io::Result<()> {
     checked(mesh)?;
     let with = |suffix: &str| {
@@ -186,15 +260,23 @@ pub fn write_triangle_files(mesh: &Mesh, stem: impl AsRef<Path>) -> io::Result<(
         std::path::PathBuf::from(s)
     };
     type Writer = fn(&Mesh, &mut BufWriter<std::fs::File>) -> io::Result<()>;
-    let files: [(&str, Writer); 3] = [
-        (".node", |m, o| node_unchecked(m, o)),
-        (".ele", |m, o| ele_unchecked(m, o)),
-        (".edge", |m, o| edge_unchecked(m, o)),
+    let files: [(std::path::PathBuf, Writer); 3] = [
+        (with(".node"), |m, o| node_unchecked(m, o)),
+        (with(".ele"), |m, o| ele_unchecked(m, o)),
+        (with(".edge"), |m, o| edge_unchecked(m, o)),
     ];
-    for (suffix, write) in files {
-        let mut out = BufWriter::new(std::fs::File::create(with(suffix))?);
-        write(mesh, &mut out)?;
-        out.flush()?;
-    }
-    Ok(())
+    std::thread::scope(|scope| {
+        let jobs = files.map(|(path, write)| {
+            scope.spawn(move || {
+                let mut out = BufWriter::new(std::fs::File::create(path)?);
+                write(mesh, &mut out)?;
+                out.flush()
+            })
+        });
+        let results = jobs.map(|job| {
+            job.join()
+                .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+        });
+        results.into_iter().collect()
+    })
 }

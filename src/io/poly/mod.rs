@@ -65,7 +65,7 @@
 //! assert_eq!(board.size(), 16);
 //! assert_eq!(board.components()[0].outline, vec![[1, 14], [2, 14], [2, 15], [1, 15]]);
 //! assert_eq!(board.components()[0].lines[0], Some(8));
-//! assert_eq!(read_poly(&write_poly(&board), None).unwrap().components()[0].outline,
+//! assert_eq!(read_poly(&write_poly(&board).unwrap(), None).unwrap().components()[0].outline,
 //!            board.components()[0].outline);
 //!
 //! // the caller's size must agree with the file's
@@ -179,11 +179,53 @@ fn loops(points: &[Point], segments: &Segments) -> Result<Vec<Component>, BoardE
     Ok(components)
 }
 
+/// Why a board cannot be written as a `.poly` file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum PolyWriteError {
+    /// The board has no components, so no vertices: a `.poly` file needs at least one (a
+    /// vertex count of 0 means, in Triangle's format, that the vertices are in a separate
+    /// `.node` file), and [`read_poly`] refuses one without.
+    NoVertices {
+        /// The board's side.
+        size: i64,
+    },
+}
+
+impl core::fmt::Display for PolyWriteError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            PolyWriteError::NoVertices { size } => write!(
+                f,
+                "the board of side {size} has no components, so no vertices: a .poly file \
+                 needs at least one (a vertex count of 0 means a separate .node file)"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for PolyWriteError {}
+
 /// Writes a board as a `.poly` file that [`read_poly`] reads back: a `# size U` line, vertices
 /// numbered from 1 component by component, one segment per edge in outline order, no holes.
-pub fn write_poly(board: &Board) -> String {
+///
+/// ```
+/// use orthtree::io::poly::{write_poly, PolyWriteError};
+/// use orthtree::mesh::Board;
+/// let empty = Board::new(16, vec![]).unwrap();
+/// assert_eq!(write_poly(&empty), Err(PolyWriteError::NoVertices { size: 16 }));
+/// ```
+///
+/// # Errors
+///
+/// [`PolyWriteError::NoVertices`] for a board without components, which the format cannot
+/// hold (every board with a component is written).
+pub fn write_poly(board: &Board) -> Result<String, PolyWriteError> {
     let components = board.components();
     let vertex_count: usize = components.iter().map(|c| c.outline.len()).sum();
+    if vertex_count == 0 {
+        return Err(PolyWriteError::NoVertices { size: board.size() });
+    }
     let mut out = String::with_capacity(24 * vertex_count + 64);
     let _ = writeln!(
         out,
@@ -210,5 +252,5 @@ pub fn write_poly(board: &Board) -> String {
         first += n;
     }
     out.push_str("0\n");
-    out
+    Ok(out)
 }

@@ -50,6 +50,7 @@ pub(super) fn length(x: f64) -> f64 {
 
 /// A pixel coordinate clamped to a finite range (NaN, which only a degenerate view could
 /// produce, becomes 0).
+#[inline]
 pub(super) fn clamp_px(x: f64) -> f64 {
     if x.is_nan() {
         0.0
@@ -58,41 +59,10 @@ pub(super) fn clamp_px(x: f64) -> f64 {
     }
 }
 
-/// [`num`] written into `buf`, without allocating: the bytes written.
-pub(super) fn num_into(x: f64, buf: &mut [u8; 40]) -> &[u8] {
-    use std::io::Write as _;
-    let mut cursor = std::io::Cursor::new(&mut buf[..]);
-    // |x| <= MAX_PX, so 3 decimals fit in 40 bytes.
-    let _ = write!(cursor, "{:.3}", clamp_px(x));
-    let len = cursor.position() as usize;
-    let mut end = len;
-    if buf[..len].contains(&b'.') {
-        while buf[end - 1] == b'0' {
-            end -= 1;
-        }
-        if buf[end - 1] == b'.' {
-            end -= 1;
-        }
-    }
-    if &buf[..end] == b"-0" {
-        return b"0";
-    }
-    &buf[..end]
-}
-
-/// A number with at most three decimals and no trailing zeros.
+/// A pixel value clamped by [`clamp_px`], with at most three decimals and no trailing zeros
+/// (formatted by hand, as `{:.3}` rounds).
 pub(super) fn num(x: f64) -> String {
-    let s = format!("{:.3}", clamp_px(x));
-    let s = if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.')
-    } else {
-        &s
-    };
-    if s == "-0" {
-        "0".into()
-    } else {
-        s.into()
-    }
+    crate::io::text_out::f3_string(clamp_px(x))
 }
 
 /// Escapes a string for an attribute value in double quotes.

@@ -6,7 +6,7 @@
 //! [`MESH_SVG_DETAIL_TRIANGLES`]: super::MESH_SVG_DETAIL_TRIANGLES
 //! [`write_mesh_svg`]: super::write_mesh_svg
 
-use super::super::format::{escape, num_into};
+use super::super::format::{clamp_px, escape};
 use super::super::{Style, Svg, DEFAULT_WIDTH_PX};
 use super::{line_widths, region_fill, BOARD_FILL, SEGMENTS_PER_PATH};
 use crate::geom::Aabb;
@@ -42,6 +42,7 @@ impl Coverage {
     }
 
     /// Adds `amount` at the pixel holding `(x, y)` (pixel coordinates, clipped).
+    #[inline]
     fn add(&mut self, x: f64, y: f64, amount: f64) {
         let clip = |v: f64, n: usize| (v.max(0.0) as usize).min(n - 1);
         let k = clip(y, self.height) * self.width + clip(x, self.width);
@@ -60,10 +61,9 @@ impl Coverage {
 }
 
 /// Appends a pixel coordinate as [`num`](super::super::format::num) writes it.
+#[inline]
 fn px<W: Write + ?Sized>(o: &mut TextOut<'_, W>, x: f64) {
-    let mut buf = [0u8; 40];
-    let bytes = num_into(x, &mut buf);
-    o.s(std::str::from_utf8(bytes).unwrap_or("0"));
+    o.f3(clamp_px(x));
 }
 
 /// Opens a `<g>` with `style`'s attributes.
@@ -80,115 +80,20 @@ pub(super) fn write(mesh: &Mesh, board: &Board, out: &mut impl Write) -> io::Res
     };
     let mut svg = Svg::new(view, DEFAULT_WIDTH_PX);
     svg.margin(6.0);
-    let scale = svg.scale();
     let (w, h) = svg.size_px();
     let mut o = TextOut::new(out);
     o.s(&svg.header());
     o.s("<rect width=\"100%\" height=\"100%\" fill=\"white\"/>")
         .nl()?;
 
-    // Regions: the board, then each component's outline filled.
-    let board_style = Style::solid().stroke("none").fill(BOARD_FILL);
-    open_group(&mut o, &board_style)?;
-    write_rect(&mut o, &svg, &view)?;
-    o.s("</g>").nl()?;
-    for (i, c) in board.components().iter().enumerate() {
-        o.s("<path fill=\"")
-            .s(&escape(region_fill(i as u32 + 1)))
-            .s("\" d=\"");
-        write_ring(&mut o, &svg, &c.outline)?;
-        o.s("\"/>").nl()?;
-    }
+    write_regions(&mut o, &svg, board, &view)?;
 
-    // One pass over the triangles: short edges added to the coverage, long ones kept by level.
     let (edge_px, outline_px) = line_widths(u);
-    let point = |v: u32| mesh.vertices.get(v as usize).map(|p| p.map(|c| c as f64));
     let mut coverage = Coverage::new(w.ceil() as usize + 1, h.ceil() as usize + 1);
-    // Level k holds the edges of 2^k * MIN_EDGE_PX to 2^(k + 1) * MIN_EDGE_PX pixels.
-    let mut long: Vec<Vec<[[f64; 2]; 2]>> = vec![Vec::new(); 32];
-    for tri in &mesh.triangles {
-        let (Some(p0), Some(p1), Some(p2)) = (point(tri[0]), point(tri[1]), point(tri[2])) else {
-            continue;
-        };
-        let c = [p0, p1, p2];
-        for i in 0..3 {
-            let (a, b) = (tri[i], tri[(i + 1) % 3]);
-            let (p, q) = (c[i], c[(i + 1) % 3]);
-            let length = (p[0] - q[0]).abs().max((p[1] - q[1]).abs()) * scale;
-            if length < MIN_EDGE_PX {
-                // Half from each of the (at most) two triangles holding the edge.
-                let (x, y) = (svg.x((p[0] + q[0]) / 2.0), svg.y((p[1] + q[1]) / 2.0));
-                coverage.add(x, y, 0.5 * length * edge_px);
-            } else {
-                // Each interior edge is in two triangles, once each way: draw it from one.
-                // Board-boundary edges (one way only) are under the board's outline.
-                if a < b {
-                    let level = (length / MIN_EDGE_PX).log2().floor().clamp(0.0, 31.0);
-                    long[level as usize].push([p, q]);
-                }
-            }
-        }
-    }
+    let long = edge_pass(mesh, &svg, &mut coverage, edge_px);
+    write_shades(&mut o, &shade_runs(&coverage.shades(), coverage.width))?;
 
-    // The fine parts: runs of pixels of one shade, row by row, one group per shade.
-    let shades = coverage.shades();
-    let (width, height) = (coverage.width, coverage.height);
-    let shade_at = |x: usize, y: usize| shades[y * width + x] as usize;
-    for shade in 1..=SHADES {
-        let opacity = shade as f64 / SHADES as f64;
-        o.s("<g fill=\"").s(EDGE_GREY).s("\" fill-opacity=\"");
-        px(&mut o, opacity);
-        o.s("\" stroke=\"none\">").nl()?;
-        let mut runs = 0;
-        for y in 0..height {
-            let mut x = 0;
-            while x < width {
-                if shade_at(x, y) != shade {
-                    x += 1;
-                    continue;
-                }
-                let start = x;
-                while x < width && shade_at(x, y) == shade {
-                    x += 1;
-                }
-                if runs % SEGMENTS_PER_PATH == 0 {
-                    if runs > 0 {
-                        o.s("\"/>").nl()?;
-                    }
-                    o.s("<path d=\"");
-                }
-                let len = (x - start) as u64;
-                o.s("M").u(start as u64).sp().u(y as u64).s("h").u(len);
-                o.s("v1h-").u(len).s("z");
-                runs += 1;
-            }
-        }
-        if runs > 0 {
-            o.s("\"/>").nl()?;
-        }
-        o.s("</g>").nl()?;
-    }
-
-    // The long edges, one group per level.
-    let edge_style = Style::solid().stroke(EDGE_GREY).stroke_width(edge_px);
-    for edges in long.iter().filter(|e| !e.is_empty()) {
-        open_group(&mut o, &edge_style)?;
-        for chunk in edges.chunks(SEGMENTS_PER_PATH) {
-            o.s("<path d=\"");
-            for [p, q] in chunk {
-                o.s("M");
-                px(&mut o, svg.x(p[0]));
-                o.sp();
-                px(&mut o, svg.y(p[1]));
-                o.s("L");
-                px(&mut o, svg.x(q[0]));
-                o.sp();
-                px(&mut o, svg.y(q[1]));
-            }
-            o.s("\"/>").nl()?;
-        }
-        o.s("</g>").nl()?;
-    }
+    write_long_edges(&mut o, &svg, &long, edge_px)?;
 
     // Component outlines, then the board's.
     open_group(
@@ -206,6 +111,138 @@ pub(super) fn write(mesh: &Mesh, board: &Board, out: &mut impl Write) -> io::Res
     o.s("</g>").nl()?;
     o.s("</svg>").nl()?;
     o.finish()
+}
+
+/// The regions: the board, then each component's outline filled.
+fn write_regions<W: Write + ?Sized>(
+    o: &mut TextOut<'_, W>,
+    svg: &Svg,
+    board: &Board,
+    view: &Aabb<f64, 2>,
+) -> io::Result<()> {
+    let board_style = Style::solid().stroke("none").fill(BOARD_FILL);
+    open_group(o, &board_style)?;
+    write_rect(o, svg, view)?;
+    o.s("</g>").nl()?;
+    for (i, c) in board.components().iter().enumerate() {
+        o.s("<path fill=\"")
+            .s(&escape(region_fill(i as u32 + 1)))
+            .s("\" d=\"");
+        write_ring(o, svg, &c.outline)?;
+        o.s("\"/>").nl()?;
+    }
+
+    Ok(())
+}
+
+/// The long edges, one group per level.
+fn write_long_edges<W: Write + ?Sized>(
+    o: &mut TextOut<'_, W>,
+    svg: &Svg,
+    long: &Levels,
+    edge_px: f64,
+) -> io::Result<()> {
+    let edge_style = Style::solid().stroke(EDGE_GREY).stroke_width(edge_px);
+    for edges in long.iter().filter(|e| !e.is_empty()) {
+        open_group(o, &edge_style)?;
+        for chunk in edges.chunks(SEGMENTS_PER_PATH) {
+            o.s("<path d=\"");
+            for [p, q] in chunk {
+                o.s("M");
+                px(o, svg.x(p[0]));
+                o.sp();
+                px(o, svg.y(p[1]));
+                o.s("L");
+                px(o, svg.x(q[0]));
+                o.sp();
+                px(o, svg.y(q[1]));
+            }
+            o.s("\"/>").nl()?;
+        }
+        o.s("</g>").nl()?;
+    }
+
+    Ok(())
+}
+
+/// Long edges of one level: level k holds the edges of 2^k * [`MIN_EDGE_PX`] to
+/// 2^(k + 1) * [`MIN_EDGE_PX`] pixels, as pairs of points in plane coordinates.
+type Levels = Vec<Vec<[[f64; 2]; 2]>>;
+
+/// One pass over the triangles: short edges added to the coverage, long ones kept by level.
+fn edge_pass(mesh: &Mesh, svg: &Svg, coverage: &mut Coverage, edge_px: f64) -> Levels {
+    let scale = svg.scale();
+    let point = |v: u32| mesh.vertices.get(v as usize).map(|p| p.map(|c| c as f64));
+    let mut long: Levels = vec![Vec::new(); 32];
+    for tri in &mesh.triangles {
+        let (Some(p0), Some(p1), Some(p2)) = (point(tri[0]), point(tri[1]), point(tri[2])) else {
+            continue;
+        };
+        let c = [p0, p1, p2];
+        for i in 0..3 {
+            let (a, b) = (tri[i], tri[(i + 1) % 3]);
+            let (p, q) = (c[i], c[(i + 1) % 3]);
+            let length = (p[0] - q[0]).abs().max((p[1] - q[1]).abs()) * scale;
+            if length < MIN_EDGE_PX {
+                // Half from each of the (at most) two triangles holding the edge.
+                let x = svg.x_at_scale((p[0] + q[0]) / 2.0, scale);
+                let y = svg.y_at_scale((p[1] + q[1]) / 2.0, scale);
+                coverage.add(x, y, 0.5 * length * edge_px);
+            } else if a < b {
+                // Each interior edge is in two triangles, once each way: draw it from one.
+                // Board-boundary edges (one way only) are under the board's outline.
+                let level = (length / MIN_EDGE_PX).log2().floor().clamp(0.0, 31.0);
+                long[level as usize].push([p, q]);
+            }
+        }
+    }
+    long
+}
+
+/// A run of pixels of one shade: first column, row, length.
+type Run = (u32, u32, u32);
+
+/// The runs of pixels of each shade (1 to [`SHADES`], at index shade - 1), row by row, of a
+/// picture `width` pixels wide, in one pass.
+fn shade_runs(shades: &[u8], width: usize) -> Vec<Vec<Run>> {
+    let mut runs = vec![Vec::new(); SHADES];
+    for (y, row) in shades.chunks(width.max(1)).enumerate() {
+        let mut x = 0;
+        while x < row.len() {
+            let shade = row[x];
+            let start = x;
+            while x < row.len() && row[x] == shade {
+                x += 1;
+            }
+            if shade > 0 {
+                let run = (start as u32, y as u32, (x - start) as u32);
+                runs[usize::from(shade) - 1].push(run);
+            }
+        }
+    }
+    runs
+}
+
+/// The fine parts: one group per shade, its runs of pixels as paths of up to
+/// [`SEGMENTS_PER_PATH`] rectangles.
+fn write_shades<W: Write + ?Sized>(o: &mut TextOut<'_, W>, runs: &[Vec<Run>]) -> io::Result<()> {
+    for (k, runs) in runs.iter().enumerate() {
+        let opacity = (k + 1) as f64 / SHADES as f64;
+        o.s("<g fill=\"").s(EDGE_GREY).s("\" fill-opacity=\"");
+        px(o, opacity);
+        o.s("\" stroke=\"none\">").nl()?;
+        for chunk in runs.chunks(SEGMENTS_PER_PATH) {
+            o.s("<path d=\"");
+            for &(x, y, len) in chunk {
+                let len = u64::from(len);
+                o.s("M").u(x.into()).sp().u(y.into()).s("h").u(len);
+                o.s("v1h-").u(len).s("z");
+            }
+            o.s("\"/>").nl()?;
+        }
+        o.s("</g>").nl()?;
+    }
+    Ok(())
 }
 
 /// A closed polygon as path data (`M x y L x y ... Z`), in pixels.

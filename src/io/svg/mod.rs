@@ -255,20 +255,35 @@ impl Svg {
 
     /// Pixels per unit of the plane. Halved differences keep the extent finite for any finite
     /// view.
+    #[inline]
     fn scale(&self) -> f64 {
         let half_extent = self.view.max[0] * 0.5 - self.view.min[0] * 0.5;
         self.width * 0.5 / half_extent
     }
 
     /// The pixel column of `x`.
+    #[inline]
     fn x(&self, x: f64) -> f64 {
-        let px = (x * 0.5 - self.view.min[0] * 0.5) * 2.0 * self.scale() + self.margin;
+        self.x_at_scale(x, self.scale())
+    }
+
+    /// [`Svg::x`] given [`Svg::scale`] (hoisted out of a loop).
+    #[inline]
+    fn x_at_scale(&self, x: f64, scale: f64) -> f64 {
+        let px = (x * 0.5 - self.view.min[0] * 0.5) * 2.0 * scale + self.margin;
         clamp_px(px)
     }
 
     /// The pixel row of `y`: y up, so the view's top edge `max[1]` is row `margin`.
+    #[inline]
     fn y(&self, y: f64) -> f64 {
-        let px = (self.view.max[1] * 0.5 - y * 0.5) * 2.0 * self.scale() + self.margin;
+        self.y_at_scale(y, self.scale())
+    }
+
+    /// [`Svg::y`] given [`Svg::scale`] (hoisted out of a loop).
+    #[inline]
+    fn y_at_scale(&self, y: f64, scale: f64) -> f64 {
+        let px = (self.view.max[1] * 0.5 - y * 0.5) * 2.0 * scale + self.margin;
         clamp_px(px)
     }
 
