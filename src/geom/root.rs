@@ -14,7 +14,7 @@
 //! The 64 levels of [`DeepCell`](crate::DeepCell)s, for the compressed trees, continue these
 //! lines below level 32 (`deep_geometry.rs`: [`RootGeometry::deep_coordinate`]).
 
-use crate::geom::{Aabb, AabbError, Cell, Scalar};
+use super::{Aabb, AabbError, Cell, Scalar};
 
 /// How many points [`RootGeometry::keys_into`] quantises at a time.
 const LANES: usize = 8;
