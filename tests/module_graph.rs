@@ -159,6 +159,11 @@ fn find_cycle(graph: &BTreeMap<String, BTreeSet<String>>) -> Option<Vec<String>>
     None
 }
 
+/// Whether `name` is a submodule of the module in folder `dir` (not an item of its `mod.rs`).
+fn is_module(dir: &Path, name: &str) -> bool {
+    dir.join(format!("{name}.rs")).is_file() || dir.join(name).join("mod.rs").is_file()
+}
+
 /// The edges between top-level modules, and inside each top-level module between its direct
 /// submodules.
 fn graphs() -> BTreeMap<String, BTreeMap<String, BTreeSet<String>>> {
@@ -181,7 +186,11 @@ fn graphs() -> BTreeMap<String, BTreeMap<String, BTreeSet<String>>> {
                 top.entry(here[0].clone()).or_default();
                 if path[0] != here[0] {
                     top.get_mut(&here[0]).unwrap().insert(path[0].clone());
-                } else if here.len() >= 2 && path.len() >= 2 && path[1] != here[1] {
+                } else if here.len() >= 2
+                    && path.len() >= 2
+                    && path[1] != here[1]
+                    && is_module(&src.join(&path[0]), &path[1])
+                {
                     let inner = graphs.entry(here[0].clone()).or_default();
                     inner
                         .entry(here[1].clone())
