@@ -12,7 +12,7 @@
 //! and a cell's points are exactly those whose key has the cell's key as prefix.
 //!
 //! The 64 levels of [`DeepCell`](crate::DeepCell)s, for the compressed trees, continue these
-//! lines below level 32 (`deep_geometry.rs`: [`RootGeometry::deep_coordinate`]).
+//! lines below level 32 (`root_deep.rs`: [`RootGeometry::deep_coordinate`]).
 
 use super::{Aabb, AabbError, Cell, Scalar};
 

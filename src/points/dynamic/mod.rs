@@ -37,9 +37,9 @@
 //! # Queries
 //! The index ([`DynamicIndex`]) is a [`SpatialIndex`] without nested runs
 //! ([`SpatialIndex::NESTED_RUNS`] is `false`): the shared engines descend to the leaves and scan
-//! their chunks, so every query of [`PointTree`] is here with its name and meaning
-//! ([`crate::slot_queries`]). [`Neighbor::index`](crate::Neighbor::index) is the item's slot (its
-//! position in [`DynamicPointTree::items`]); k-nearest ties go by position in the chunk array
+//! their chunks, so every query of [`PointSet`] is here with its name and meaning.
+//! [`Neighbor::index`](crate::Neighbor::index) is the item's slot (its position in
+//! [`PointSet::items`]); k-nearest ties go by position in the chunk array
 //! (Morton order after a build or a compaction; deterministic for a given sequence of calls).
 //!
 //! Memory, per point: the point and a 4-byte slot per chunk entry, and a 4-byte position. A
