@@ -15,6 +15,7 @@
 
 mod common;
 
+use orthtree::prelude::*;
 use std::time::Duration;
 
 use common::Distribution;

@@ -27,6 +27,7 @@ mod common;
 #[path = "workloads/compressed.rs"]
 mod workload;
 
+use orthtree::prelude::*;
 use std::hint::black_box;
 use std::time::Duration;
 

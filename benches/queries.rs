@@ -11,6 +11,7 @@
 
 mod common;
 
+use orthtree::prelude::*;
 use std::hint::black_box;
 use std::num::NonZeroUsize;
 use std::time::Duration;

@@ -17,6 +17,7 @@
 
 mod common;
 
+use orthtree::prelude::*;
 use std::hint::black_box;
 use std::time::Duration;
 

@@ -34,6 +34,7 @@ mod common;
 use common::Distribution;
 use kiddo::immutable::float::kdtree::ImmutableKdTree;
 use kiddo::SquaredEuclidean as KiddoSq;
+use orthtree::prelude::*;
 use orthtree::{Aabb, Ball, DynamicPointTree, PointTree};
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};

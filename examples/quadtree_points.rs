@@ -7,6 +7,7 @@
 //! ```
 
 use orthtree::io::svg::point_tree_svg;
+use orthtree::prelude::*;
 use orthtree::{Aabb, Connectivity, Quadtree, DEFAULT_BUCKET_SIZE};
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};

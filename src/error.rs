@@ -177,3 +177,15 @@ impl From<AabbError> for Error {
         Error::InvalidRootBox(e)
     }
 }
+
+/// A broken invariant found by a tree's `validate` ([`PointSet::validate`](crate::query::PointSet::validate)).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ValidationError(pub String);
+
+impl core::fmt::Display for ValidationError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for ValidationError {}

@@ -35,19 +35,38 @@ pub mod query;
 pub mod tree;
 
 pub use compressed::{CompressedTree, CompressedTreeBuilder, SkipQuadtree};
-pub use error::Error;
+pub use error::{Error, ValidationError};
 pub use geom::{
-    morton, validate_point, Aabb, AabbError, Cell, Connectivity, DeepCell, Direction, Scalar,
+    morton, validate_point, Aabb, AabbError, Cell, Connectivity, DeepCell, Direction, RootGeometry,
+    Scalar,
 };
 pub use image::{ImageTree, RegionTree, VoxelTree};
 pub use points::{
-    DynamicPointTree, Leaf, Leaves, Octree, PointTree, PointTreeBuilder, Quadtree, RootGeometry,
-    ValidationError, DEFAULT_BUCKET_SIZE,
+    DynamicPointTree, Leaf, Leaves, Octree, PointTree, PointTreeBuilder, Quadtree,
+    DEFAULT_BUCKET_SIZE,
 };
-pub use query::{Ball, HalfSpace, Metric, Neighbor, QueryError, Region, Relation, SpatialIndex};
+pub use query::{
+    Ball, HalfSpace, Metric, Neighbor, PointSet, PointSetMut, QueryError, Region, Relation,
+    SpatialIndex,
+};
 pub use tree::{
     BalanceOptions, LevelDifferenceError, NodeId, PreOrder, SplitError, Tree, TreeError,
 };
+
+/// The traits whose methods are every point tree's queries and updates, to bring into scope
+/// with `use orthtree::prelude::*;`.
+///
+/// ```
+/// use orthtree::prelude::*;
+/// use orthtree::Quadtree;
+/// let t = Quadtree::new(&[([0.0, 0.0], 'a'), ([1.0, 1.0], 'b')]).unwrap();
+/// assert_eq!((t.len(), *t.nearest(&[0.9, 0.8]).unwrap().unwrap().item), (2, 'b'));
+/// ```
+pub mod prelude {
+    #[cfg(feature = "rayon")]
+    pub use crate::query::ParallelQueries;
+    pub use crate::query::{PointSet, PointSetMut};
+}
 
 /// The README's examples, compiled and run as doctests.
 #[cfg(doctest)]

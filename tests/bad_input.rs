@@ -5,6 +5,7 @@
 mod common;
 
 use common::points::{check_all, check_points};
+use orthtree::prelude::*;
 use orthtree::{
     Aabb, AabbError, Cell, Error, NodeId, Octree, PointTree, PointTreeBuilder, Quadtree,
 };

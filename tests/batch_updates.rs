@@ -4,6 +4,7 @@
 
 mod common;
 
+use orthtree::prelude::*;
 use orthtree::{Aabb, Cell, Connectivity, Error, PointTree};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;

@@ -7,6 +7,7 @@
 mod common;
 
 use common::points::config;
+use orthtree::prelude::*;
 use orthtree::{PointTree, PointTreeBuilder};
 use proptest::prelude::*;
 

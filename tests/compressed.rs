@@ -7,6 +7,7 @@
 mod common;
 
 use common::points::config;
+use orthtree::prelude::*;
 use orthtree::query::{Chebyshev, Manhattan, Metric, SquaredEuclidean};
 use orthtree::{
     Aabb, Ball, CompressedTree, DeepCell, Error, HalfSpace, PointTree, Quadtree, Region, Scalar,

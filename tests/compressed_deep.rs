@@ -7,6 +7,7 @@ mod common;
 
 use common::points::config;
 use orthtree::compressed::SkipQuadtree;
+use orthtree::prelude::*;
 use orthtree::{Aabb, Cell, CompressedTree, DeepCell, PointTree, Quadtree};
 use proptest::prelude::*;
 

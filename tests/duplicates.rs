@@ -4,6 +4,7 @@
 mod common;
 
 use common::points::{check_all, check_points};
+use orthtree::prelude::*;
 use orthtree::{Aabb, Cell, NodeId, PointTreeBuilder, Quadtree};
 use rand::Rng;
 

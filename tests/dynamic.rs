@@ -9,6 +9,7 @@ mod common;
 
 use common::points::unit_builder as builder;
 use common::updates::{apply, coords, initial, op, sorted_pairs, Op, Pairs};
+use orthtree::prelude::*;
 use orthtree::query::{Chebyshev, Manhattan, Metric, SquaredEuclidean};
 use orthtree::{Aabb, Ball, Cell, DynamicPointTree, Error, HalfSpace, PointTree};
 use proptest::prelude::*;

@@ -10,6 +10,7 @@ mod common;
 
 use common::points::check_all;
 use common::{dist2, rng};
+use orthtree::prelude::*;
 use orthtree::{
     Aabb, Ball, Cell, CompressedTree, DynamicPointTree, HalfSpace, PointTree, SkipQuadtree,
 };

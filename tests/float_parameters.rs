@@ -6,6 +6,7 @@
 
 mod common;
 
+use orthtree::prelude::*;
 use orthtree::query::{FloatBits, QueryError, Region};
 use orthtree::{
     Aabb, AabbError, Ball, CompressedTree, DynamicPointTree, Error, HalfSpace, PointTree,

@@ -7,6 +7,7 @@
 
 mod common;
 
+use orthtree::prelude::*;
 use orthtree::query::{Ball, QueryError, Region};
 use orthtree::{
     Aabb, AabbError, CompressedTree, DynamicPointTree, Error, PointTree, PointTreeBuilder, Scalar,

@@ -3,6 +3,7 @@
 //! what the serial queries give, and those agree with brute force (tests/queries.rs).
 #![cfg(feature = "rayon")]
 
+use orthtree::prelude::*;
 use orthtree::query::Ball;
 use orthtree::{Aabb, Error, PointTree};
 use proptest::prelude::*;

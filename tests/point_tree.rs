@@ -6,6 +6,7 @@
 mod common;
 
 use common::points::*;
+use orthtree::prelude::*;
 use orthtree::{Aabb, Octree, PointTree, PointTreeBuilder, Quadtree, Scalar, DEFAULT_BUCKET_SIZE};
 use proptest::collection::vec;
 use proptest::prelude::*;

@@ -4,9 +4,9 @@
 //! distances and on half-space boundaries, with many duplicates; D = 1, 2, 3; f64, f32 and i32.
 //! Plus empty trees, k > n, bad input, the untested inside cells, and exercise 14.13's worst case.
 
-use orthtree::query::{
-    Chebyshev, Manhattan, Metric, PointNode, QueryError, SpatialIndex, SquaredEuclidean,
-};
+use orthtree::points::PointNode;
+use orthtree::prelude::*;
+use orthtree::query::{Chebyshev, Manhattan, Metric, QueryError, SpatialIndex, SquaredEuclidean};
 use orthtree::{Aabb, Ball, HalfSpace, PointTree, Quadtree, Region, Relation, Scalar};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};

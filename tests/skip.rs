@@ -10,6 +10,7 @@ mod workload;
 
 use common::points::config;
 use orthtree::compressed::SkipQuadtree;
+use orthtree::prelude::*;
 use orthtree::{Aabb, CompressedTree, Error};
 use proptest::prelude::*;
 

@@ -7,6 +7,7 @@
 mod common;
 
 use common::updates::{apply, coords, initial, op, sorted_pairs, Op};
+use orthtree::prelude::*;
 use orthtree::{Aabb, Ball, Cell, Error, HalfSpace, PointTree};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;

@@ -31,6 +31,7 @@ use super::CompressedTree;
 use crate::error::Error;
 use crate::geom::{Aabb, Cell, Scalar};
 use crate::points::{PointTree, PointTreeBuilder};
+use crate::query::PointSet;
 use crate::query::SpatialIndex;
 
 /// Settings for building a [`CompressedTree`]: the root box (the smallest enclosing cube of the
@@ -136,7 +137,7 @@ pub(super) fn to_point_tree<S: Scalar, T: Clone, const D: usize>(
     let index = tree.index();
     let points = index.points().to_vec();
     let items = index
-        .items()
+        .payloads()
         .iter()
         .map(|&s| tree.items()[s as usize].clone())
         .collect();

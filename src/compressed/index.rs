@@ -14,21 +14,21 @@
 //! next update. The view is a frozen copy of the tree for reading: the nodes renumbered in
 //! pre-order (the [`SpatialIndex`] node handles), each with its run, its closed cell box and its
 //! children as one contiguous range, and the points in Morton order with the slot each came from
-//! (the index's items, so that [`super::CompressedTree`] maps them back to its items). Queries
+//! (the index's payloads, which [`super::CompressedTree`] maps back to its items). Queries
 //! then walk arrays in the order they are stored, as on the point tree.
 
 use super::topology::{Topology, NIL};
 use crate::geom::deep::morton_cmp;
-use crate::geom::{Aabb, DeepKey, Scalar};
-use crate::points::RootGeometry;
+use crate::geom::{Aabb, DeepKey, RootGeometry, Scalar};
 use crate::query::SpatialIndex;
 use core::ops::Range;
 use std::sync::OnceLock;
 
-/// The nodes and points of a compressed quadtree, as a [`SpatialIndex`] whose items are slot
+/// The nodes and points of a compressed quadtree, as a [`SpatialIndex`] whose payloads are slot
 /// numbers (positions in [`super::CompressedTree::items`]).
 ///
 /// ```
+/// use orthtree::prelude::*;
 /// use orthtree::query::SpatialIndex;
 /// use orthtree::CompressedTree;
 /// let t = CompressedTree::new(&[([0.0, 0.0], 'a'), ([1.0, 1.0], 'b')]).unwrap();
@@ -283,7 +283,7 @@ impl<S: Scalar, const D: usize> CompressedIndex<S, D> {
 
 impl<S: Scalar, const D: usize> SpatialIndex<D> for CompressedIndex<S, D> {
     type Scalar = S;
-    type Item = u32;
+    type Payload = u32;
     type Node = u32;
 
     #[inline]
@@ -292,7 +292,7 @@ impl<S: Scalar, const D: usize> SpatialIndex<D> for CompressedIndex<S, D> {
     }
 
     #[inline]
-    fn items(&self) -> &[u32] {
+    fn payloads(&self) -> &[u32] {
         &self.view().slots
     }
 

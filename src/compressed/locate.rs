@@ -44,8 +44,8 @@
 use super::subdivision::{FaceId, Subdivision, SubdivisionError};
 use super::topology::NIL;
 use crate::error::Error;
+use crate::geom::RootGeometry;
 use crate::geom::{Aabb, Cell};
-use crate::points::RootGeometry;
 
 /// A node of the locator's tree.
 #[derive(Clone, Debug)]

@@ -43,7 +43,6 @@
 mod build;
 mod index;
 mod locate;
-mod query;
 mod skip;
 mod subdivision;
 pub(crate) mod topology;
@@ -52,13 +51,15 @@ mod update;
 pub use build::CompressedTreeBuilder;
 pub use index::CompressedIndex;
 pub use locate::PointLocator;
-pub use query::{CompressedNearestIter, CompressedRegionIter};
 pub use skip::SkipQuadtree;
 pub use subdivision::{FaceId, Subdivision, SubdivisionError};
 
 use crate::error::Error;
+use crate::error::ValidationError;
+use crate::geom::RootGeometry;
 use crate::geom::{Aabb, DeepCell, DeepKey, Scalar};
-use crate::points::{PointTree, RootGeometry, ValidationError};
+use crate::points::PointTree;
+use crate::query::PointSet;
 use topology::NIL;
 
 /// A compressed quadtree (D = 2), octree (D = 3) or 2^D-tree storing (point, item) pairs: the
@@ -133,16 +134,6 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
         }
     }
 
-    /// The number of points.
-    pub fn len(&self) -> usize {
-        self.items.len()
-    }
-
-    /// `true` when no point is stored.
-    pub fn is_empty(&self) -> bool {
-        self.items.is_empty()
-    }
-
     /// The nodes, the root included; 0 for an empty tree. At most `2m` for `m` distinct finest
     /// cells, so at most `2n`.
     pub fn node_count(&self) -> usize {
@@ -174,34 +165,14 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
         deepest
     }
 
-    /// The index the query engines run on: nodes, cells, and the points in Morton order.
-    pub fn index(&self) -> &CompressedIndex<S, D> {
-        &self.index
-    }
-
     /// Where the cells lie in space.
     pub fn geometry(&self) -> &RootGeometry<D> {
         &self.index.geometry
     }
 
-    /// The closed box every point lies in (given to the builder, or the root cube).
-    pub fn domain(&self) -> &Aabb<f64, D> {
-        &self.index.domain
-    }
-
     /// The points, in storage (slot) order: build order at first, then changed by updates.
     pub fn points(&self) -> &[[S; D]] {
         &self.index.points
-    }
-
-    /// The items, in the order of [`CompressedTree::points`].
-    pub fn items(&self) -> &[T] {
-        &self.items
-    }
-
-    /// Every (point, item), in storage order.
-    pub fn iter(&self) -> impl Iterator<Item = (&[S; D], &T)> {
-        self.index.points.iter().zip(&self.items)
     }
 
     /// The cell of every node in pre-order (Morton order, ancestors first), with `true` for a
@@ -268,10 +239,63 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
         }
     }
 
+    /// The equivalent [`PointTree`] with the same root cube and cells, with `bucket_size` and
+    /// `max_depth` (as [`crate::PointTreeBuilder`] takes them): the points in Morton order, no
+    /// sort. O(n + nodes).
+    ///
+    /// Errors: a zero bucket size; a maximum depth beyond
+    /// [`Cell::MAX_LEVEL`](crate::Cell::MAX_LEVEL).
+    pub fn to_point_tree(
+        &self,
+        bucket_size: usize,
+        max_depth: u8,
+    ) -> Result<PointTree<S, T, D>, Error>
+    where
+        T: Clone,
+    {
+        build::to_point_tree(self, bucket_size, max_depth)
+    }
+}
+
+/// The first axis on which `p` lies outside `domain`.
+fn outside<const D: usize>(p: &[f64; D], domain: &Aabb<f64, D>) -> Option<usize> {
+    (0..D).find(|&a| !(domain.min[a] <= p[a] && p[a] <= domain.max[a]))
+}
+
+impl<S: Scalar, T, const D: usize> PointSet<D> for CompressedTree<S, T, D> {
+    type Scalar = S;
+    type Item = T;
+    type Index = CompressedIndex<S, D>;
+
+    #[inline(always)]
+    fn item_of<'a>(&'a self, payload: &'a u32) -> &'a T {
+        &self.items[*payload as usize]
+    }
+
+    #[inline(always)]
+    fn slot_of(&self, _: usize, payload: &u32) -> usize {
+        *payload as usize
+    }
+
+    /// The index the query engines run on: nodes, cells, and the points in Morton order.
+    fn index(&self) -> &CompressedIndex<S, D> {
+        &self.index
+    }
+
+    /// The items, in the order of [`CompressedTree::points`].
+    fn items(&self) -> &[T] {
+        &self.items
+    }
+
+    /// The closed box every point lies in (given to the builder, or the root cube).
+    fn domain(&self) -> &Aabb<f64, D> {
+        &self.index.domain
+    }
+
     /// Checks every invariant and names the first one broken: the node arena
     /// (canonical: every non-root internal node branches, leaves are finest cells), every
     /// point's key and leaf, the leaves' lists, every leaf non-empty, every point in the domain.
-    pub fn validate(&self) -> Result<(), ValidationError> {
+    fn validate(&self) -> Result<(), ValidationError> {
         let fail = |msg: String| Err(ValidationError(msg));
         let ix = &self.index;
         let t = &ix.topology;
@@ -312,25 +336,13 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
         Ok(())
     }
 
-    /// The equivalent [`PointTree`] with the same root cube and cells, with `bucket_size` and
-    /// `max_depth` (as [`crate::PointTreeBuilder`] takes them): the points in Morton order, no
-    /// sort. O(n + nodes).
-    ///
-    /// Errors: a zero bucket size; a maximum depth beyond
-    /// [`Cell::MAX_LEVEL`](crate::Cell::MAX_LEVEL).
-    pub fn to_point_tree(
-        &self,
-        bucket_size: usize,
-        max_depth: u8,
-    ) -> Result<PointTree<S, T, D>, Error>
-    where
-        T: Clone,
-    {
-        build::to_point_tree(self, bucket_size, max_depth)
+    /// Every (point, item), in storage order.
+    fn iter(&self) -> impl ExactSizeIterator<Item = (&[S; D], &T)> + '_ {
+        self.index.points.iter().zip(&self.items)
     }
-}
 
-/// The first axis on which `p` lies outside `domain`.
-fn outside<const D: usize>(p: &[f64; D], domain: &Aabb<f64, D>) -> Option<usize> {
-    (0..D).find(|&a| !(domain.min[a] <= p[a] && p[a] <= domain.max[a]))
+    #[inline]
+    fn point(&self, slot: usize) -> &[S; D] {
+        &self.index.points[slot]
+    }
 }

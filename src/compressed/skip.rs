@@ -29,11 +29,14 @@
 //! a function of the stored keys and the seed alone, so it equals a fresh build after updates.
 
 use super::topology::{Inserted, Topology, NIL};
+use super::CompressedIndex;
 use super::{CompressedTree, Location};
 use crate::error::Error;
+use crate::error::ValidationError;
 use crate::geom::{Aabb, DeepCell, DeepKey, Scalar};
-use crate::points::ValidationError;
-use crate::query::{Metric, Neighbor, QueryError, SpatialIndex, SquaredEuclidean};
+use crate::query::{
+    Metric, Neighbor, PointSet, PointSetMut, QueryError, SpatialIndex, SquaredEuclidean,
+};
 use smallvec::SmallVec;
 use std::cmp::Ordering;
 use std::collections::{BinaryHeap, HashSet};
@@ -134,16 +137,6 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
         &self.base
     }
 
-    /// The number of points.
-    pub fn len(&self) -> usize {
-        self.base.len()
-    }
-
-    /// `true` when no point is stored.
-    pub fn is_empty(&self) -> bool {
-        self.base.is_empty()
-    }
-
     /// The number of levels, level 0 included (1 for an empty tree).
     pub fn level_count(&self) -> usize {
         self.levels.len() + 1
@@ -188,30 +181,6 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
         Ok(self.base.location(path[0], touched))
     }
 
-    /// Inserts `item` at `point`. Expected O(log n).
-    ///
-    /// Errors: those of [`CompressedTree::insert`].
-    pub fn insert(&mut self, point: [S; D], item: T) -> Result<(), Error> {
-        let key = self.base.checked_insert_key(&point)?;
-        let path = self.search(&key, &mut 0);
-        let mut below = self.base.insert_below(path[0], point, key, item);
-        if !below.created {
-            return Ok(());
-        }
-        for i in 1..=self.height(&key) as usize {
-            if self.levels.len() < i {
-                let mut fresh = Topology::new();
-                fresh.nodes[0].down = 0;
-                self.levels.push(fresh);
-            }
-            let start = path.get(i).copied().unwrap_or(0);
-            let done = self.levels[i - 1].insert(start, &key);
-            self.link_down(i, done, below);
-            below = done;
-        }
-        Ok(())
-    }
-
     /// Sets the `down` links of the nodes an insert created on level `i`, `below` being what
     /// it did on level `i - 1`.
     fn link_down(&mut self, i: usize, done: Inserted, below: Inserted) {
@@ -226,20 +195,6 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
             w = lower.node(w).parent;
         }
         self.levels[i - 1].nodes[done.branch as usize].down = w;
-    }
-
-    /// Removes one item stored at `point` and returns it; `None` if there is none. Expected
-    /// O(log n).
-    pub fn remove_point(&mut self, point: &[S; D]) -> Option<T> {
-        self.remove_where(point, |_| true)
-    }
-
-    /// Removes one stored copy of (`point`, `item`); `false` if there is none.
-    pub fn remove(&mut self, point: &[S; D], item: &T) -> bool
-    where
-        T: PartialEq,
-    {
-        self.remove_where(point, |t| t == item).is_some()
     }
 
     fn remove_where(&mut self, point: &[S; D], accept: impl Fn(&T) -> bool) -> Option<T> {
@@ -288,7 +243,7 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
             }
         };
         let index = self.base.index();
-        let (points, slots) = (index.points(), index.items());
+        let (points, slots) = (index.points(), index.payloads());
         let m = SquaredEuclidean;
         let mut best = (f64::INFINITY, usize::MAX);
         let mut visited = 0;
@@ -320,45 +275,9 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
             point: &points[best.1],
             item: &self.base.items()[slots[best.1] as usize],
             distance: best.0,
-            index: best.1,
+            index: slots[best.1] as usize,
         });
         Ok((found, visited))
-    }
-
-    /// Checks level 0 ([`CompressedTree::validate`]) and every level above: a valid canonical
-    /// compressed quadtree over exactly the keys of the level below whose height reaches it,
-    /// each node linked down to the node with its cell; no empty level on top.
-    pub fn validate(&self) -> Result<(), ValidationError> {
-        self.base.validate()?;
-        let fail = |msg: String| Err(ValidationError(msg));
-        for i in 1..=self.levels.len() {
-            let (level, below) = (self.level(i), self.level(i - 1));
-            if let Err(e) = level.validate() {
-                return fail(format!("level {i}: {e}"));
-            }
-            let keys = |t: &Topology<D>| -> Vec<DeepKey<D>> {
-                let leaves = t.pre_order().filter(|&v| t.is_leaf(v));
-                leaves.map(|v| t.node(v).cell.anchor()).collect()
-            };
-            let mut want = keys(below);
-            want.retain(|k| self.height(k) >= i as u32);
-            if keys(level) != want || want.is_empty() {
-                return fail(format!("level {i} does not hold its sample"));
-            }
-            let live: HashSet<u32> = below.pre_order().collect();
-            for v in level.pre_order() {
-                let w = level.node(v).down;
-                if !live.contains(&w) || below.node(w).cell != level.node(v).cell {
-                    return fail(format!("level {i}: node {v} is badly linked down"));
-                }
-            }
-        }
-        Ok(())
-    }
-
-    /// The closed box every point lies in.
-    pub fn domain(&self) -> &Aabb<f64, D> {
-        self.base.domain()
     }
 }
 
@@ -391,4 +310,111 @@ fn splitmix64(x: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
     z ^ (z >> 31)
+}
+
+impl<S: Scalar, T, const D: usize> PointSet<D> for SkipQuadtree<S, T, D> {
+    type Scalar = S;
+    type Item = T;
+    type Index = CompressedIndex<S, D>;
+
+    #[inline]
+    fn index(&self) -> &CompressedIndex<S, D> {
+        self.base.index()
+    }
+
+    #[inline(always)]
+    fn item_of<'a>(&'a self, payload: &'a u32) -> &'a T {
+        self.base.item_of(payload)
+    }
+
+    #[inline(always)]
+    fn slot_of(&self, position: usize, payload: &u32) -> usize {
+        self.base.slot_of(position, payload)
+    }
+
+    #[inline]
+    fn items(&self) -> &[T] {
+        self.base.items()
+    }
+
+    #[inline]
+    fn point(&self, slot: usize) -> &[S; D] {
+        self.base.point(slot)
+    }
+
+    /// The closed box every point lies in.
+    fn domain(&self) -> &Aabb<f64, D> {
+        self.base.domain()
+    }
+
+    /// Checks level 0 ([`CompressedTree::validate`]) and every level above: a valid canonical
+    /// compressed quadtree over exactly the keys of the level below whose height reaches it,
+    /// each node linked down to the node with its cell; no empty level on top.
+    fn validate(&self) -> Result<(), ValidationError> {
+        self.base.validate()?;
+        let fail = |msg: String| Err(ValidationError(msg));
+        for i in 1..=self.levels.len() {
+            let (level, below) = (self.level(i), self.level(i - 1));
+            if let Err(e) = level.validate() {
+                return fail(format!("level {i}: {e}"));
+            }
+            let keys = |t: &Topology<D>| -> Vec<DeepKey<D>> {
+                let leaves = t.pre_order().filter(|&v| t.is_leaf(v));
+                leaves.map(|v| t.node(v).cell.anchor()).collect()
+            };
+            let mut want = keys(below);
+            want.retain(|k| self.height(k) >= i as u32);
+            if keys(level) != want || want.is_empty() {
+                return fail(format!("level {i} does not hold its sample"));
+            }
+            let live: HashSet<u32> = below.pre_order().collect();
+            for v in level.pre_order() {
+                let w = level.node(v).down;
+                if !live.contains(&w) || below.node(w).cell != level.node(v).cell {
+                    return fail(format!("level {i}: node {v} is badly linked down"));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+impl<S: Scalar, T, const D: usize> PointSetMut<D> for SkipQuadtree<S, T, D> {
+    /// Inserts `item` at `point`. Expected O(log n).
+    ///
+    /// Errors: those of [`CompressedTree::insert`].
+    fn insert(&mut self, point: [S; D], item: T) -> Result<(), Error> {
+        let key = self.base.checked_insert_key(&point)?;
+        let path = self.search(&key, &mut 0);
+        let mut below = self.base.insert_below(path[0], point, key, item);
+        if !below.created {
+            return Ok(());
+        }
+        for i in 1..=self.height(&key) as usize {
+            if self.levels.len() < i {
+                let mut fresh = Topology::new();
+                fresh.nodes[0].down = 0;
+                self.levels.push(fresh);
+            }
+            let start = path.get(i).copied().unwrap_or(0);
+            let done = self.levels[i - 1].insert(start, &key);
+            self.link_down(i, done, below);
+            below = done;
+        }
+        Ok(())
+    }
+
+    /// Removes one stored copy of (`point`, `item`); `false` if there is none.
+    fn remove(&mut self, point: &[S; D], item: &T) -> bool
+    where
+        T: PartialEq,
+    {
+        self.remove_where(point, |t| t == item).is_some()
+    }
+
+    /// Removes one item stored at `point` and returns it; `None` if there is none. Expected
+    /// O(log n).
+    fn remove_point(&mut self, point: &[S; D]) -> Option<T> {
+        self.remove_where(point, |_| true)
+    }
 }

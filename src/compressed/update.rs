@@ -22,31 +22,9 @@ use super::topology::NIL;
 use super::CompressedTree;
 use crate::error::Error;
 use crate::geom::{DeepKey, Scalar};
+use crate::query::{PointSet, PointSetMut};
 
 impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
-    /// Inserts `item` at `point`. O(depth).
-    ///
-    /// Errors: a NaN or infinite coordinate, or one outside [`CompressedTree::domain`]; more
-    /// points than a `u32` can index.
-    ///
-    /// ```
-    /// use orthtree::{Aabb, CompressedTree};
-    /// let root = Aabb::new([0.0, 0.0], [1.0, 1.0]).unwrap();
-    /// let mut t = CompressedTree::builder().root_box(root).build(&[]).unwrap();
-    /// t.insert([0.25, 0.25], 'a').unwrap();
-    /// t.insert([0.25 + 1e-9, 0.25], 'b').unwrap();
-    /// assert_eq!(t.node_count(), 4); // root, their common cell, two leaves
-    /// assert!(t.remove(&[0.25, 0.25], &'a'));
-    /// assert_eq!(t.node_count(), 2);
-    /// t.validate().unwrap();
-    /// ```
-    pub fn insert(&mut self, point: [S; D], item: T) -> Result<(), Error> {
-        let key = self.checked_insert_key(&point)?;
-        let at = self.index.topology.descend(0, &key, |_| {});
-        self.insert_below(at, point, key, item);
-        Ok(())
-    }
-
     /// The key of a point to insert, checked (finiteness, domain, room for one more).
     pub(crate) fn checked_insert_key(&self, point: &[S; D]) -> Result<DeepKey<D>, Error> {
         let n = self.len();
@@ -68,28 +46,6 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
         self.index.push_slot(point, key, done.leaf);
         self.items.push(item);
         done
-    }
-
-    /// Removes one stored copy of (`point`, `item`); `false` if there is none. O(depth + copies
-    /// of the point).
-    pub fn remove(&mut self, point: &[S; D], item: &T) -> bool
-    where
-        T: PartialEq,
-    {
-        self.remove_where(point, |t| t == item).is_some()
-    }
-
-    /// Removes one item stored at `point` and returns it; `None` if there is none. O(depth).
-    ///
-    /// ```
-    /// use orthtree::CompressedTree;
-    /// let mut t = CompressedTree::new(&[([0.0, 0.0], 'a'), ([0.0, 0.0], 'b'), ([1.0, 1.0], 'c')]).unwrap();
-    /// assert_eq!(t.remove_point(&[0.0, 0.0]), Some('a'));
-    /// assert_eq!(t.remove_point(&[0.5, 0.5]), None);
-    /// assert_eq!(t.len(), 2);
-    /// ```
-    pub fn remove_point(&mut self, point: &[S; D]) -> Option<T> {
-        self.remove_where(point, |_| true).map(|(item, _)| item)
     }
 
     /// Removes the first item at `point` accepted by `accept`; returns it with the leaf removed
@@ -123,5 +79,52 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
         let removed = self.index.remove_slot(s);
         let item = self.items.swap_remove(s);
         Some((item, if removed == NIL { NIL } else { leaf }))
+    }
+}
+
+impl<S: Scalar, T, const D: usize> PointSetMut<D> for CompressedTree<S, T, D> {
+    /// Inserts `item` at `point`. O(depth).
+    ///
+    /// Errors: a NaN or infinite coordinate, or one outside [`CompressedTree::domain`]; more
+    /// points than a `u32` can index.
+    ///
+    /// ```
+    /// use orthtree::{Aabb, CompressedTree};
+    /// let root = Aabb::new([0.0, 0.0], [1.0, 1.0]).unwrap();
+    /// let mut t = CompressedTree::builder().root_box(root).build(&[]).unwrap();
+    /// t.insert([0.25, 0.25], 'a').unwrap();
+    /// t.insert([0.25 + 1e-9, 0.25], 'b').unwrap();
+    /// assert_eq!(t.node_count(), 4); // root, their common cell, two leaves
+    /// assert!(t.remove(&[0.25, 0.25], &'a'));
+    /// assert_eq!(t.node_count(), 2);
+    /// t.validate().unwrap();
+    /// ```
+    fn insert(&mut self, point: [S; D], item: T) -> Result<(), Error> {
+        let key = self.checked_insert_key(&point)?;
+        let at = self.index.topology.descend(0, &key, |_| {});
+        self.insert_below(at, point, key, item);
+        Ok(())
+    }
+
+    /// Removes one stored copy of (`point`, `item`); `false` if there is none. O(depth + copies
+    /// of the point).
+    fn remove(&mut self, point: &[S; D], item: &T) -> bool
+    where
+        T: PartialEq,
+    {
+        self.remove_where(point, |t| t == item).is_some()
+    }
+
+    /// Removes one item stored at `point` and returns it; `None` if there is none. O(depth).
+    ///
+    /// ```
+    /// use orthtree::CompressedTree;
+    /// let mut t = CompressedTree::new(&[([0.0, 0.0], 'a'), ([0.0, 0.0], 'b'), ([1.0, 1.0], 'c')]).unwrap();
+    /// assert_eq!(t.remove_point(&[0.0, 0.0]), Some('a'));
+    /// assert_eq!(t.remove_point(&[0.5, 0.5]), None);
+    /// assert_eq!(t.len(), 2);
+    /// ```
+    fn remove_point(&mut self, point: &[S; D]) -> Option<T> {
+        self.remove_where(point, |_| true).map(|(item, _)| item)
     }
 }

@@ -1,6 +1,7 @@
 //! The vocabulary shared by every layer: [`Scalar`] coordinates, closed boxes ([`Aabb`]), exact
 //! dyadic cells ([`Cell`]) with Morton keys, cells 64 levels deep on every axis ([`DeepCell`]),
-//! and [`Direction`]s with their [`Connectivity`].
+//! [`Direction`]s with their [`Connectivity`], and the [`RootGeometry`] that maps coordinates to
+//! cells exactly (used by every tree and by the query engines).
 
 mod aabb;
 mod cell;
@@ -8,6 +9,8 @@ pub mod deep;
 mod direction;
 mod float_bits;
 pub mod morton;
+mod root;
+mod root_deep;
 mod scalar;
 
 pub use aabb::{Aabb, AabbError};
@@ -16,5 +19,7 @@ pub(crate) use cell::Dim;
 pub use deep::{DeepCell, DeepKey};
 pub use direction::{Connectivity, Direction};
 pub use float_bits::FloatBits;
+pub(crate) use root::child_box;
+pub use root::RootGeometry;
 pub(crate) use scalar::{exact_point, fault, Fault};
 pub use scalar::{validate_point, Scalar};

@@ -19,6 +19,7 @@
 use super::{PointTree, Runs};
 use crate::error::Error;
 use crate::geom::Scalar;
+use crate::query::PointSet;
 use crate::tree::{NodeId, Tree};
 
 impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {

@@ -20,8 +20,9 @@
 //! items plus 9 bytes per node (first child, level, run end) and 4 per child block (the arrays
 //! are shrunk to fit).
 
-use super::{PointTree, RootGeometry};
+use super::PointTree;
 use crate::error::Error;
+use crate::geom::RootGeometry;
 use crate::geom::{Aabb, Cell, Dim, Scalar};
 use crate::prefetch::{prefetch, LOOKAHEAD};
 use crate::tree::{NodeId, Tree};

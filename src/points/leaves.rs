@@ -3,6 +3,7 @@
 
 use super::PointTree;
 use crate::geom::{Cell, Scalar};
+use crate::query::PointSet;
 use crate::tree::{NodeId, PreOrder};
 
 /// One leaf of a [`PointTree`]: its node, cell, points and items.

@@ -7,9 +7,8 @@
 
 mod batch_update;
 mod build;
-mod deep_geometry;
 mod dynamic;
-mod geometry;
+mod index;
 mod leaves;
 mod network;
 #[cfg(feature = "rayon")]
@@ -20,15 +19,13 @@ mod update;
 
 pub(crate) use build::check_point;
 pub use build::{PointTreeBuilder, DEFAULT_BUCKET_SIZE};
-pub use dynamic::{
-    DynamicIndex, DynamicNearestIter, DynamicNode, DynamicPointTree, DynamicRegionIter,
-};
-pub(crate) use geometry::child_box;
-pub use geometry::RootGeometry;
+pub use dynamic::{DynamicIndex, DynamicNode, DynamicPointTree};
+pub use index::PointNode;
 pub use leaves::{Leaf, Leaves};
 
-use crate::error::Error;
-use crate::geom::{Aabb, Cell, Dim, Scalar};
+use crate::error::{Error, ValidationError};
+use crate::geom::{Aabb, Cell, Dim, RootGeometry, Scalar};
+use crate::query::PointSet;
 use crate::tree::{BalanceOptions, NodeId, Tree};
 pub(crate) use runs::Runs;
 
@@ -82,31 +79,9 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         PointTreeBuilder::new().build(entries)
     }
 
-    /// The number of points.
-    #[inline]
-    pub fn len(&self) -> usize {
-        self.points.len()
-    }
-
-    /// `true` when the tree stores no point.
-    #[inline]
-    pub fn is_empty(&self) -> bool {
-        self.points.is_empty()
-    }
-
-    /// Every (point, item) in Morton order.
-    pub fn iter(&self) -> core::iter::Zip<core::slice::Iter<'_, [S; D]>, core::slice::Iter<'_, T>> {
-        self.points.iter().zip(self.items.iter())
-    }
-
     /// The points in Morton order.
     pub fn points(&self) -> &[[S; D]] {
         &self.points
-    }
-
-    /// The items, in the order of [`PointTree::points`].
-    pub fn items(&self) -> &[T] {
-        &self.items
     }
 
     /// The topology.
@@ -143,11 +118,6 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// Where the cells lie in space.
     pub fn geometry(&self) -> &RootGeometry<D> {
         &self.geometry
-    }
-
-    /// The closed box every point lies in: the given root box, or the computed root cube.
-    pub fn domain(&self) -> &Aabb<f64, D> {
-        &self.domain
     }
 
     /// The closed box of a node's cell.
@@ -285,13 +255,72 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
             stack[top..].reverse();
         }
     }
+}
 
-    /// Checks every invariant and names the first one broken: node runs nest and partition their
+/// The child index of the cell at `level + 1` holding the point whose finest Morton key is `key`.
+#[inline]
+pub(crate) fn digit<const D: usize>(key: u64, level: u8) -> usize {
+    let shift = D as u32 * (Cell::<D>::MAX_LEVEL - level - 1) as u32;
+    ((key >> shift) as usize) & (Dim::<D>::CHILDREN - 1)
+}
+
+/// Runs up to this long are partitioned in one pass over their digits, longer ones by a binary
+/// search per child. The pass is branch-free and reads the run in order.
+const LINEAR_PARTITION: u32 = 512;
+
+/// Gives each child of the just-split node `v` its part of `v`'s run `(s, e)`, which is sorted
+/// by key.
+fn partition_children<const D: usize>(
+    tree: &Tree<D>,
+    runs: &mut Runs,
+    v: NodeId,
+    (s, e): (u32, u32),
+    key: impl Fn(usize) -> u64,
+) {
+    let level = tree.level(v);
+    if e - s <= LINEAR_PARTITION {
+        // Short runs: one pass in which each point sets the end of its digit's part to just
+        // after itself. The digits are sorted, so the last write is the part's end; plain stores
+        // (2^D <= 256 children), where counting would chain each increment to the one before.
+        let mut ends = [s; 256];
+        for i in s..e {
+            ends[digit::<D>(key(i as usize), level)] = i + 1;
+        }
+        // A child without points ends where the one before it does.
+        let mut at = s;
+        let ends = ends[..Dim::<D>::CHILDREN].iter().map(|&end| {
+            at = at.max(end);
+            at
+        });
+        runs.set_children(tree, v, s, ends);
+        return;
+    }
+    let mut lo = s;
+    let ends = (0..Dim::<D>::CHILDREN).map(|c| {
+        // First index in lo..e whose digit exceeds c.
+        let (mut a, mut b) = (lo, e);
+        while a < b {
+            let mid = a + (b - a) / 2;
+            if digit::<D>(key(mid as usize), level) <= c {
+                a = mid + 1;
+            } else {
+                b = mid;
+            }
+        }
+        lo = a;
+        a
+    });
+    runs.set_children(tree, v, s, ends);
+}
+
+impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
+    /// [`PointSet::validate`](crate::query::PointSet::validate): checks every invariant and
+    /// names the first one broken: node runs nest and partition their
     /// parent's; every point lies in its leaf's cell under the split convention and inside the
     /// domain; the points are in Morton order; a leaf holds more than the bucket size only at the
     /// maximum depth; an internal node holds more than the bucket size unless balance split it,
     /// and then the tree is balanced.
-    pub fn validate(&self) -> Result<(), ValidationError> {
+    fn check_invariants(&self) -> Result<(), ValidationError> {
         let fail = |msg: String| Err(ValidationError(msg));
         if self.runs.len() != self.tree.node_count() {
             return fail(format!(
@@ -365,71 +394,3 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         Ok(())
     }
 }
-
-/// The child index of the cell at `level + 1` holding the point whose finest Morton key is `key`.
-#[inline]
-pub(crate) fn digit<const D: usize>(key: u64, level: u8) -> usize {
-    let shift = D as u32 * (Cell::<D>::MAX_LEVEL - level - 1) as u32;
-    ((key >> shift) as usize) & (Dim::<D>::CHILDREN - 1)
-}
-
-/// Runs up to this long are partitioned in one pass over their digits, longer ones by a binary
-/// search per child. The pass is branch-free and reads the run in order.
-const LINEAR_PARTITION: u32 = 512;
-
-/// Gives each child of the just-split node `v` its part of `v`'s run `(s, e)`, which is sorted
-/// by key.
-fn partition_children<const D: usize>(
-    tree: &Tree<D>,
-    runs: &mut Runs,
-    v: NodeId,
-    (s, e): (u32, u32),
-    key: impl Fn(usize) -> u64,
-) {
-    let level = tree.level(v);
-    if e - s <= LINEAR_PARTITION {
-        // Short runs: one pass in which each point sets the end of its digit's part to just
-        // after itself. The digits are sorted, so the last write is the part's end; plain stores
-        // (2^D <= 256 children), where counting would chain each increment to the one before.
-        let mut ends = [s; 256];
-        for i in s..e {
-            ends[digit::<D>(key(i as usize), level)] = i + 1;
-        }
-        // A child without points ends where the one before it does.
-        let mut at = s;
-        let ends = ends[..Dim::<D>::CHILDREN].iter().map(|&end| {
-            at = at.max(end);
-            at
-        });
-        runs.set_children(tree, v, s, ends);
-        return;
-    }
-    let mut lo = s;
-    let ends = (0..Dim::<D>::CHILDREN).map(|c| {
-        // First index in lo..e whose digit exceeds c.
-        let (mut a, mut b) = (lo, e);
-        while a < b {
-            let mid = a + (b - a) / 2;
-            if digit::<D>(key(mid as usize), level) <= c {
-                a = mid + 1;
-            } else {
-                b = mid;
-            }
-        }
-        lo = a;
-        a
-    });
-    runs.set_children(tree, v, s, ends);
-}
-
-/// A broken invariant found by [`PointTree::validate`].
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct ValidationError(pub String);
-
-impl core::fmt::Display for ValidationError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.write_str(&self.0)
-    }
-}
-
-impl std::error::Error for ValidationError {}

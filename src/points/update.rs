@@ -52,75 +52,13 @@
 use super::PointTree;
 use crate::error::Error;
 use crate::geom::Scalar;
+use crate::query::{PointSet, PointSetMut};
 use crate::tree::NodeId;
 use smallvec::SmallVec;
 
 type Path = SmallVec<[NodeId; 40]>;
 
 impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
-    /// Inserts `item` at `point`, splitting the point's leaf while it holds more than the bucket
-    /// size and is above the maximum depth. See the module doc for the cost.
-    ///
-    /// Errors: a coordinate that is NaN or infinite, or outside [`PointTree::domain`]; more points
-    /// than a `u32` can index.
-    ///
-    /// ```
-    /// use orthtree::{Aabb, Quadtree};
-    /// let root = Aabb::new([0.0, 0.0], [1.0, 1.0]).unwrap();
-    /// let mut t = Quadtree::builder().root_box(root).bucket_size(1).build(&[]).unwrap();
-    /// t.insert([0.25, 0.25], 'a').unwrap();
-    /// t.insert([0.75, 0.75], 'b').unwrap();
-    /// assert_eq!(t.leaf_count(), 4);
-    /// assert!(t.insert([2.0, 0.0], 'c').is_err()); // outside the root box
-    /// assert!(t.remove(&[0.75, 0.75], &'b'));
-    /// assert_eq!(t.leaf_count(), 1); // merged back: as if built from 'a' alone
-    /// t.validate().unwrap();
-    /// ```
-    pub fn insert(&mut self, point: [S; D], item: T) -> Result<(), Error> {
-        let index = self.len();
-        self.check_insertable(&point, index)?;
-        let p = point.map(Scalar::to_f64);
-        if index + 1 >= u32::MAX as usize {
-            return Err(Error::TooManyPoints { len: index + 1 });
-        }
-        if self.balanced.is_some() {
-            self.rebuild_canonical();
-        }
-        let key = self.geometry.key(&p);
-        let (path, (s, e)) = self.path(key);
-        let leaf = *path.last().expect("the path holds the root");
-        // After every point of the leaf whose key is at most `key`.
-        let (mut a, mut b) = (s as usize, e as usize);
-        while a < b {
-            let mid = a + (b - a) / 2;
-            if self.key_of(mid) <= key {
-                a = mid + 1;
-            } else {
-                b = mid;
-            }
-        }
-        self.points.insert(a, point);
-        self.items.insert(a, item);
-        self.runs.shift::<D>(&path, 1);
-        self.split_down(leaf);
-        Ok(())
-    }
-
-    /// Removes one stored copy of (`point`, `item`): the first in storage order. Returns `false`
-    /// (and changes nothing) when there is none.
-    pub fn remove(&mut self, point: &[S; D], item: &T) -> bool
-    where
-        T: PartialEq,
-    {
-        self.remove_where(point, |t| t == item).is_some()
-    }
-
-    /// Removes the first stored item at exactly `point` (any item) and returns it; `None` when no
-    /// item is stored there.
-    pub fn remove_point(&mut self, point: &[S; D]) -> Option<T> {
-        self.remove_where(point, |_| true)
-    }
-
     fn remove_where(&mut self, point: &[S; D], wanted: impl Fn(&T) -> bool) -> Option<T> {
         crate::geom::validate_point(point).ok()?;
         let p = point.map(Scalar::to_f64);
@@ -209,8 +147,74 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     }
 }
 
+impl<S: Scalar, T, const D: usize> PointSetMut<D> for PointTree<S, T, D> {
+    /// Inserts `item` at `point`, splitting the point's leaf while it holds more than the bucket
+    /// size and is above the maximum depth. See the module doc for the cost.
+    ///
+    /// Errors: a coordinate that is NaN or infinite, or outside [`PointTree::domain`]; more points
+    /// than a `u32` can index.
+    ///
+    /// ```
+    /// use orthtree::{Aabb, Quadtree};
+    /// let root = Aabb::new([0.0, 0.0], [1.0, 1.0]).unwrap();
+    /// let mut t = Quadtree::builder().root_box(root).bucket_size(1).build(&[]).unwrap();
+    /// t.insert([0.25, 0.25], 'a').unwrap();
+    /// t.insert([0.75, 0.75], 'b').unwrap();
+    /// assert_eq!(t.leaf_count(), 4);
+    /// assert!(t.insert([2.0, 0.0], 'c').is_err()); // outside the root box
+    /// assert!(t.remove(&[0.75, 0.75], &'b'));
+    /// assert_eq!(t.leaf_count(), 1); // merged back: as if built from 'a' alone
+    /// t.validate().unwrap();
+    /// ```
+    fn insert(&mut self, point: [S; D], item: T) -> Result<(), Error> {
+        let index = self.len();
+        self.check_insertable(&point, index)?;
+        let p = point.map(Scalar::to_f64);
+        if index + 1 >= u32::MAX as usize {
+            return Err(Error::TooManyPoints { len: index + 1 });
+        }
+        if self.balanced.is_some() {
+            self.rebuild_canonical();
+        }
+        let key = self.geometry.key(&p);
+        let (path, (s, e)) = self.path(key);
+        let leaf = *path.last().expect("the path holds the root");
+        // After every point of the leaf whose key is at most `key`.
+        let (mut a, mut b) = (s as usize, e as usize);
+        while a < b {
+            let mid = a + (b - a) / 2;
+            if self.key_of(mid) <= key {
+                a = mid + 1;
+            } else {
+                b = mid;
+            }
+        }
+        self.points.insert(a, point);
+        self.items.insert(a, item);
+        self.runs.shift::<D>(&path, 1);
+        self.split_down(leaf);
+        Ok(())
+    }
+
+    /// Removes one stored copy of (`point`, `item`): the first in storage order. Returns `false`
+    /// (and changes nothing) when there is none.
+    fn remove(&mut self, point: &[S; D], item: &T) -> bool
+    where
+        T: PartialEq,
+    {
+        self.remove_where(point, |t| t == item).is_some()
+    }
+
+    /// Removes the first stored item at exactly `point` (any item) and returns it; `None` when no
+    /// item is stored there.
+    fn remove_point(&mut self, point: &[S; D]) -> Option<T> {
+        self.remove_where(point, |_| true)
+    }
+}
+
 #[cfg(test)]
 mod tests {
+    use crate::query::{PointSet, PointSetMut};
     use crate::{Aabb, Connectivity, Quadtree};
 
     #[test]

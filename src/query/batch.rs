@@ -1,19 +1,20 @@
 //! Batch queries on rayon's threads (feature `rayon`): many k-nearest or range queries against
-//! one [`PointTree`], each answered by the serial engine, the batch spread over threads.
+//! one [`PointSet`], each answered by the serial engine, the batch spread over threads
+//! ([`ParallelQueries`], written once for every tree).
 //!
 //! Results come back in the order of the queries. A bad query (a NaN coordinate, a negative
 //! radius) fails the batch with a [`BatchError`] naming the first bad query's position; queries
 //! are checked before any work starts.
 
+use super::index::SpatialIndex;
 use super::range::{for_each_in, scan_limit};
-use super::{Neighbor, QueryError, Region};
-use crate::geom::Scalar;
-use crate::points::PointTree;
+use super::{Neighbor, PointSet, QueryError, Region};
 use rayon::prelude::*;
 
 /// A batch refused because of one query: its position in the batch and what is wrong with it.
 ///
 /// ```
+/// use orthtree::prelude::*;
 /// use orthtree::{query::BatchError, Quadtree};
 /// let t = Quadtree::new(&[([0.0, 0.0], 'a')]).unwrap();
 /// let err = t.par_k_nearest(&[[0.0, 0.0], [f64::NAN, 1.0]], 1).unwrap_err();
@@ -49,10 +50,24 @@ fn run_batch<Q: Sync, A: Send>(
         .collect()
 }
 
-impl<S: Scalar + Sync, T: Sync, const D: usize> PointTree<S, T, D> {
-    /// [`PointTree::k_nearest`] for every query point, in parallel; answers in query order.
+/// A neighbour found in set `P`.
+type NeighborIn<'a, P, const D: usize> =
+    Neighbor<'a, <P as PointSet<D>>::Scalar, <P as PointSet<D>>::Item, D>;
+
+/// The batch forms of [`PointSet`]'s queries, on rayon's threads, for every point set that can
+/// be shared between threads (implemented for all of them; in the prelude).
+pub trait ParallelQueries<const D: usize>: PointSet<D> + Sync
+where
+    Self::Scalar: Sync,
+    Self::Item: Sync,
+{
+    /// [`PointSet::k_nearest`] for every query point, in parallel; answers in query order.
+    ///
+    /// # Errors
+    /// The first bad query in batch order, as a [`BatchError`] naming its position.
     ///
     /// ```
+    /// use orthtree::prelude::*;
     /// use orthtree::Quadtree;
     /// let pts: Vec<([f64; 2], usize)> = (0..100).map(|i| ([i as f64, 0.0], i)).collect();
     /// let t = Quadtree::new(&pts).unwrap();
@@ -61,34 +76,42 @@ impl<S: Scalar + Sync, T: Sync, const D: usize> PointTree<S, T, D> {
     ///     answers.iter().map(|a| a.iter().map(|n| *n.item).collect()).collect();
     /// assert_eq!(items, [vec![10, 11], vec![98, 97]]);
     /// ```
-    pub fn par_k_nearest(
+    fn par_k_nearest(
         &self,
-        queries: &[[S; D]],
+        queries: &[[Self::Scalar; D]],
         k: usize,
-    ) -> Result<Vec<Vec<Neighbor<'_, S, T, D>>>, BatchError> {
+    ) -> Result<Vec<Vec<NeighborIn<'_, Self, D>>>, BatchError> {
         run_batch(queries, |q| self.k_nearest(q, k))
     }
 
-    /// [`PointTree::query_count`] for every region, in parallel; counts in region order.
+    /// [`PointSet::query_count`] for every region, in parallel; counts in region order.
+    ///
+    /// # Errors
+    /// The first bad region in batch order, as a [`BatchError`] naming its position.
     ///
     /// ```
+    /// use orthtree::prelude::*;
     /// use orthtree::{query::Ball, Quadtree};
     /// let pts: Vec<([f64; 2], ())> = (0..100).map(|i| ([(i % 10) as f64, (i / 10) as f64], ())).collect();
     /// let t = Quadtree::new(&pts).unwrap();
     /// let balls = [Ball::new([0.0, 0.0], 1.0).unwrap(), Ball::new([5.0, 5.0], 1.0).unwrap()];
     /// assert_eq!(t.par_query_count(&balls).unwrap(), [3, 5]);
     /// ```
-    pub fn par_query_count<R: Region<D> + Sync>(
+    fn par_query_count<R: Region<D> + Sync>(
         &self,
         regions: &[R],
     ) -> Result<Vec<usize>, BatchError> {
         run_batch(regions, |r| self.query_count(r))
     }
 
-    /// The points in every region, in parallel: for each region, the indices into
-    /// [`PointTree::points`] of its points, ascending.
+    /// The points in every region, in parallel: for each region, the slots
+    /// ([`PointSet::items`] positions) of its points, ascending.
+    ///
+    /// # Errors
+    /// The first bad region in batch order, as a [`BatchError`] naming its position.
     ///
     /// ```
+    /// use orthtree::prelude::*;
     /// use orthtree::{Aabb, Quadtree};
     /// let t = Quadtree::new(&[([0.0, 0.0], 'a'), ([1.0, 1.0], 'b'), ([2.0, 2.0], 'c')]).unwrap();
     /// let boxes = [Aabb::new([0.5, 0.5], [2.0, 2.0]).unwrap(), Aabb::new([5.0, 5.0], [6.0, 6.0]).unwrap()];
@@ -96,15 +119,26 @@ impl<S: Scalar + Sync, T: Sync, const D: usize> PointTree<S, T, D> {
     /// let items: Vec<char> = found[0].iter().map(|&i| t.items()[i]).collect();
     /// assert_eq!((items, found[1].len()), (vec!['b', 'c'], 0));
     /// ```
-    pub fn par_query_indices<R: Region<D> + Sync>(
+    fn par_query_indices<R: Region<D> + Sync>(
         &self,
         regions: &[R],
     ) -> Result<Vec<Vec<usize>>, BatchError> {
         run_batch(regions, |r| {
+            let index = self.index();
+            let payloads = index.payloads();
             let mut found = Vec::new();
-            for_each_in(self, r, scan_limit(D), false, |i| found.push(i))?;
+            for_each_in(index, r, scan_limit(D), false, |i| {
+                found.push(self.slot_of(i, &payloads[i]))
+            })?;
             found.sort_unstable();
             Ok(found)
         })
     }
+}
+
+impl<P: PointSet<D> + Sync, const D: usize> ParallelQueries<D> for P
+where
+    P::Scalar: Sync,
+    P::Item: Sync,
+{
 }

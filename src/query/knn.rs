@@ -15,19 +15,35 @@
 //! scanned as a leaf (its run is contiguous), as kd-trees scan buckets; for k = 1 the scan keeps
 //! the run's nearest point without a branch per point.
 //!
-//! Ties are broken by index in [`PointTree::points`] (Morton order): the answer is exactly the
+//! Ties are broken by position in [`SpatialIndex::points`] (Morton order): the answer is exactly the
 //! first `k` of all points within the maximum distance sorted by `(distance, index)`. A box whose
 //! bound equals the `k`-th distance is still searched, so a tie cannot be lost.
 
 use super::index::{scans_whole, SpatialIndex};
-use super::metric::{Metric, SquaredEuclidean};
-use super::QueryError;
+use super::metric::Metric;
 use crate::geom::{Aabb, Scalar};
-use crate::points::PointTree;
 use crate::prefetch::prefetch_run;
 use smallvec::SmallVec;
 
-/// A point found by a nearest-neighbour query.
+/// A point found by a nearest-neighbour query of a [`PointSet`](super::PointSet).
+///
+/// ```
+/// use orthtree::prelude::*;
+/// use orthtree::{CompressedTree, DynamicPointTree, Quadtree};
+/// let pts = [([0.0, 0.0], 'a'), ([3.0, 4.0], 'b'), ([1.0, 1.0], 'c')];
+/// let (p, d, c) = (
+///     Quadtree::new(&pts).unwrap(),
+///     DynamicPointTree::new(&pts).unwrap(),
+///     CompressedTree::new(&pts).unwrap(),
+/// );
+/// // `index` is where the item sits in the tree's `items()`, in every tree
+/// let n = p.nearest(&[2.9, 4.0]).unwrap().unwrap();
+/// assert_eq!((p.items()[n.index], *n.item), ('b', 'b'));
+/// let n = d.nearest(&[2.9, 4.0]).unwrap().unwrap();
+/// assert_eq!((d.items()[n.index], d.point(n.index)), ('b', n.point));
+/// let n = c.nearest(&[2.9, 4.0]).unwrap().unwrap();
+/// assert_eq!((c.items()[n.index], c.point(n.index)), ('b', n.point));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Neighbor<'a, S, T, const D: usize> {
     /// The point.
@@ -35,21 +51,24 @@ pub struct Neighbor<'a, S, T, const D: usize> {
     /// Its item.
     pub item: &'a T,
     /// Its distance from the query point, in the metric's units (squared for
-    /// [`SquaredEuclidean`]).
+    /// [`SquaredEuclidean`](super::SquaredEuclidean)).
     pub distance: f64,
-    /// Its index in [`PointTree::points`], which breaks ties.
+    /// Its slot: the position of its item in the set's [`PointSet::items`](super::PointSet::items)
+    /// (and of its point in [`PointSet::point`](super::PointSet::point)), in every tree. Ties
+    /// are broken by the tree's traversal order (Morton order), not by this number.
     pub index: usize,
 }
 
 impl<'a, S, T, const D: usize> Neighbor<'a, S, T, D> {
-    pub(crate) fn at<I: SpatialIndex<D, Scalar = S, Item = T>>(
+    /// The point at `i` in `index`, with its payload; `index` is `i` for now.
+    pub(crate) fn at<I: SpatialIndex<D, Scalar = S, Payload = T>>(
         index: &'a I,
         distance: f64,
         i: usize,
     ) -> Self {
         Neighbor {
             point: &index.points()[i],
-            item: &index.items()[i],
+            item: &index.payloads()[i],
             distance,
             index: i,
         }
@@ -171,7 +190,7 @@ pub(crate) fn k_nearest<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
     // answers come from this run). A/B, 10^5 1-NN queries reading the item, 10^6 uniform
     // points, medians: 2D 60.7 -> 50.3 ms, 3D 109 -> 89 ms.
     prefetch_run(points, seeded.clone());
-    prefetch_run(index.items(), seeded.clone());
+    prefetch_run(index.payloads(), seeded.clone());
     let first = best.bound();
     let mut bound = scan_run(&mut best, seeded, first);
     let mut stack: Pending<I::Node, D> = SmallVec::new();
@@ -282,99 +301,4 @@ fn ball_inside<M: Metric<D>, const D: usize>(
         slab.min[a] = b.max[a];
         below && metric.box_distance(q, &slab) > bound
     })
-}
-
-impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
-    /// The nearest point to `p` (squared Euclidean distance); `None` for an empty tree. Ties go to
-    /// the point first in [`PointTree::points`].
-    ///
-    /// Errors: a NaN, infinite or inexact coordinate (an integer `f64` cannot hold) in `p`.
-    ///
-    /// ```
-    /// use orthtree::Quadtree;
-    /// let t = Quadtree::new(&[([0.0, 0.0], 'a'), ([3.0, 4.0], 'b')]).unwrap();
-    /// let n = t.nearest(&[2.0, 3.0]).unwrap().unwrap();
-    /// assert_eq!((*n.item, n.distance), ('b', 2.0)); // squared distance
-    /// ```
-    pub fn nearest(&self, p: &[S; D]) -> Result<Option<Neighbor<'_, S, T, D>>, QueryError> {
-        self.nearest_within(p, f64::INFINITY)
-    }
-
-    /// The nearest point to `p` at squared distance at most `max`; `None` if there is none.
-    ///
-    /// Errors: a non-finite or inexact `p`; a negative or NaN `max`.
-    ///
-    /// ```
-    /// use orthtree::Quadtree;
-    /// let t = Quadtree::new(&[([0.0, 0.0], 'a'), ([3.0, 4.0], 'b')]).unwrap();
-    /// assert!(t.nearest_within(&[3.0, 0.0], 8.0).unwrap().is_none());
-    /// assert_eq!(*t.nearest_within(&[3.0, 0.0], 9.0).unwrap().unwrap().item, 'a');
-    /// ```
-    pub fn nearest_within(
-        &self,
-        p: &[S; D],
-        max: f64,
-    ) -> Result<Option<Neighbor<'_, S, T, D>>, QueryError> {
-        SpatialIndex::nearest_by(self, p, max, &SquaredEuclidean)
-    }
-
-    /// The `k` nearest points to `p` (squared Euclidean), sorted by distance, ties by index in
-    /// [`PointTree::points`]. Fewer when the tree holds fewer; empty for `k = 0` or an empty tree.
-    ///
-    /// Errors: a NaN, infinite or inexact coordinate (an integer `f64` cannot hold) in `p`.
-    ///
-    /// ```
-    /// use orthtree::Quadtree;
-    /// let pts: Vec<([f64; 2], usize)> = (0..10).map(|i| ([i as f64, 0.0], i)).collect();
-    /// let t = Quadtree::new(&pts).unwrap();
-    /// let near: Vec<usize> = t.k_nearest(&[4.2, 0.0], 3).unwrap().iter().map(|n| *n.item).collect();
-    /// assert_eq!(near, [4, 5, 3]);
-    /// assert!(t.k_nearest(&[4.2, 0.0], 0).unwrap().is_empty());
-    /// ```
-    pub fn k_nearest(
-        &self,
-        p: &[S; D],
-        k: usize,
-    ) -> Result<Vec<Neighbor<'_, S, T, D>>, QueryError> {
-        self.k_nearest_by(p, k, f64::INFINITY, &SquaredEuclidean)
-    }
-
-    /// [`PointTree::k_nearest`] among the points at squared distance at most `max`.
-    ///
-    /// ```
-    /// use orthtree::Quadtree;
-    /// let pts: Vec<([f64; 2], usize)> = (0..10).map(|i| ([i as f64, 0.0], i)).collect();
-    /// let t = Quadtree::new(&pts).unwrap();
-    /// assert_eq!(t.k_nearest_within(&[0.0, 0.0], 5, 4.0).unwrap().len(), 3);
-    /// ```
-    pub fn k_nearest_within(
-        &self,
-        p: &[S; D],
-        k: usize,
-        max: f64,
-    ) -> Result<Vec<Neighbor<'_, S, T, D>>, QueryError> {
-        self.k_nearest_by(p, k, max, &SquaredEuclidean)
-    }
-
-    /// The `k` nearest points to `p` at distance at most `max` (inclusive; `f64::INFINITY` for no
-    /// limit) under `metric`, sorted by distance then index.
-    ///
-    /// Errors: a non-finite or inexact `p`; a negative or NaN `max`.
-    ///
-    /// ```
-    /// use orthtree::{query::{Chebyshev, Manhattan}, Quadtree};
-    /// let t = Quadtree::new(&[([3.0, 3.0], 'a'), ([0.0, 4.0], 'b')]).unwrap();
-    /// let q = [0.0, 0.0];
-    /// assert_eq!(*t.k_nearest_by(&q, 1, f64::INFINITY, &Manhattan).unwrap()[0].item, 'b');
-    /// assert_eq!(*t.k_nearest_by(&q, 1, f64::INFINITY, &Chebyshev).unwrap()[0].item, 'a');
-    /// ```
-    pub fn k_nearest_by<M: Metric<D>>(
-        &self,
-        p: &[S; D],
-        k: usize,
-        max: f64,
-        metric: &M,
-    ) -> Result<Vec<Neighbor<'_, S, T, D>>, QueryError> {
-        SpatialIndex::k_nearest_by(self, p, k, max, metric)
-    }
 }

@@ -11,8 +11,9 @@
 //! best-first incremental search ("Distance browsing in spatial databases", 1999).
 //!
 //! Every engine works on a [`SpatialIndex`]: anything with a root, children, closed cell boxes and
-//! a contiguous run of points per node. [`PointTree`](crate::PointTree) is one; the compressed
-//! quadtree can be another.
+//! a contiguous run of points per node. Every tree implements it next to its own code, and
+//! [`PointSet`], whose provided methods are the queries users call, on top of it: the queries
+//! are written once, in this module, for every tree.
 //!
 //! Coordinates are compared as `f64` ([`Scalar::to_f64`](crate::Scalar::to_f64)), exactly: a query
 //! point, ball centre or box corner that `f64` cannot hold (a 64-bit integer such as 2^53 + 1) is
@@ -28,26 +29,25 @@ mod index;
 mod knn;
 mod metric;
 mod nearest_iter;
+mod point_set;
 pub mod range;
 mod region;
-mod slotted;
 
 pub use crate::geom::FloatBits;
 #[cfg(feature = "rayon")]
-pub use batch::BatchError;
+pub use batch::{BatchError, ParallelQueries};
 pub(crate) use index::nearest_child_by_boxes;
-pub use index::{PointNode, SpatialIndex};
+pub use index::SpatialIndex;
 pub use knn::Neighbor;
 pub use metric::{Chebyshev, Manhattan, Metric, SquaredEuclidean};
-pub use nearest_iter::NearestIter;
-pub use range::{QueryStats, RegionIter};
+pub use point_set::{NearestIter, Payload, PointSet, PointSetMut, RegionIter};
+pub use range::QueryStats;
 pub use region::{Ball, HalfSpace, Region, Relation};
-pub(crate) use slotted::with_item;
-pub use slotted::{SlotNearestIter, SlotRegionIter};
 
 /// A query the crate refuses, naming what is wrong with it.
 ///
 /// ```
+/// use orthtree::prelude::*;
 /// use orthtree::{query::QueryError, Quadtree};
 /// let t = Quadtree::new(&[([0.0, 0.0], 'a')]).unwrap();
 /// assert_eq!(

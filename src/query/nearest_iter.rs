@@ -1,4 +1,4 @@
-//! [`NearestIter`]: the points in order of distance, lazily, by best-first search (Hjaltason and
+//! [`NearestIter`](super::NearestIter): the points in order of distance, lazily, by best-first search (Hjaltason and
 //! Samet, "Distance browsing in spatial databases", ACM TODS 24(2), 1999) on any
 //! [`SpatialIndex`] and [`Metric`].
 //!
@@ -6,14 +6,13 @@
 //! distance. Popping a node pushes its children (or a leaf's points); popping a point reports it:
 //! no node or point still queued can be nearer. At equal keys nodes come before points, and points
 //! by index, so the order is exactly `(distance, index)`, the order of
-//! [`PointTree::k_nearest`]. Each step costs O(log of the queue's size).
+//! [`PointSet::k_nearest`](super::PointSet::k_nearest). Each step costs O(log of the queue's size).
 
 use super::index::SpatialIndex;
 use super::knn::Neighbor;
-use super::metric::{Metric, SquaredEuclidean};
+use super::metric::Metric;
 use super::{check_max, check_point, QueryError};
 use crate::geom::{Aabb, Scalar};
-use crate::points::PointTree;
 use core::cmp::Ordering;
 use std::collections::BinaryHeap;
 
@@ -53,9 +52,9 @@ impl<N> Ord for Entry<N> {
     }
 }
 
-/// Iterator returned by [`PointTree::nearest_iter`] (and its `_within` and `_by` forms): every
-/// point within the maximum distance, nearest first, ties by index in [`PointTree::points`].
-pub struct NearestIter<'a, I: SpatialIndex<D>, M, const D: usize> {
+/// The engine of [`NearestIter`](super::NearestIter): every point of an index within the
+/// maximum distance, nearest first, ties by position in [`SpatialIndex::points`].
+pub(crate) struct IndexNearestIter<'a, I: SpatialIndex<D>, M, const D: usize> {
     index: &'a I,
     metric: M,
     q: [f64; D],
@@ -63,11 +62,11 @@ pub struct NearestIter<'a, I: SpatialIndex<D>, M, const D: usize> {
     heap: BinaryHeap<Entry<(I::Node, Aabb<f64, D>)>>,
 }
 
-impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> NearestIter<'a, I, M, D> {
+impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> IndexNearestIter<'a, I, M, D> {
     /// A lazy nearest-first search from `q` on `index`, up to distance `max` (inclusive).
     ///
     /// Errors: a non-finite `q`; a negative or NaN `max`.
-    pub fn new(index: &'a I, q: [f64; D], max: f64, metric: M) -> Result<Self, QueryError> {
+    pub(crate) fn new(index: &'a I, q: [f64; D], max: f64, metric: M) -> Result<Self, QueryError> {
         check_point(&q)?;
         check_max(max)?;
         let mut heap = BinaryHeap::new();
@@ -81,7 +80,7 @@ impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> NearestIter<'a, I, M,
                 });
             }
         }
-        Ok(NearestIter {
+        Ok(IndexNearestIter {
             index,
             metric,
             q,
@@ -91,8 +90,10 @@ impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> NearestIter<'a, I, M,
     }
 }
 
-impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> Iterator for NearestIter<'a, I, M, D> {
-    type Item = Neighbor<'a, I::Scalar, I::Item, D>;
+impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> Iterator
+    for IndexNearestIter<'a, I, M, D>
+{
+    type Item = Neighbor<'a, I::Scalar, I::Payload, D>;
 
     fn next(&mut self) -> Option<Self::Item> {
         loop {
@@ -125,64 +126,5 @@ impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> Iterator for NearestI
                 }
             }
         }
-    }
-}
-
-impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
-    /// Every point, nearest to `p` first (squared Euclidean), lazily: taking `k` of them costs
-    /// about what [`PointTree::k_nearest`] does, without knowing `k` in advance.
-    ///
-    /// Errors: a NaN, infinite or inexact coordinate (an integer `f64` cannot hold) in `p`.
-    ///
-    /// ```
-    /// use orthtree::Quadtree;
-    /// let pts: Vec<([f64; 2], usize)> = (0..100).map(|i| ([(i % 10) as f64, (i / 10) as f64], i)).collect();
-    /// let t = Quadtree::new(&pts).unwrap();
-    /// let mut it = t.nearest_iter(&[0.0, 0.0]).unwrap();
-    /// assert_eq!(*it.next().unwrap().item, 0);
-    /// let next: Vec<usize> = it.take(2).map(|n| *n.item).collect();
-    /// assert_eq!(next.len(), 2);
-    /// assert!(next.contains(&1) && next.contains(&10));
-    /// ```
-    pub fn nearest_iter(
-        &self,
-        p: &[S; D],
-    ) -> Result<NearestIter<'_, PointTree<S, T, D>, SquaredEuclidean, D>, QueryError> {
-        self.nearest_iter_by(p, f64::INFINITY, SquaredEuclidean)
-    }
-
-    /// [`PointTree::nearest_iter`] up to squared distance `max` (inclusive).
-    ///
-    /// ```
-    /// use orthtree::Quadtree;
-    /// let t = Quadtree::new(&[([0.0, 0.0], 'a'), ([1.0, 0.0], 'b'), ([2.0, 0.0], 'c')]).unwrap();
-    /// assert_eq!(t.nearest_iter_within(&[0.0, 0.0], 1.0).unwrap().count(), 2);
-    /// ```
-    pub fn nearest_iter_within(
-        &self,
-        p: &[S; D],
-        max: f64,
-    ) -> Result<NearestIter<'_, PointTree<S, T, D>, SquaredEuclidean, D>, QueryError> {
-        self.nearest_iter_by(p, max, SquaredEuclidean)
-    }
-
-    /// [`PointTree::nearest_iter`] under `metric`, up to distance `max` (`f64::INFINITY` for no
-    /// limit).
-    ///
-    /// Errors: a non-finite or inexact `p`; a negative or NaN `max`.
-    ///
-    /// ```
-    /// use orthtree::{query::Manhattan, Quadtree};
-    /// let t = Quadtree::new(&[([1.0, 1.0], 'a'), ([0.0, 1.5], 'b')]).unwrap();
-    /// let order: Vec<char> = t.nearest_iter_by(&[0.0, 0.0], 10.0, Manhattan).unwrap().map(|n| *n.item).collect();
-    /// assert_eq!(order, ['b', 'a']);
-    /// ```
-    pub fn nearest_iter_by<M: Metric<D>>(
-        &self,
-        p: &[S; D],
-        max: f64,
-        metric: M,
-    ) -> Result<NearestIter<'_, PointTree<S, T, D>, M, D>, QueryError> {
-        SpatialIndex::nearest_iter_by(self, p, max, metric)
     }
 }

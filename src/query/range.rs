@@ -29,20 +29,19 @@
 //! `log2(n / 2)` every pair sits alone in a column of cells touching the line, and stays crossing
 //! until the pair separates near level `d`: `(n / 2) (d - log2 n)` crossing nodes, and nothing
 //! reported. `tests/queries.rs` builds this tree and counts the nodes visited through
-//! [`PointTree::query_stats`]. In contrast, a kd-tree answers the same query in
+//! [`PointSet::query_stats`](super::PointSet::query_stats). In contrast, a kd-tree answers the same query in
 //! `O(sqrt n + k)`; a quadtree's depth is bounded by the spread of the points (Lemma 14.1), not by
 //! their number.
 
 use super::index::{scans_whole, SpatialIndex};
-use super::region::{Ball, HalfSpace, Region, Relation};
+use super::region::{Region, Relation};
 use super::QueryError;
 use crate::geom::{Aabb, Scalar};
-use crate::points::PointTree;
 use crate::prefetch::prefetch_run;
 use core::ops::Range;
 use smallvec::SmallVec;
 
-/// Counts of the work a range query did, from [`PointTree::query_stats`].
+/// Counts of the work a range query did, from [`PointSet::query_stats`](super::PointSet::query_stats).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct QueryStats {
     /// Nodes whose box was classified (the root included).
@@ -61,7 +60,7 @@ type Stack<N, const D: usize> = SmallVec<[(N, Aabb<f64, D>, bool); 48]>;
 /// instead of its children classified: its run is contiguous, so the scan streams through
 /// memory, where descending reads the children's runs and boxes (a cache miss per level) and
 /// classifies up to 2^D of them. Used by the iterator, the count and the visitor;
-/// [`PointTree::query_stats`] runs the chapter's algorithm as stated (descend to the leaves), so
+/// [`PointSet::query_stats`](super::PointSet::query_stats) runs the chapter's algorithm as stated (descend to the leaves), so
 /// that its counts are the analysis's.
 ///
 /// The limits are measured (`examples/compare`, 10^6 points, boxes and balls with ~100 results,
@@ -76,10 +75,9 @@ pub(crate) const fn scan_limit(d: usize) -> usize {
     }
 }
 
-/// Iterator returned by [`PointTree::query`] (and [`PointTree::in_box`], [`PointTree::in_ball`],
-/// [`PointTree::in_half_space`]): the points in a region with their items, lazily, in Morton
-/// order within each reported node.
-pub struct RegionIter<'a, I: SpatialIndex<D>, R, const D: usize> {
+/// The engine of [`RegionIter`](super::RegionIter): the points of an index in a region with
+/// their payloads, lazily, in the index's order within each reported node.
+pub(crate) struct IndexRegionIter<'a, I: SpatialIndex<D>, R, const D: usize> {
     index: &'a I,
     region: R,
     stack: Stack<I::Node, D>,
@@ -92,15 +90,15 @@ pub struct RegionIter<'a, I: SpatialIndex<D>, R, const D: usize> {
     base: usize,
 }
 
-impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> RegionIter<'a, I, R, D> {
+impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> IndexRegionIter<'a, I, R, D> {
     /// A lazy query of `region` on `index`; the region is checked first.
-    pub fn new(index: &'a I, region: R) -> Result<Self, QueryError> {
+    pub(crate) fn new(index: &'a I, region: R) -> Result<Self, QueryError> {
         region.validate()?;
         let mut stack = Stack::new();
         if let Some((root, b)) = index.root() {
             push_child(&mut stack, index, &region, root, &b, scan_limit(D), true);
         }
-        Ok(RegionIter {
+        Ok(IndexRegionIter {
             index,
             region,
             stack,
@@ -112,11 +110,13 @@ impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> RegionIter<'a, I, R, 
     }
 }
 
-impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> Iterator for RegionIter<'a, I, R, D> {
-    type Item = (&'a [I::Scalar; D], &'a I::Item);
+impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> Iterator
+    for IndexRegionIter<'a, I, R, D>
+{
+    type Item = (&'a [I::Scalar; D], &'a I::Payload);
 
     fn next(&mut self) -> Option<Self::Item> {
-        let (points, items) = (self.index.points(), self.index.items());
+        let (points, items) = (self.index.points(), self.index.payloads());
         loop {
             if self.mask != 0 {
                 let i = self.base + self.mask.trailing_zeros() as usize;
@@ -204,7 +204,7 @@ fn push_child<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
         if inside || run.len() <= scan {
             prefetch_run(index.points(), run.clone());
             if reads {
-                prefetch_run(index.items(), run);
+                prefetch_run(index.payloads(), run);
             }
         }
     }
@@ -274,124 +274,4 @@ pub(crate) fn for_each_in<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
         }
     }
     Ok(stats)
-}
-
-impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
-    /// The points in `region` (any [`Region`], by value or by reference) with their items, as a
-    /// lazy iterator. A cell inside the region yields its run of points untested.
-    ///
-    /// Errors: the region's own check ([`Region::validate`]), e.g. a NaN box bound. Time:
-    /// `O((d + 1) n + k)` in the worst case (see [`range`](crate::query::range)), far less on
-    /// ordinary regions.
-    ///
-    /// ```
-    /// use orthtree::{Aabb, Quadtree};
-    /// let t = Quadtree::new(&[([0.0, 0.0], 'a'), ([1.0, 1.0], 'b'), ([2.0, 2.0], 'c')]).unwrap();
-    /// let b = Aabb::new([0.5, 0.5], [2.0, 2.0]).unwrap();
-    /// let mut found: Vec<char> = t.query(&b).unwrap().map(|(_, &c)| c).collect();
-    /// found.sort();
-    /// assert_eq!(found, ['b', 'c']); // closed: (2, 2) on the boundary is in
-    /// ```
-    pub fn query<R: Region<D>>(
-        &self,
-        region: R,
-    ) -> Result<RegionIter<'_, PointTree<S, T, D>, R, D>, QueryError> {
-        RegionIter::new(self, region)
-    }
-
-    /// The number of points in `region`, without allocating (unless more than 48 nodes are
-    /// pending at once). An inside cell counts its run in O(1).
-    ///
-    /// ```
-    /// use orthtree::{query::Ball, Quadtree};
-    /// let pts: Vec<([f64; 2], ())> = (0..100).map(|i| ([(i % 10) as f64, (i / 10) as f64], ())).collect();
-    /// let t = Quadtree::new(&pts).unwrap();
-    /// assert_eq!(t.query_count(Ball::new([0.0, 0.0], 1.0).unwrap()).unwrap(), 3);
-    /// ```
-    pub fn query_count<R: Region<D>>(&self, region: R) -> Result<usize, QueryError> {
-        SpatialIndex::query_count(self, region)
-    }
-
-    /// Calls `visit(point, item)` for every point in `region`, in the traversal's order.
-    ///
-    /// ```
-    /// use orthtree::{query::HalfSpace, Quadtree};
-    /// let t = Quadtree::new(&[([0.0, 0.0], 1), ([1.0, 0.0], 2), ([2.0, 0.0], 4)]).unwrap();
-    /// let mut sum = 0;
-    /// t.query_with(HalfSpace::new([1.0, 0.0], 1.0).unwrap(), |_, &v| sum += v).unwrap();
-    /// assert_eq!(sum, 3);
-    /// ```
-    pub fn query_with<R: Region<D>>(
-        &self,
-        region: R,
-        mut visit: impl FnMut(&[S; D], &T),
-    ) -> Result<(), QueryError> {
-        SpatialIndex::query_with(self, region, |p, t| visit(p, t))
-    }
-
-    /// Counts the points in `region` and the work it took: nodes visited and points tested.
-    ///
-    /// ```
-    /// use orthtree::{Aabb, Quadtree};
-    /// let pts: Vec<([f64; 2], ())> = (0..64).map(|i| ([(i % 8) as f64, (i / 8) as f64], ())).collect();
-    /// let t = Quadtree::builder().bucket_size(1).build(&pts).unwrap();
-    /// let s = t.query_stats(Aabb::new([-1.0, -1.0], [8.0, 8.0]).unwrap()).unwrap();
-    /// assert_eq!((s.count, s.nodes_visited, s.points_tested), (64, 1, 0)); // the root is inside
-    /// ```
-    pub fn query_stats<R: Region<D>>(&self, region: R) -> Result<QueryStats, QueryError> {
-        SpatialIndex::query_stats(self, region)
-    }
-
-    /// The points in the closed box `b` ([`PointTree::query`] with an [`Aabb`]).
-    ///
-    /// Errors: a NaN bound ([`QueryError::NanBound`]); an integer corner `f64` cannot hold
-    /// ([`QueryError::Inexact`]). Infinite float bounds are open-ended.
-    ///
-    /// ```
-    /// use orthtree::{Aabb, PointTree};
-    /// let t = PointTree::new(&[([1i32, 1], 'a'), ([5, 5], 'b')]).unwrap();
-    /// assert_eq!(t.in_box(&Aabb::new([0, 0], [1, 1]).unwrap()).unwrap().count(), 1);
-    /// ```
-    pub fn in_box(
-        &self,
-        b: &Aabb<S, D>,
-    ) -> Result<RegionIter<'_, PointTree<S, T, D>, Aabb<f64, D>, D>, QueryError> {
-        self.query(super::query_box(b)?)
-    }
-
-    /// The points at Euclidean distance at most `radius` from `center` ([`Ball`]).
-    ///
-    /// Errors: a non-finite or inexact centre, a negative or NaN radius.
-    ///
-    /// ```
-    /// use orthtree::Quadtree;
-    /// let t = Quadtree::new(&[([3.0, 4.0], 'a'), ([4.0, 4.0], 'b')]).unwrap();
-    /// let found: Vec<char> = t.in_ball(&[0.0, 0.0], 5.0).unwrap().map(|(_, &c)| c).collect();
-    /// assert_eq!(found, ['a']);
-    /// ```
-    pub fn in_ball(
-        &self,
-        center: &[S; D],
-        radius: f64,
-    ) -> Result<RegionIter<'_, PointTree<S, T, D>, Ball<D>, D>, QueryError> {
-        self.query(Ball::new(super::query_point(center)?, radius)?)
-    }
-
-    /// The points `x` with `normal . x <= offset` ([`HalfSpace`]).
-    ///
-    /// Errors: a non-finite normal, a NaN offset.
-    ///
-    /// ```
-    /// use orthtree::Quadtree;
-    /// let t = Quadtree::new(&[([0.0, 0.0], 'a'), ([1.0, 1.0], 'b')]).unwrap();
-    /// let found: Vec<char> = t.in_half_space([1.0, 1.0], 1.0).unwrap().map(|(_, &c)| c).collect();
-    /// assert_eq!(found, ['a']);
-    /// ```
-    pub fn in_half_space(
-        &self,
-        normal: [f64; D],
-        offset: f64,
-    ) -> Result<RegionIter<'_, PointTree<S, T, D>, HalfSpace<D>, D>, QueryError> {
-        self.query(HalfSpace::new(normal, offset)?)
-    }
 }

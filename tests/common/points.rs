@@ -3,6 +3,7 @@
 //! `PointTree` must have.
 
 use super::{all_options, leaf_cells};
+use orthtree::prelude::*;
 use orthtree::{Aabb, BalanceOptions, Cell, PointTree, PointTreeBuilder, RootGeometry, Scalar};
 use proptest::test_runner::{Config, RngSeed};
 

@@ -1,8 +1,8 @@
-//! Random update sequences for the trees with single inserts and removes (`PointTree`,
-//! `DynamicPointTree`): the operations, their strategies on a small grid (so that points repeat
+//! Random update sequences for the trees with single inserts and removes (any `PointSetMut`:
+//! `PointTree`, `DynamicPointTree`, ...): the operations, their strategies on a small grid (so that points repeat
 //! and lie on split lines), and one step applied to a tree and to a brute-force model.
 
-use orthtree::{DynamicPointTree, Error, PointTree};
+use orthtree::prelude::*;
 use proptest::prelude::*;
 
 /// One update; coordinates are grid indices 0..=8 on [0, 1] (so many lie on split lines and
@@ -47,34 +47,9 @@ pub fn initial<const D: usize>() -> impl Strategy<Value = Vec<([u8; D], u8)>> {
     proptest::collection::vec((proptest::array::uniform::<_, D>(0u8..=8), 0u8..3), 0..30)
 }
 
-/// The single updates both trees offer.
-pub trait Updates<const D: usize> {
-    fn insert(&mut self, p: [f64; D], i: u8) -> Result<(), Error>;
-    fn remove(&mut self, p: &[f64; D], i: &u8) -> bool;
-    fn remove_point(&mut self, p: &[f64; D]) -> Option<u8>;
-}
-
-macro_rules! updates {
-    ($t:ident) => {
-        impl<const D: usize> Updates<D> for $t<f64, u8, D> {
-            fn insert(&mut self, p: [f64; D], i: u8) -> Result<(), Error> {
-                $t::insert(self, p, i)
-            }
-            fn remove(&mut self, p: &[f64; D], i: &u8) -> bool {
-                $t::remove(self, p, i)
-            }
-            fn remove_point(&mut self, p: &[f64; D]) -> Option<u8> {
-                $t::remove_point(self, p)
-            }
-        }
-    };
-}
-updates!(PointTree);
-updates!(DynamicPointTree);
-
 /// Applies `op` to `t` and to `model`, checking what the tree answers against the model.
 pub fn apply<const D: usize>(
-    t: &mut impl Updates<D>,
+    t: &mut impl PointSetMut<D, Scalar = f64, Item = u8>,
     model: &mut Vec<([f64; D], u8)>,
     op: Op<D>,
 ) -> Result<(), TestCaseError> {

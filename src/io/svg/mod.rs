@@ -25,8 +25,9 @@ pub use image::{image_tree_svg, write_image_tree_svg};
 pub use mesh::{mesh_svg, write_mesh_svg, write_mesh_svg_to, MESH_SVG_DETAIL_TRIANGLES};
 pub use style::Style;
 
+use crate::geom::RootGeometry;
 use crate::geom::{Aabb, Cell, Scalar};
-use crate::points::{PointTree, RootGeometry};
+use crate::points::PointTree;
 use crate::tree::Tree;
 use core::fmt::Write as _;
 use std::borrow::Borrow;

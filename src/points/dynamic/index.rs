@@ -1,17 +1,17 @@
-//! [`DynamicIndex`]: a [`DynamicPointTree`]'s topology, node counts and chunks, as the
-//! [`SpatialIndex`] the shared query engines run on (without nested runs: only a leaf's chunk
-//! is a run), and the tree's queries ([`crate::slot_queries`]).
+//! [`DynamicIndex`]: a [`DynamicPointTree`](super::DynamicPointTree)'s topology, node counts and
+//! chunks, as the [`SpatialIndex`] the shared query engines run on (without nested runs: only a
+//! leaf's chunk is a run). Its payloads are slots, which the tree's
+//! [`PointSet`](crate::query::PointSet) maps to its items.
 
 use super::pool::Pool;
-use super::{DynamicPointTree, NodeData};
-use crate::geom::{Aabb, Cell, Scalar};
-use crate::points::{child_box, RootGeometry};
+use super::NodeData;
+use crate::geom::{child_box, Aabb, Cell, RootGeometry, Scalar};
 use crate::query::{Metric, SpatialIndex};
 use crate::tree::{NodeId, Tree};
 use core::ops::Range;
 
-/// The index of a [`DynamicPointTree`]: its [`SpatialIndex::points`] are the chunk array (with
-/// gaps no run covers) and its items the slots of the tree's items.
+/// The index of a [`DynamicPointTree`](super::DynamicPointTree): its [`SpatialIndex::points`] are the chunk array (with
+/// gaps no run covers) and its payloads the slots of the tree's items.
 #[derive(Clone, Debug)]
 pub struct DynamicIndex<S, const D: usize> {
     pub(super) tree: Tree<D>,
@@ -42,7 +42,7 @@ impl<S: Scalar, const D: usize> DynamicIndex<S, D> {
 
 impl<S: Scalar, const D: usize> SpatialIndex<D> for DynamicIndex<S, D> {
     type Scalar = S;
-    type Item = u32;
+    type Payload = u32;
     type Node = DynamicNode<D>;
     const NESTED_RUNS: bool = false;
 
@@ -52,7 +52,7 @@ impl<S: Scalar, const D: usize> SpatialIndex<D> for DynamicIndex<S, D> {
     }
 
     #[inline]
-    fn items(&self) -> &[u32] {
+    fn payloads(&self) -> &[u32] {
         &self.pool.slots
     }
 
@@ -131,11 +131,3 @@ impl<S: Scalar, const D: usize> SpatialIndex<D> for DynamicIndex<S, D> {
         crate::query::nearest_child_by_boxes(self, node, bbox, q, metric)
     }
 }
-
-crate::slot_queries!(
-    DynamicPointTree,
-    DynamicIndex,
-    true,
-    DynamicRegionIter,
-    DynamicNearestIter
-);

@@ -37,9 +37,9 @@
 //! # Queries
 //! The index ([`DynamicIndex`]) is a [`SpatialIndex`] without nested runs
 //! ([`SpatialIndex::NESTED_RUNS`] is `false`): the shared engines descend to the leaves and scan
-//! their chunks, so every query of [`PointTree`] is here with its name and meaning
-//! ([`crate::slot_queries`]). [`Neighbor::index`](crate::Neighbor::index) is the item's slot (its
-//! position in [`DynamicPointTree::items`]); k-nearest ties go by position in the chunk array
+//! their chunks, so every query of [`PointSet`] is here with its name and meaning.
+//! [`Neighbor::index`](crate::Neighbor::index) is the item's slot (its position in
+//! [`PointSet::items`]); k-nearest ties go by position in the chunk array
 //! (Morton order after a build or a compaction; deterministic for a given sequence of calls).
 //!
 //! Memory, per point: the point and a 4-byte slot per chunk entry, and a 4-byte position. A
@@ -52,11 +52,13 @@ mod index;
 mod pool;
 mod update;
 
-pub use index::{DynamicIndex, DynamicNearestIter, DynamicNode, DynamicRegionIter};
+pub use index::{DynamicIndex, DynamicNode};
 
-use super::{PointTree, RootGeometry, ValidationError};
-use crate::error::Error;
+use super::PointTree;
+use crate::error::{Error, ValidationError};
+use crate::geom::RootGeometry;
 use crate::geom::{Aabb, Cell, Scalar};
+use crate::query::PointSet;
 use crate::tree::Tree;
 use pool::{Pool, GAP};
 
@@ -156,45 +158,6 @@ impl<S: Scalar, T, const D: usize> DynamicPointTree<S, T, D> {
         PointTree::new(entries).map(Self::from)
     }
 
-    /// The number of points.
-    #[inline]
-    pub fn len(&self) -> usize {
-        self.items.len()
-    }
-
-    /// `true` when the tree stores no point.
-    #[inline]
-    pub fn is_empty(&self) -> bool {
-        self.items.is_empty()
-    }
-
-    /// The items in slot order: insertion order, except that a removal moves the last item
-    /// into the removed one's place.
-    pub fn items(&self) -> &[T] {
-        &self.items
-    }
-
-    /// The point of the item in `slot`.
-    ///
-    /// # Panics
-    /// If `slot >= len()`.
-    pub fn point(&self, slot: usize) -> &[S; D] {
-        &self.index.pool.points[self.pos[slot] as usize]
-    }
-
-    /// Every (point, item) in slot order.
-    pub fn iter(&self) -> impl ExactSizeIterator<Item = (&[S; D], &T)> + '_ {
-        self.pos
-            .iter()
-            .zip(&self.items)
-            .map(|(&p, t)| (&self.index.pool.points[p as usize], t))
-    }
-
-    /// The index the queries run on.
-    pub fn index(&self) -> &DynamicIndex<S, D> {
-        &self.index
-    }
-
     /// The topology.
     pub fn tree(&self) -> &Tree<D> {
         &self.index.tree
@@ -203,11 +166,6 @@ impl<S: Scalar, T, const D: usize> DynamicPointTree<S, T, D> {
     /// Where the cells lie in space.
     pub fn geometry(&self) -> &RootGeometry<D> {
         &self.index.geometry
-    }
-
-    /// The box points may be inserted in.
-    pub fn domain(&self) -> &Aabb<f64, D> {
-        &self.domain
     }
 
     /// The bucket size it was built with.
@@ -251,11 +209,51 @@ impl<S: Scalar, T, const D: usize> DynamicPointTree<S, T, D> {
             + self.items.capacity() * core::mem::size_of::<T>()
             + self.pos.capacity() * 4
     }
+}
+
+impl<S: Scalar, T, const D: usize> PointSet<D> for DynamicPointTree<S, T, D> {
+    type Scalar = S;
+    type Item = T;
+    type Index = DynamicIndex<S, D>;
+
+    #[inline(always)]
+    fn item_of<'a>(&'a self, payload: &'a u32) -> &'a T {
+        &self.items[*payload as usize]
+    }
+
+    #[inline(always)]
+    fn slot_of(&self, _: usize, payload: &u32) -> usize {
+        *payload as usize
+    }
+
+    /// The index the queries run on.
+    fn index(&self) -> &DynamicIndex<S, D> {
+        &self.index
+    }
+
+    /// The items in slot order: insertion order, except that a removal moves the last item
+    /// into the removed one's place.
+    fn items(&self) -> &[T] {
+        &self.items
+    }
+
+    /// The point of the item in `slot`.
+    ///
+    /// # Panics
+    /// If `slot >= len()`.
+    fn point(&self, slot: usize) -> &[S; D] {
+        &self.index.pool.points[self.pos[slot] as usize]
+    }
+
+    /// The box points may be inserted in.
+    fn domain(&self) -> &Aabb<f64, D> {
+        &self.domain
+    }
 
     /// Checks every invariant: counts add up; a leaf over the bucket size only at the maximum
     /// depth and an inner node only over it (the canonical shape); every point in its leaf's
     /// cell and the domain; chunks inside the pool and disjoint; slots and positions inverse.
-    pub fn validate(&self) -> Result<(), ValidationError> {
+    fn validate(&self) -> Result<(), ValidationError> {
         let fail = |msg: String| Err(ValidationError(msg));
         let ix = &self.index;
         if ix.nodes.len() < ix.tree.node_count() {
@@ -320,5 +318,13 @@ impl<S: Scalar, T, const D: usize> DynamicPointTree<S, T, D> {
             return fail(format!("free entry {e} holds a slot"));
         }
         Ok(())
+    }
+
+    /// Every (point, item) in slot order.
+    fn iter(&self) -> impl ExactSizeIterator<Item = (&[S; D], &T)> + '_ {
+        self.pos
+            .iter()
+            .zip(&self.items)
+            .map(|(&p, t)| (&self.index.pool.points[p as usize], t))
     }
 }

@@ -15,6 +15,7 @@ use super::{DynamicPointTree, NodeData, GAP};
 use crate::error::Error;
 use crate::geom::Scalar;
 use crate::points::digit;
+use crate::query::{PointSet, PointSetMut};
 use crate::tree::NodeId;
 use smallvec::SmallVec;
 
@@ -22,65 +23,6 @@ use smallvec::SmallVec;
 type Path = SmallVec<[NodeId; 40]>;
 
 impl<S: Scalar, T, const D: usize> DynamicPointTree<S, T, D> {
-    /// Inserts `item` at `point` in amortised O(depth).
-    ///
-    /// Errors: a coordinate that is NaN or infinite, or outside [`DynamicPointTree::domain`];
-    /// more points than a `u32` can index.
-    ///
-    /// ```
-    /// use orthtree::{Aabb, DynamicPointTree, Octree};
-    /// let root = Aabb::new([0.0; 3], [1.0; 3]).unwrap();
-    /// let mut t = DynamicPointTree::from(Octree::builder().root_box(root).bucket_size(2).build(&[]).unwrap());
-    /// for i in 0..100 {
-    ///     t.insert([i as f64 / 100.0, 0.5, 0.5], i).unwrap();
-    /// }
-    /// assert_eq!(t.len(), 100);
-    /// assert_eq!(t.in_box(&Aabb::new([0.0; 3], [0.095, 1.0, 1.0]).unwrap()).unwrap().count(), 10);
-    /// assert!(t.insert([f64::NAN, 0.0, 0.0], 100).is_err());
-    /// t.validate().unwrap();
-    /// ```
-    pub fn insert(&mut self, point: [S; D], item: T) -> Result<(), Error> {
-        let slot = self.len();
-        crate::points::check_point(&point, Some(&self.domain), slot)?;
-        if slot + 1 >= u32::MAX as usize {
-            return Err(Error::TooManyPoints { len: slot + 1 });
-        }
-        let path = self.path(&point);
-        for &u in &path {
-            self.index.nodes[u.index()].count += 1;
-        }
-        let v = *path.last().expect("the path holds the root");
-        // The count already includes the new entry: make room for it, then write it.
-        let d = self.index.nodes[v.index()];
-        if d.count > d.cap {
-            self.relocate(v, cap_for(d.count), d.count - 1);
-        }
-        let d = self.index.nodes[v.index()];
-        let at = d.start + d.count - 1;
-        self.index.pool.points[at as usize] = point;
-        self.index.pool.slots[at as usize] = slot as u32;
-        self.items.push(item);
-        self.pos.push(at);
-        self.split_down(v);
-        self.compact_if_sparse();
-        Ok(())
-    }
-
-    /// Removes one stored copy of (`point`, `item`), in amortised O(depth); `false` (and nothing
-    /// changed) when there is none.
-    pub fn remove(&mut self, point: &[S; D], item: &T) -> bool
-    where
-        T: PartialEq,
-    {
-        self.remove_where(point, |t| t == item).is_some()
-    }
-
-    /// Removes an item stored at exactly `point` (the first in its leaf's chunk) and returns
-    /// it; `None` when no item is stored there.
-    pub fn remove_point(&mut self, point: &[S; D]) -> Option<T> {
-        self.remove_where(point, |_| true)
-    }
-
     fn remove_where(&mut self, point: &[S; D], wanted: impl Fn(&T) -> bool) -> Option<T> {
         crate::geom::validate_point(point).ok()?;
         if !self.domain.contains(&point.map(Scalar::to_f64)) {
@@ -264,5 +206,66 @@ impl<S: Scalar, T, const D: usize> DynamicPointTree<S, T, D> {
             (d.start, d.cap) = (if d.count == 0 { 0 } else { start }, d.count);
         }
         self.index.pool = pool;
+    }
+}
+
+impl<S: Scalar, T, const D: usize> PointSetMut<D> for DynamicPointTree<S, T, D> {
+    /// Inserts `item` at `point` in amortised O(depth).
+    ///
+    /// Errors: a coordinate that is NaN or infinite, or outside [`DynamicPointTree::domain`];
+    /// more points than a `u32` can index.
+    ///
+    /// ```
+    /// use orthtree::{Aabb, DynamicPointTree, Octree};
+    /// let root = Aabb::new([0.0; 3], [1.0; 3]).unwrap();
+    /// let mut t = DynamicPointTree::from(Octree::builder().root_box(root).bucket_size(2).build(&[]).unwrap());
+    /// for i in 0..100 {
+    ///     t.insert([i as f64 / 100.0, 0.5, 0.5], i).unwrap();
+    /// }
+    /// assert_eq!(t.len(), 100);
+    /// assert_eq!(t.in_box(&Aabb::new([0.0; 3], [0.095, 1.0, 1.0]).unwrap()).unwrap().count(), 10);
+    /// assert!(t.insert([f64::NAN, 0.0, 0.0], 100).is_err());
+    /// t.validate().unwrap();
+    /// ```
+    fn insert(&mut self, point: [S; D], item: T) -> Result<(), Error> {
+        let slot = self.len();
+        crate::points::check_point(&point, Some(&self.domain), slot)?;
+        if slot + 1 >= u32::MAX as usize {
+            return Err(Error::TooManyPoints { len: slot + 1 });
+        }
+        let path = self.path(&point);
+        for &u in &path {
+            self.index.nodes[u.index()].count += 1;
+        }
+        let v = *path.last().expect("the path holds the root");
+        // The count already includes the new entry: make room for it, then write it.
+        let d = self.index.nodes[v.index()];
+        if d.count > d.cap {
+            self.relocate(v, cap_for(d.count), d.count - 1);
+        }
+        let d = self.index.nodes[v.index()];
+        let at = d.start + d.count - 1;
+        self.index.pool.points[at as usize] = point;
+        self.index.pool.slots[at as usize] = slot as u32;
+        self.items.push(item);
+        self.pos.push(at);
+        self.split_down(v);
+        self.compact_if_sparse();
+        Ok(())
+    }
+
+    /// Removes one stored copy of (`point`, `item`), in amortised O(depth); `false` (and nothing
+    /// changed) when there is none.
+    fn remove(&mut self, point: &[S; D], item: &T) -> bool
+    where
+        T: PartialEq,
+    {
+        self.remove_where(point, |t| t == item).is_some()
+    }
+
+    /// Removes an item stored at exactly `point` (the first in its leaf's chunk) and returns
+    /// it; `None` when no item is stored there.
+    fn remove_point(&mut self, point: &[S; D]) -> Option<T> {
+        self.remove_where(point, |_| true)
     }
 }

@@ -12,9 +12,9 @@
 //! and a cell's points are exactly those whose key has the cell's key as prefix.
 //!
 //! The 64 levels of [`DeepCell`](crate::DeepCell)s, for the compressed trees, continue these
-//! lines below level 32 (`deep_geometry.rs`: [`RootGeometry::deep_coordinate`]).
+//! lines below level 32 (`root_deep.rs`: [`RootGeometry::deep_coordinate`]).
 
-use crate::geom::{Aabb, AabbError, Cell, Scalar};
+use super::{Aabb, AabbError, Cell, Scalar};
 
 /// How many points [`RootGeometry::keys_into`] quantises at a time.
 const LANES: usize = 8;

@@ -20,8 +20,8 @@
 //! inverse of the dyadic formula below level 32 would have to search where rounding makes it
 //! flat, tens of steps in boxes far from the origin).
 
-use super::RootGeometry;
-use crate::geom::{Aabb, DeepCell, DeepKey};
+use super::root::RootGeometry;
+use super::{Aabb, DeepCell, DeepKey};
 
 /// The level down to which deep boundaries are dyadic.
 const DYADIC: u8 = 32;
