@@ -184,7 +184,7 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
 
     /// The deepest node whose cell holds `point`, walking down from the root: O(depth).
     ///
-    /// Errors: a NaN, infinite or inexact coordinate (an integer `f64` cannot hold), or one outside [`CompressedTree::domain`].
+    /// Errors: a NaN, infinite or inexact coordinate (an integer `f64` cannot hold), or one outside [`CompressedTree::domain`](crate::query::PointSet::domain).
     ///
     /// ```
     /// use orthtree::CompressedTree;

@@ -1,7 +1,7 @@
 //! Batch updates of a [`PointTree`]: [`PointTree::extend_from_vec`] inserts many pairs and
 //! [`PointTree::retain`] removes many, each in one linear pass over the stored points.
 //!
-//! A single [`PointTree::insert`] or [`PointTree::remove`] moves every point after its position
+//! A single [`PointTree::insert`](crate::query::PointSetMut::insert) or [`PointTree::remove`](crate::query::PointSetMut::remove) moves every point after its position
 //! (one `memmove`: the points stay dense in Morton order, see `update.rs`). A batch of k updates
 //! pays that once:
 //!
@@ -23,15 +23,15 @@ use crate::query::PointSet;
 use crate::tree::{NodeId, Tree};
 
 impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
-    /// Inserts every (point, item) of `entries`: the tree [`PointTree::insert`] called on each in
+    /// Inserts every (point, item) of `entries`: the tree [`PointTree::insert`](crate::query::PointSetMut::insert) called on each in
     /// turn would give, in one merge instead of one `memmove` per pair. See the module doc for
     /// the cost.
     ///
     /// A non-empty batch drops a [`PointTree::balance`] refinement, as an insert does.
     ///
     /// Errors (and then the tree is unchanged): a coordinate that is NaN, infinite or outside
-    /// [`PointTree::domain`] (`index` is the pair's position in `entries` plus
-    /// [`PointTree::len`]); more points than a `u32` can index.
+    /// [`PointTree::domain`](crate::query::PointSet::domain) (`index` is the pair's position in `entries` plus
+    /// [`PointTree::len`](crate::query::PointSet::len)); more points than a `u32` can index.
     ///
     /// ```
     /// use orthtree::{Aabb, Quadtree};

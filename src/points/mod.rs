@@ -189,7 +189,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// The leaf whose cell holds `point` under the split convention. O(depth).
     ///
     /// Errors: a coordinate that is NaN, infinite or an integer `f64` cannot hold
-    /// ([`Error::QueryInexact`]), or outside [`PointTree::domain`].
+    /// ([`Error::QueryInexact`]), or outside [`PointTree::domain`](crate::query::PointSet::domain).
     pub fn locate(&self, point: &[S; D]) -> Result<NodeId, Error> {
         let p = crate::geom::exact_point(point).map_err(|(axis, f)| Error::bad_query(axis, f))?;
         for (axis, &value) in p.iter().enumerate() {
