@@ -66,6 +66,7 @@ use topology::NIL;
 /// point quadtree with every node that has a single non-empty child removed (exercise 14.5).
 ///
 /// ```
+/// use orthtree::prelude::*;
 /// use orthtree::{CompressedTree, Quadtree};
 /// // 100 points 2^-30 apart in the unit square: the plain tree is 32 levels deep
 /// let mut pts: Vec<([f64; 2], usize)> =

@@ -54,6 +54,7 @@ const MAX_HEIGHT: u32 = 48;
 /// samples above it, for expected O(log n) point location, insert and delete.
 ///
 /// ```
+/// use orthtree::prelude::*;
 /// use orthtree::compressed::SkipQuadtree;
 /// let pts: Vec<([f64; 2], usize)> = (0..1000).map(|i| ([(i % 37) as f64, (i / 37) as f64], i)).collect();
 /// let mut t = SkipQuadtree::new(&pts).unwrap();

@@ -89,6 +89,7 @@ impl<S: Scalar, T, const D: usize> PointSetMut<D> for CompressedTree<S, T, D> {
     /// points than a `u32` can index.
     ///
     /// ```
+    /// use orthtree::prelude::*;
     /// use orthtree::{Aabb, CompressedTree};
     /// let root = Aabb::new([0.0, 0.0], [1.0, 1.0]).unwrap();
     /// let mut t = CompressedTree::builder().root_box(root).build(&[]).unwrap();
@@ -118,6 +119,7 @@ impl<S: Scalar, T, const D: usize> PointSetMut<D> for CompressedTree<S, T, D> {
     /// Removes one item stored at `point` and returns it; `None` if there is none. O(depth).
     ///
     /// ```
+    /// use orthtree::prelude::*;
     /// use orthtree::CompressedTree;
     /// let mut t = CompressedTree::new(&[([0.0, 0.0], 'a'), ([0.0, 0.0], 'b'), ([1.0, 1.0], 'c')]).unwrap();
     /// assert_eq!(t.remove_point(&[0.0, 0.0]), Some('a'));

@@ -34,6 +34,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// [`PointTree::len`](crate::query::PointSet::len)); more points than a `u32` can index.
     ///
     /// ```
+    /// use orthtree::prelude::*;
     /// use orthtree::{Aabb, Quadtree};
     /// let root = Aabb::new([0.0, 0.0], [1.0, 1.0]).unwrap();
     /// let mut t = Quadtree::builder().root_box(root).bucket_size(2).build(&[([0.5, 0.5], 0)]).unwrap();
@@ -107,6 +108,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// O(n) plus the cut (module doc).
     ///
     /// ```
+    /// use orthtree::prelude::*;
     /// use orthtree::Quadtree;
     /// let pts: Vec<([f64; 2], u32)> = (0..1000).map(|i| ([i as f64, (i * 7 % 1000) as f64], i)).collect();
     /// let mut t = Quadtree::builder().bucket_size(4).build(&pts).unwrap();

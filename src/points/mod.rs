@@ -35,6 +35,7 @@ pub(crate) use runs::Runs;
 /// A leaf holds at most the bucket size of points unless it is at the maximum depth.
 ///
 /// ```
+/// use orthtree::prelude::*;
 /// use orthtree::{Connectivity, Quadtree};
 /// let pts: Vec<([f64; 2], usize)> = (0..100).map(|i| ([i as f64, (i * i % 100) as f64], i)).collect();
 /// let mut t = Quadtree::new(&pts).unwrap();

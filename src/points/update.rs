@@ -155,6 +155,7 @@ impl<S: Scalar, T, const D: usize> PointSetMut<D> for PointTree<S, T, D> {
     /// than a `u32` can index.
     ///
     /// ```
+    /// use orthtree::prelude::*;
     /// use orthtree::{Aabb, Quadtree};
     /// let root = Aabb::new([0.0, 0.0], [1.0, 1.0]).unwrap();
     /// let mut t = Quadtree::builder().root_box(root).bucket_size(1).build(&[]).unwrap();

@@ -216,6 +216,7 @@ impl<S: Scalar, T, const D: usize> PointSetMut<D> for DynamicPointTree<S, T, D> 
     /// more points than a `u32` can index.
     ///
     /// ```
+    /// use orthtree::prelude::*;
     /// use orthtree::{Aabb, DynamicPointTree, Octree};
     /// let root = Aabb::new([0.0; 3], [1.0; 3]).unwrap();
     /// let mut t = DynamicPointTree::from(Octree::builder().root_box(root).bucket_size(2).build(&[]).unwrap());
