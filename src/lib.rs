@@ -8,6 +8,7 @@
 //! arena, traversals, neighbours, balance) → [`points`] (the point tree) → [`io`] (SVG).
 //!
 //! ```
+//! use orthtree::prelude::*;
 //! use orthtree::{Connectivity, Quadtree};
 //! let pts = [([0.1, 0.1], "a"), ([0.12, 0.1], "b"), ([0.9, 0.8], "c")];
 //! let mut t = Quadtree::builder().bucket_size(1).build(&pts).unwrap();

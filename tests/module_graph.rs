@@ -93,7 +93,7 @@ fn expand(tree: &str) -> Vec<Vec<String>> {
             parts
                 .into_iter()
                 .filter(|p| !p.trim().is_empty())
-                .flat_map(|p| expand(p))
+                .flat_map(expand)
                 .map(|tail| head.iter().cloned().chain(tail).collect())
                 .collect()
         }

@@ -38,6 +38,7 @@ use crate::query::SpatialIndex;
 /// points unless given).
 ///
 /// ```
+/// use orthtree::prelude::*;
 /// use orthtree::{Aabb, CompressedTreeBuilder};
 /// let root = Aabb::new([0.0, 0.0], [1.0, 1.0]).unwrap();
 /// let mut t = CompressedTreeBuilder::new().root_box(root).build(&[([0.5, 0.5], 'a')]).unwrap();
@@ -95,6 +96,7 @@ impl<S: Scalar, T, const D: usize> From<PointTree<S, T, D>> for CompressedTree<S
     /// The compressed tree of the same points over the same root cube, moving the items; O(n).
     ///
     /// ```
+    /// use orthtree::prelude::*;
     /// use orthtree::{CompressedTree, Quadtree};
     /// let t = Quadtree::new(&[([0.0, 0.0], 'a'), ([1.0, 1.0], 'b')]).unwrap();
     /// let c = CompressedTree::from(t.clone());

@@ -25,7 +25,7 @@ use core::ops::Range;
 use std::sync::OnceLock;
 
 /// The nodes and points of a compressed quadtree, as a [`SpatialIndex`] whose payloads are slot
-/// numbers (positions in [`super::CompressedTree::items`]).
+/// numbers (positions in [`CompressedTree::items`](crate::query::PointSet::items)).
 ///
 /// ```
 /// use orthtree::prelude::*;

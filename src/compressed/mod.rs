@@ -66,6 +66,7 @@ use topology::NIL;
 /// point quadtree with every node that has a single non-empty child removed (exercise 14.5).
 ///
 /// ```
+/// use orthtree::prelude::*;
 /// use orthtree::{CompressedTree, Quadtree};
 /// // 100 points 2^-30 apart in the unit square: the plain tree is 32 levels deep
 /// let mut pts: Vec<([f64; 2], usize)> =
@@ -184,7 +185,7 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
 
     /// The deepest node whose cell holds `point`, walking down from the root: O(depth).
     ///
-    /// Errors: a NaN, infinite or inexact coordinate (an integer `f64` cannot hold), or one outside [`CompressedTree::domain`].
+    /// Errors: a NaN, infinite or inexact coordinate (an integer `f64` cannot hold), or one outside [`CompressedTree::domain`](crate::query::PointSet::domain).
     ///
     /// ```
     /// use orthtree::CompressedTree;

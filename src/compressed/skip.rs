@@ -54,6 +54,7 @@ const MAX_HEIGHT: u32 = 48;
 /// samples above it, for expected O(log n) point location, insert and delete.
 ///
 /// ```
+/// use orthtree::prelude::*;
 /// use orthtree::compressed::SkipQuadtree;
 /// let pts: Vec<([f64; 2], usize)> = (0..1000).map(|i| ([(i % 37) as f64, (i / 37) as f64], i)).collect();
 /// let mut t = SkipQuadtree::new(&pts).unwrap();
@@ -347,7 +348,7 @@ impl<S: Scalar, T, const D: usize> PointSet<D> for SkipQuadtree<S, T, D> {
         self.base.domain()
     }
 
-    /// Checks level 0 ([`CompressedTree::validate`]) and every level above: a valid canonical
+    /// Checks level 0 ([`CompressedTree::validate`](crate::query::PointSet::validate)) and every level above: a valid canonical
     /// compressed quadtree over exactly the keys of the level below whose height reaches it,
     /// each node linked down to the node with its cell; no empty level on top.
     fn validate(&self) -> Result<(), ValidationError> {
@@ -382,7 +383,7 @@ impl<S: Scalar, T, const D: usize> PointSet<D> for SkipQuadtree<S, T, D> {
 impl<S: Scalar, T, const D: usize> PointSetMut<D> for SkipQuadtree<S, T, D> {
     /// Inserts `item` at `point`. Expected O(log n).
     ///
-    /// Errors: those of [`CompressedTree::insert`].
+    /// Errors: those of [`CompressedTree::insert`](crate::query::PointSetMut::insert).
     fn insert(&mut self, point: [S; D], item: T) -> Result<(), Error> {
         let key = self.base.checked_insert_key(&point)?;
         let path = self.search(&key, &mut 0);

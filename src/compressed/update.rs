@@ -1,5 +1,5 @@
-//! Updates of a [`CompressedTree`]: [`CompressedTree::insert`], [`CompressedTree::remove`] and
-//! [`CompressedTree::remove_point`] in O(depth), keeping the tree canonical (equal to a fresh
+//! Updates of a [`CompressedTree`]: [`CompressedTree::insert`](crate::query::PointSetMut::insert), [`CompressedTree::remove`](crate::query::PointSetMut::remove) and
+//! [`CompressedTree::remove_point`](crate::query::PointSetMut::remove_point) in O(depth), keeping the tree canonical (equal to a fresh
 //! build over the same points and root box).
 //!
 //! - Insert: walk down from the root to the deepest node whose cell holds the point's finest
@@ -15,7 +15,7 @@
 //!
 //! Rules as in [`PointTree`](crate::PointTree)'s updates: the root box is fixed at build time;
 //! a point outside it, or not finite, is refused with an error naming the axis and value
-//! (`index` there is [`CompressedTree::len`] at the call); a removal of a point not stored
+//! (`index` there is [`CompressedTree::len`](crate::query::PointSet::len) at the call); a removal of a point not stored
 //! changes nothing; among equal points the first stored (list order) is removed.
 
 use super::topology::NIL;
@@ -85,10 +85,11 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
 impl<S: Scalar, T, const D: usize> PointSetMut<D> for CompressedTree<S, T, D> {
     /// Inserts `item` at `point`. O(depth).
     ///
-    /// Errors: a NaN or infinite coordinate, or one outside [`CompressedTree::domain`]; more
+    /// Errors: a NaN or infinite coordinate, or one outside [`CompressedTree::domain`](crate::query::PointSet::domain); more
     /// points than a `u32` can index.
     ///
     /// ```
+    /// use orthtree::prelude::*;
     /// use orthtree::{Aabb, CompressedTree};
     /// let root = Aabb::new([0.0, 0.0], [1.0, 1.0]).unwrap();
     /// let mut t = CompressedTree::builder().root_box(root).build(&[]).unwrap();
@@ -118,6 +119,7 @@ impl<S: Scalar, T, const D: usize> PointSetMut<D> for CompressedTree<S, T, D> {
     /// Removes one item stored at `point` and returns it; `None` if there is none. O(depth).
     ///
     /// ```
+    /// use orthtree::prelude::*;
     /// use orthtree::CompressedTree;
     /// let mut t = CompressedTree::new(&[([0.0, 0.0], 'a'), ([0.0, 0.0], 'b'), ([1.0, 1.0], 'c')]).unwrap();
     /// assert_eq!(t.remove_point(&[0.0, 0.0]), Some('a'));

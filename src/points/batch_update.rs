@@ -1,7 +1,7 @@
 //! Batch updates of a [`PointTree`]: [`PointTree::extend_from_vec`] inserts many pairs and
 //! [`PointTree::retain`] removes many, each in one linear pass over the stored points.
 //!
-//! A single [`PointTree::insert`] or [`PointTree::remove`] moves every point after its position
+//! A single [`PointTree::insert`](crate::query::PointSetMut::insert) or [`PointTree::remove`](crate::query::PointSetMut::remove) moves every point after its position
 //! (one `memmove`: the points stay dense in Morton order, see `update.rs`). A batch of k updates
 //! pays that once:
 //!
@@ -23,17 +23,18 @@ use crate::query::PointSet;
 use crate::tree::{NodeId, Tree};
 
 impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
-    /// Inserts every (point, item) of `entries`: the tree [`PointTree::insert`] called on each in
+    /// Inserts every (point, item) of `entries`: the tree [`PointTree::insert`](crate::query::PointSetMut::insert) called on each in
     /// turn would give, in one merge instead of one `memmove` per pair. See the module doc for
     /// the cost.
     ///
     /// A non-empty batch drops a [`PointTree::balance`] refinement, as an insert does.
     ///
     /// Errors (and then the tree is unchanged): a coordinate that is NaN, infinite or outside
-    /// [`PointTree::domain`] (`index` is the pair's position in `entries` plus
-    /// [`PointTree::len`]); more points than a `u32` can index.
+    /// [`PointTree::domain`](crate::query::PointSet::domain) (`index` is the pair's position in `entries` plus
+    /// [`PointTree::len`](crate::query::PointSet::len)); more points than a `u32` can index.
     ///
     /// ```
+    /// use orthtree::prelude::*;
     /// use orthtree::{Aabb, Quadtree};
     /// let root = Aabb::new([0.0, 0.0], [1.0, 1.0]).unwrap();
     /// let mut t = Quadtree::builder().root_box(root).bucket_size(2).build(&[([0.5, 0.5], 0)]).unwrap();
@@ -107,6 +108,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// O(n) plus the cut (module doc).
     ///
     /// ```
+    /// use orthtree::prelude::*;
     /// use orthtree::Quadtree;
     /// let pts: Vec<([f64; 2], u32)> = (0..1000).map(|i| ([i as f64, (i * 7 % 1000) as f64], i)).collect();
     /// let mut t = Quadtree::builder().bucket_size(4).build(&pts).unwrap();

@@ -38,6 +38,7 @@ pub const DEFAULT_BUCKET_SIZE: usize = 64;
 /// Settings for building a [`PointTree`]: root box, bucket size and maximum depth.
 ///
 /// ```
+/// use orthtree::prelude::*;
 /// use orthtree::{Aabb, PointTreeBuilder};
 /// let pts = [([1.0, 1.0], 'a'), ([3.0, 3.0], 'b'), ([3.5, 3.5], 'c')];
 /// let t = PointTreeBuilder::new()

@@ -35,6 +35,7 @@ pub(crate) use runs::Runs;
 /// A leaf holds at most the bucket size of points unless it is at the maximum depth.
 ///
 /// ```
+/// use orthtree::prelude::*;
 /// use orthtree::{Connectivity, Quadtree};
 /// let pts: Vec<([f64; 2], usize)> = (0..100).map(|i| ([i as f64, (i * i % 100) as f64], i)).collect();
 /// let mut t = Quadtree::new(&pts).unwrap();
@@ -189,7 +190,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// The leaf whose cell holds `point` under the split convention. O(depth).
     ///
     /// Errors: a coordinate that is NaN, infinite or an integer `f64` cannot hold
-    /// ([`Error::QueryInexact`]), or outside [`PointTree::domain`].
+    /// ([`Error::QueryInexact`]), or outside [`PointTree::domain`](crate::query::PointSet::domain).
     pub fn locate(&self, point: &[S; D]) -> Result<NodeId, Error> {
         let p = crate::geom::exact_point(point).map_err(|(axis, f)| Error::bad_query(axis, f))?;
         for (axis, &value) in p.iter().enumerate() {

@@ -21,6 +21,7 @@ impl<S: Scalar + Send + Sync, const D: usize> PointTreeBuilder<S, D> {
     /// [`PointTreeBuilder::build`] on rayon's threads: the same tree, the same errors.
     ///
     /// ```
+    /// use orthtree::prelude::*;
     /// use orthtree::Quadtree;
     /// let pts: Vec<([f64; 2], usize)> = (0..10_000)
     ///     .map(|i| ([(i % 100) as f64, (i / 100) as f64], i))

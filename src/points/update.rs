@@ -1,5 +1,5 @@
-//! Updates of a [`PointTree`]: [`PointTree::insert`], [`PointTree::remove`] and
-//! [`PointTree::remove_point`], keeping the tree *canonical*: after any sequence of updates it has
+//! Updates of a [`PointTree`]: [`PointTree::insert`](crate::query::PointSetMut::insert), [`PointTree::remove`](crate::query::PointSetMut::remove) and
+//! [`PointTree::remove_point`](crate::query::PointSetMut::remove_point), keeping the tree *canonical*: after any sequence of updates it has
 //! exactly the leaves (cells) and the points per leaf of a tree freshly built from the same
 //! (point, item) pairs with the same root box, bucket size and maximum depth. A node is split
 //! exactly when it holds more than the bucket size and is above the maximum depth, so:
@@ -38,7 +38,7 @@
 //! - The root box is fixed at build time: the given root box, or the enclosing cube of the first
 //!   points. A point outside it (or with a NaN or infinite coordinate) is refused with
 //!   [`Error::OutsideRootBox`] (or [`Error::NonFiniteCoordinate`]) naming the axis and value;
-//!   `index` there is [`PointTree::len`] at the time of the call. Build with
+//!   `index` there is [`PointTree::len`](crate::query::PointSet::len) at the time of the call. Build with
 //!   [`super::PointTreeBuilder::root_box`] to make a tree for points not yet known.
 //! - Within a leaf, an inserted point goes after the points with the same Morton key.
 //! - Remove with several stored copies of the same point and item removes the first copy in
@@ -151,10 +151,11 @@ impl<S: Scalar, T, const D: usize> PointSetMut<D> for PointTree<S, T, D> {
     /// Inserts `item` at `point`, splitting the point's leaf while it holds more than the bucket
     /// size and is above the maximum depth. See the module doc for the cost.
     ///
-    /// Errors: a coordinate that is NaN or infinite, or outside [`PointTree::domain`]; more points
+    /// Errors: a coordinate that is NaN or infinite, or outside [`PointTree::domain`](crate::query::PointSet::domain); more points
     /// than a `u32` can index.
     ///
     /// ```
+    /// use orthtree::prelude::*;
     /// use orthtree::{Aabb, Quadtree};
     /// let root = Aabb::new([0.0, 0.0], [1.0, 1.0]).unwrap();
     /// let mut t = Quadtree::builder().root_box(root).bucket_size(1).build(&[]).unwrap();

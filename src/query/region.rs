@@ -32,6 +32,7 @@ pub enum Relation {
 /// (or `Outside`) when one of its points fails (or passes) `contains`.
 ///
 /// ```
+/// use orthtree::prelude::*;
 /// use orthtree::query::{Region, Relation};
 /// use orthtree::{Aabb, Quadtree};
 /// /// The points with x < y.

@@ -42,7 +42,7 @@ impl NodeId {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Tree<const D: usize> {
     pub(super) first_child: Vec<u32>,
-    level: Vec<u8>,
+    pub(super) level: Vec<u8>,
     block_parent: Vec<u32>,
     pub(super) depth: u8,
     /// First child ids of freed blocks (see [`Tree::merge`]), reused by the next splits.

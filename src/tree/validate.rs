@@ -176,8 +176,42 @@ impl<const D: usize> Tree<D> {
                 blocks,
             });
         }
-        // Free blocks, by block number.
-        let mut free = vec![false; blocks];
+        let free = self.free_block_marks()?;
+        let root_level = self.level(NodeId::ROOT);
+        if root_level != 0 {
+            return Err(TreeError::Level {
+                node: NodeId::ROOT,
+                level: root_level,
+                expected: 0,
+            });
+        }
+        let walk = self.walk_from_root(&free)?;
+        if let Some(b) = (0..blocks).find(|&b| !walk.reached[b] && !free[b]) {
+            return Err(TreeError::LostBlock(NodeId((1 + b * n) as u32)));
+        }
+        if walk.deepest != self.depth {
+            return Err(TreeError::Depth {
+                recorded: self.depth,
+                actual: walk.deepest,
+            });
+        }
+        let live = &walk.live;
+        if let Some(level) = (0..live.len()).find(|&l| live[l] != self.live_blocks[l]) {
+            return Err(TreeError::LiveBlocks {
+                level,
+                recorded: self.live_blocks[level],
+                actual: live[level],
+            });
+        }
+        Ok(())
+    }
+
+    /// The free list checked (each entry starts a block, once, and the block holds only
+    /// leaves), as one mark per block.
+    fn free_block_marks(&self) -> Result<Vec<bool>, TreeError> {
+        let n = Dim::<D>::CHILDREN;
+        let slots = self.first_child.len();
+        let mut free = vec![false; self.block_parents().len()];
         for &first in &self.free_blocks {
             let f = first as usize;
             if f == 0 || f >= slots || (f - 1) % n != 0 || free[(f - 1) / n] {
@@ -188,56 +222,27 @@ impl<const D: usize> Tree<D> {
                 return Err(TreeError::FreeNodeNotLeaf(NodeId(c as u32)));
             }
         }
-        let mut reached = vec![false; blocks];
-        let mut live = vec![0u32; self.live_blocks.len()];
-        let mut deepest = 0u8;
-        let root_level = self.level(NodeId::ROOT);
-        if root_level != 0 {
-            return Err(TreeError::Level {
-                node: NodeId::ROOT,
-                level: root_level,
-                expected: 0,
-            });
-        }
+        Ok(free)
+    }
+
+    /// The walk from the root, checking each internal node's child block (it starts a block,
+    /// records the node as parent, is not free, is reached once, is one level deeper).
+    fn walk_from_root(&self, free: &[bool]) -> Result<Walk, TreeError> {
+        let mut walk = Walk {
+            reached: vec![false; free.len()],
+            live: vec![0u32; self.live_blocks.len()],
+            deepest: 0,
+        };
         let mut stack = vec![NodeId::ROOT];
         while let Some(v) = stack.pop() {
             let level = self.level(v);
-            deepest = deepest.max(level);
+            walk.deepest = walk.deepest.max(level);
             let first = self.first_child[v.index()];
             if first == NONE {
                 continue;
             }
-            let f = first as usize;
-            if f == 0 || f >= slots || (f - 1) % n != 0 {
-                return Err(TreeError::FirstChild {
-                    node: v,
-                    first_child: first,
-                });
-            }
-            let b = (f - 1) / n;
-            let recorded = self.block_parents()[b];
-            if recorded != v.0 {
-                return Err(TreeError::BlockParent {
-                    node: v,
-                    first_child: NodeId(first),
-                    recorded: NodeId(recorded),
-                });
-            }
-            if free[b] {
-                return Err(TreeError::FreeBlockInUse(NodeId(first)));
-            }
-            if reached[b] {
-                return Err(TreeError::ReachedTwice(NodeId(first)));
-            }
-            reached[b] = true;
-            if level >= Cell::<D>::MAX_LEVEL {
-                return Err(TreeError::Level {
-                    node: NodeId(first),
-                    level: level.saturating_add(1),
-                    expected: Cell::<D>::MAX_LEVEL,
-                });
-            }
-            live[level as usize + 1] += 1;
+            self.check_block(v, first, free, &mut walk)?;
+            walk.live[level as usize + 1] += 1;
             for c in self.children(v) {
                 if self.level(c) != level + 1 {
                     return Err(TreeError::Level {
@@ -249,24 +254,59 @@ impl<const D: usize> Tree<D> {
                 stack.push(c);
             }
         }
-        if let Some(b) = (0..blocks).find(|&b| !reached[b] && !free[b]) {
-            return Err(TreeError::LostBlock(NodeId((1 + b * n) as u32)));
-        }
-        if deepest != self.depth {
-            return Err(TreeError::Depth {
-                recorded: self.depth,
-                actual: deepest,
+        Ok(walk)
+    }
+
+    /// Checks the child block of internal node `v`, starting at `first`, and marks it reached.
+    fn check_block(
+        &self,
+        v: NodeId,
+        first: u32,
+        free: &[bool],
+        walk: &mut Walk,
+    ) -> Result<(), TreeError> {
+        let n = Dim::<D>::CHILDREN;
+        let f = first as usize;
+        if f == 0 || f >= self.first_child.len() || (f - 1) % n != 0 {
+            return Err(TreeError::FirstChild {
+                node: v,
+                first_child: first,
             });
         }
-        if let Some(level) = (0..live.len()).find(|&l| live[l] != self.live_blocks[l]) {
-            return Err(TreeError::LiveBlocks {
-                level,
-                recorded: self.live_blocks[level],
-                actual: live[level],
+        let b = (f - 1) / n;
+        let recorded = self.block_parents()[b];
+        if recorded != v.0 {
+            return Err(TreeError::BlockParent {
+                node: v,
+                first_child: NodeId(first),
+                recorded: NodeId(recorded),
+            });
+        }
+        if free[b] {
+            return Err(TreeError::FreeBlockInUse(NodeId(first)));
+        }
+        if walk.reached[b] {
+            return Err(TreeError::ReachedTwice(NodeId(first)));
+        }
+        walk.reached[b] = true;
+        let level = self.level(v);
+        if level >= Cell::<D>::MAX_LEVEL {
+            return Err(TreeError::Level {
+                node: NodeId(first),
+                level: level.saturating_add(1),
+                expected: Cell::<D>::MAX_LEVEL,
             });
         }
         Ok(())
     }
+}
+
+/// What the walk from the root counts: the blocks reached, the live blocks per level, the
+/// deepest level.
+struct Walk {
+    reached: Vec<bool>,
+    live: Vec<u32>,
+    deepest: u8,
 }
 
 #[cfg(test)]
@@ -326,6 +366,25 @@ mod tests {
             u.validate(),
             Err(TreeError::LiveBlocks { level: 2, .. })
         ));
+        let mut u = t.clone();
+        u.first_child[9] = 5;
+        assert_eq!(u.validate(), Err(TreeError::FreeNodeNotLeaf(NodeId(9))));
+        for (node, level, expected) in [(0, 1, 0), (1, 3, 1), (6, 1, 2)] {
+            let mut u = t.clone();
+            u.level[node] = level;
+            let node = NodeId(node as u32);
+            assert_eq!(
+                u.validate(),
+                Err(TreeError::Level {
+                    node,
+                    level,
+                    expected
+                })
+            );
+        }
+        let mut u = t.clone();
+        u.first_child.push(NONE);
+        assert!(matches!(u.validate(), Err(TreeError::Arrays { .. })));
         let mut u = t;
         u.free_blocks.push(9);
         assert_eq!(u.validate(), Err(TreeError::FreeList(9)));

@@ -12,61 +12,16 @@ impl Validator<'_> {
     /// component edge, and the mesh edges along the component edges.
     pub(super) fn respects_input(&self) -> (Check, InputEdges) {
         let mut f = Finding::default();
-        let mut input = vec![Input::None; self.half_edge_count()];
-        let mut steps = Vec::new();
+        let mut found = InputEdges {
+            sides: vec![Input::None; self.half_edge_count()],
+            steps: Vec::new(),
+        };
         for (ci, comp) in self.board.components().iter().enumerate() {
-            let c = ci as u32 + 1;
             for (k, (p, q)) in comp.edges().enumerate() {
-                let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
-                if (dx == 0 && dy == 0) || (dx != 0 && dy != 0 && dx.abs() != dy.abs()) {
-                    f.fail(|| MeshValidationError::NotLatticeDirection {
-                        component: c,
-                        edge: k,
-                        from: p,
-                        to: q,
-                    });
-                    continue;
-                }
-                let d = [dx.signum(), dy.signum()];
-                let Some(first) = self.vertex_at(p) else {
-                    f.fail(|| MeshValidationError::OutlineVertexMissing {
-                        component: c,
-                        point: p,
-                    });
-                    continue;
-                };
-                let (mut at, mut from) = (p, first);
-                while at != q {
-                    let left = (q[0] - at[0]).abs().max((q[1] - at[1]).abs());
-                    let Some((to, next)) = self.step_along(from, at, d, left) else {
-                        f.fail(|| MeshValidationError::OutlineEdgeBroken {
-                            component: c,
-                            edge: k,
-                            from: p,
-                            to: q,
-                            at,
-                        });
-                        break;
-                    };
-                    let mut mark = |h: u32, side: Input| {
-                        if input[h as usize] == Input::None {
-                            input[h as usize] = side;
-                        }
-                    };
-                    if let Some(h) = self.find(from, to) {
-                        mark(h, Input::Left(c));
-                        if let Some(g) = self.twin(h) {
-                            mark(g, Input::Right(c));
-                        }
-                    } else if let Some(g) = self.find(to, from) {
-                        mark(g, Input::Right(c));
-                    }
-                    steps.push(((from, to), c));
-                    (at, from) = (next, to);
-                }
+                f.keep(self.follow(ci as u32 + 1, k, p, q, &mut found));
             }
         }
-        let steps_len = steps.len();
+        let steps_len = found.steps.len();
         let check = f.finish(|| {
             format!(
                 "{} component edges are chains of {} mesh edges",
@@ -78,11 +33,65 @@ impl Validator<'_> {
                 steps_len
             )
         });
-        let found = InputEdges {
-            sides: input,
-            steps,
-        };
         (check, found)
+    }
+
+    /// Walks edge `k` of component `c`, from `p` to `q`, along mesh edges, recording in `found`
+    /// each mesh edge reached and the component's side of its half-edges; the violation that
+    /// stops the walk, if any.
+    fn follow(
+        &self,
+        c: u32,
+        k: usize,
+        p: Point,
+        q: Point,
+        found: &mut InputEdges,
+    ) -> Option<MeshValidationError> {
+        let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
+        if (dx == 0 && dy == 0) || (dx != 0 && dy != 0 && dx.abs() != dy.abs()) {
+            return Some(MeshValidationError::NotLatticeDirection {
+                component: c,
+                edge: k,
+                from: p,
+                to: q,
+            });
+        }
+        let d = [dx.signum(), dy.signum()];
+        let Some(first) = self.vertex_at(p) else {
+            return Some(MeshValidationError::OutlineVertexMissing {
+                component: c,
+                point: p,
+            });
+        };
+        let (mut at, mut from) = (p, first);
+        while at != q {
+            let left = (q[0] - at[0]).abs().max((q[1] - at[1]).abs());
+            let Some((to, next)) = self.step_along(from, at, d, left) else {
+                return Some(MeshValidationError::OutlineEdgeBroken {
+                    component: c,
+                    edge: k,
+                    from: p,
+                    to: q,
+                    at,
+                });
+            };
+            let mut mark = |h: u32, side: Input| {
+                if found.sides[h as usize] == Input::None {
+                    found.sides[h as usize] = side;
+                }
+            };
+            if let Some(h) = self.find(from, to) {
+                mark(h, Input::Left(c));
+                if let Some(g) = self.twin(h) {
+                    mark(g, Input::Right(c));
+                }
+            } else if let Some(g) = self.find(to, from) {
+                mark(g, Input::Right(c));
+            }
+            found.steps.push(((from, to), c));
+            (at, from) = (next, to);
+        }
+        None
     }
 
     /// The half-edges leaving `v`, found by turning around it through the triangles (both ways,

@@ -76,6 +76,7 @@ pub(super) struct NodeData {
 /// A point tree whose single inserts and removes cost amortised O(depth); see the module doc.
 ///
 /// ```
+/// use orthtree::prelude::*;
 /// use orthtree::{Aabb, DynamicPointTree, Quadtree};
 /// let root = Aabb::new([0.0, 0.0], [1.0, 1.0]).unwrap();
 /// let built = Quadtree::builder().root_box(root).bucket_size(1).build(&[]).unwrap();

@@ -1,5 +1,5 @@
-//! Updates of a [`DynamicPointTree`]: [`DynamicPointTree::insert`],
-//! [`DynamicPointTree::remove`] and [`DynamicPointTree::remove_point`], each amortised O(depth)
+//! Updates of a [`DynamicPointTree`]: [`DynamicPointTree::insert`](crate::query::PointSetMut::insert),
+//! [`DynamicPointTree::remove`](crate::query::PointSetMut::remove) and [`DynamicPointTree::remove_point`](crate::query::PointSetMut::remove_point), each amortised O(depth)
 //! (see the module doc of `dynamic`), keeping the canonical shape: splits below an insert's
 //! leaf while it is over the bucket size, a merge of the shallowest ancestor of a removal left
 //! with at most the bucket size; and the compaction of the chunk array.
@@ -212,10 +212,11 @@ impl<S: Scalar, T, const D: usize> DynamicPointTree<S, T, D> {
 impl<S: Scalar, T, const D: usize> PointSetMut<D> for DynamicPointTree<S, T, D> {
     /// Inserts `item` at `point` in amortised O(depth).
     ///
-    /// Errors: a coordinate that is NaN or infinite, or outside [`DynamicPointTree::domain`];
+    /// Errors: a coordinate that is NaN or infinite, or outside [`DynamicPointTree::domain`](crate::query::PointSet::domain);
     /// more points than a `u32` can index.
     ///
     /// ```
+    /// use orthtree::prelude::*;
     /// use orthtree::{Aabb, DynamicPointTree, Octree};
     /// let root = Aabb::new([0.0; 3], [1.0; 3]).unwrap();
     /// let mut t = DynamicPointTree::from(Octree::builder().root_box(root).bucket_size(2).build(&[]).unwrap());
