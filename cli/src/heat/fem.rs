@@ -1,7 +1,7 @@
 //! Linear (P1) finite elements for the steady heat equation `-div(k grad T) = q` on a triangle
 //! mesh, with `T = 0` at the fixed (Dirichlet) vertices, and a sparse Cholesky solve with faer.
 //!
-//! Shared by `examples/pcb_heat.rs` and `tests/heat.rs` (included with `#[path]`), so not every
+//! Shared by `orthtree heat` and its tests (`tests/heat.rs` (included with `#[path]`), so not every
 //! item is used by both.
 #![allow(dead_code)]
 
@@ -149,19 +149,6 @@ impl System {
         );
         SparseColMatRef::new(symbolic, &self.values)
     }
-}
-
-/// Peak bytes per triangle of [`assemble_board`] and [`solve`] together: the element entries
-/// (six of 16 bytes per triangle, sorted), the compressed matrix, and the Cholesky factor with
-/// its fill (measured: about 255 B per triangle on random boards of 3 * 10^6 and 6 * 10^6
-/// triangles, the peak resident memory of `pcb_heat --no-files` with `/usr/bin/time -v` less
-/// the mesher's); with a margin, as the fill grows like `n log n`.
-pub const SOLVE_BYTES_PER_TRIANGLE: f64 = 400.0;
-
-/// The memory [`assemble_board`] and [`solve`] need for a mesh of `triangles` triangles, to
-/// check before starting them.
-pub fn estimated_solve_bytes(triangles: usize) -> f64 {
-    triangles as f64 * SOLVE_BYTES_PER_TRIANGLE
 }
 
 /// Times of a [`solve`].

@@ -1,7 +1,7 @@
 //! p4est's "timings" fractal, then 2:1 balance: the workload of p4est's balance benchmarks.
 //!
-//! `cargo run --release --example balance_fractal -- [--dim 2|3|4] [--level L] [--connect face|edge|corner] [--weak] [--incremental] [--reps N] [--parallel]`
-//! (`--help` lists the options and their limits)
+//! `orthtree balance [--dim 2|3|4] [--level L] [--connect face|edge|corner] [--weak]
+//! [--incremental] [--reps N] [--parallel]` (`--help` lists the options and their limits)
 //!
 //! `--incremental` also builds the same refinement with `Tree::split_balanced` (exercise 14.8:
 //! balanced construction without the unbalanced tree first) and compares time and result.
@@ -9,33 +9,53 @@
 //! The refinement is p4est's (see `benches/workloads/fractal.rs`). Prints the leaf counts before and after balance, the refine, balance and
 //! is_balanced times, peak memory, and a checksum of the sorted leaf cells.
 
+use crate::limits;
+use crate::Failure;
 use orthtree::{BalanceOptions, Connectivity, Tree};
-
-#[path = "../benches/workloads/fractal.rs"]
-mod fractal;
 use std::time::Instant;
 
-#[path = "common/cli.rs"]
-mod cli;
-use cli::{Cli, CliError};
+#[path = "../../benches/workloads/fractal.rs"]
+mod fractal;
 
-const USAGE: &str = "\
-usage: balance_fractal [--dim 2|3|4] [--level L] [--connect face|edge|corner] [--weak] [--incremental] [--reps N] [--parallel]
+/// p4est's fractal refinement, then 2:1 balance (its benchmark workload)
+///
+/// Refines p4est's fractal at level L, balances it and prints leaf counts, times, peak memory
+/// and a checksum of the leaves.
+#[derive(clap::Args, Debug)]
+#[command(after_help = crate::EXIT_CODES, allow_negative_numbers = true)]
+pub struct BalanceArgs {
+    /// Dimension: 2, 3 or 4
+    #[arg(long, value_name = "D", default_value_t = 2, value_parser = limits::number(2usize, 4))]
+    dim: usize,
+    /// Refinement level, at most the tree's deepest level: 32 in 2D, 21 in 3D, 16 in 4D; levels
+    /// whose tree would not fit in memory are refused
+    #[arg(long, value_name = "L", default_value_t = 12, value_parser = limits::number(0u8, u8::MAX))]
+    level: u8,
+    /// Balance across faces, edges or corners
+    #[arg(long, value_enum, value_name = "C", default_value = "face")]
+    connect: ConnectArg,
+    /// Allow a level difference of 2 instead of 1
+    #[arg(long)]
+    weak: bool,
+    /// Also build the tree with split_balanced (exercise 14.8) and compare
+    #[arg(long)]
+    incremental: bool,
+    /// Runs of balance and of the balance check, median reported
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = limits::number(1usize, 1000))]
+    reps: usize,
+    /// The rayon balance (needs the `rayon` feature)
+    #[arg(long)]
+    parallel: bool,
+}
 
-p4est's fractal refinement at level L, then 2:1 balance; prints leaf counts, times, peak memory
-and a checksum of the leaves.
-
-options:
-  --dim D          dimension: 2, 3 or 4 (default 2)
-  --level L        refinement level, at most the tree's deepest level: 32 in 2D, 21 in 3D,
-                   16 in 4D (default 12); levels whose tree would not fit in memory are refused
-  --connect C      balance across faces, edges or corners (default face)
-  --weak           allow a level difference of 2 instead of 1
-  --incremental    also build the tree with split_balanced (exercise 14.8) and compare
-  --reps N         runs of balance and of the balance check, median reported (1 to 1000, default 1)
-  --parallel       the rayon balance (needs --features rayon)
-  -h, --help       this text
-";
+/// The connectivities on the command line.
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+enum ConnectArg {
+    Face,
+    Edge,
+    #[value(alias = "full")]
+    Corner,
+}
 
 struct Args {
     dim: usize,
@@ -81,55 +101,43 @@ fn max_level(dim: usize) -> u8 {
     }
 }
 
-fn parse(cli: &mut Cli) -> Result<Args, CliError> {
-    let (mut dim, mut level, mut connectivity, mut weak) = (2, 12, Connectivity::Face, false);
-    let (mut incremental, mut reps, mut parallel) = (false, 1, false);
-    while let Some(flag) = cli.next_arg()? {
-        match flag.as_str() {
-            "--dim" => dim = cli.number("--dim", 2, 4)?,
-            "--level" => level = cli.number("--level", 0, u8::MAX)?,
-            "--connect" => {
-                connectivity = match cli.value("--connect")?.as_str() {
-                    "face" => Connectivity::Face,
-                    "edge" => Connectivity::Edge,
-                    "corner" | "full" => Connectivity::Corner,
-                    other => {
-                        return Err(CliError::new(format!(
-                            "--connect {}: expected face, edge or corner",
-                            cli::shown(other)
-                        )))
-                    }
-                }
-            }
-            "--weak" => weak = true,
-            "--incremental" => incremental = true,
-            "--parallel" if cfg!(feature = "rayon") => parallel = true,
-            "--parallel" => return Err(CliError::new("--parallel needs --features rayon")),
-            "--reps" => reps = cli.number("--reps", 1, 1000)?,
-            other => return Err(CliError::unknown(other)),
-        }
+/// The checked arguments: the level against the dimension's deepest level and the memory.
+fn checked(args: &BalanceArgs) -> Result<Args, Failure> {
+    let (dim, level) = (args.dim, args.level);
+    if args.parallel && !cfg!(feature = "rayon") {
+        return Err(Failure::Usage(
+            "--parallel needs the `rayon` feature".into(),
+        ));
     }
     if level > max_level(dim) {
-        return Err(CliError::new(format!(
+        return Err(Failure::Usage(format!(
             "--level {level}: the deepest level of a {dim}D tree is {}",
             max_level(dim)
         )));
     }
     let leaves = fractal_leaves(dim, level);
-    let copies = if incremental { INCREMENTAL_FACTOR } else { 1.0 };
-    cli::check_memory(
+    let copies = if args.incremental {
+        INCREMENTAL_FACTOR
+    } else {
+        1.0
+    };
+    limits::check_memory(
         &format!("--dim {dim} --level {level}: about {leaves:.3e} leaves before balance"),
         leaves * PEAK_BYTES_PER_LEAF * copies,
-        cli::memory_limit(),
-    )?;
-    let options = BalanceOptions::new(connectivity);
+    )
+    .map_err(Failure::Usage)?;
+    let options = BalanceOptions::new(match args.connect {
+        ConnectArg::Face => Connectivity::Face,
+        ConnectArg::Edge => Connectivity::Edge,
+        ConnectArg::Corner => Connectivity::Corner,
+    });
     Ok(Args {
         dim,
         level,
-        options: if weak { options.weak() } else { options },
-        incremental,
-        reps,
-        parallel,
+        options: if args.weak { options.weak() } else { options },
+        incremental: args.incremental,
+        reps: args.reps,
+        parallel: args.parallel,
     })
 }
 
@@ -176,7 +184,7 @@ fn peak_memory_mib() -> Option<f64> {
     Some(kib / 1024.0)
 }
 
-fn run<const D: usize>(args: &Args) {
+fn run_in<const D: usize>(args: &Args) -> Result<(), Failure> {
     let t = Instant::now();
     let mut tree = fractal::fractal::<D>(args.level);
     let refine_s = t.elapsed().as_secs_f64();
@@ -231,8 +239,9 @@ fn run<const D: usize>(args: &Args) {
     }
     println!("checksum:              {:016x}", checksum(&tree));
     if !balanced {
-        eprintln!("error: the tree is not balanced after balance()");
-        std::process::exit(1);
+        return Err(Failure::Input(
+            "the tree is not balanced after balance()".into(),
+        ));
     }
     if args.incremental {
         // Exercise 14.8: the same refinement, each split made with split_balanced.
@@ -254,16 +263,21 @@ fn run<const D: usize>(args: &Args) {
         let same = checksum(&built) == checksum(&tree) && built.leaf_count() == tree.leaf_count();
         println!("incremental (14.8):    {incremental_s:.4} s, vs refine + balance {:.4} s; same tree: {same}", refine_s + balance_s);
         if !same {
-            std::process::exit(1);
+            return Err(Failure::Input(
+                "split_balanced built another tree than refine + balance".into(),
+            ));
         }
     }
+    Ok(())
 }
 
-fn main() {
-    let args = cli::parse_or_exit(USAGE, parse);
+/// Runs `orthtree balance`.
+pub fn run(args: &BalanceArgs) -> Result<(), Failure> {
+    let args = checked(args)?;
+    let _phase = crate::progress::Phase::start("refining and balancing");
     match args.dim {
-        2 => run::<2>(&args),
-        3 => run::<3>(&args),
-        _ => run::<4>(&args),
+        2 => run_in::<2>(&args),
+        3 => run_in::<3>(&args),
+        _ => run_in::<4>(&args),
     }
 }

@@ -1,12 +1,13 @@
 //! orthtree beside kiddo 5 (`ImmutableKdTree`) and rstar 0.12 (`RTree::bulk_load`) on the
-//! standard workloads, in one process, single-threaded: prints a markdown table of median times
-//! and the ratio orthtree / best rival per row (below 1: orthtree is faster).
+//! standard workloads, in one process, single-threaded, each crate through its adapter
+//! (`orthtree_compare::rivals`): prints a markdown table of median times and the ratio
+//! orthtree / best rival per row (below 1: orthtree is faster).
 //!
 //! ```sh
-//! cargo run --release --example compare                       # N = 10^6, 10^5 queries
-//! cargo run --release --example compare -- --n 100000 --queries 10000 --reps 3
-//! cargo run --release --features rayon --example compare -- --parallel   # + rayon speed-ups
-//! cargo run --release --example compare -- --dim 3 --workload clustered   # one slice of it
+//! cargo run --release -p orthtree-compare --bin compare          # N = 10^6, 10^5 queries
+//! cargo run --release -p orthtree-compare --bin compare -- --n 100000 --queries 10000 --reps 3
+//! cargo run --release -p orthtree-compare --features rayon --bin compare -- --parallel
+//! cargo run --release -p orthtree-compare --bin compare -- --dim 3 --workload clustered
 //! ```
 //!
 //! Then single updates, uniform points: `--queries` inserts of new points into a tree of N, then
@@ -28,53 +29,52 @@
 //! consumed (item ids summed), and the sums are checked equal across the crates. Each timing is
 //! the median of `--reps` runs after one untimed warm-up run.
 
-#[path = "../benches/common/mod.rs"]
-mod common;
-
-use common::Distribution;
-use kiddo::immutable::float::kdtree::ImmutableKdTree;
-use kiddo::SquaredEuclidean as KiddoSq;
+use clap::Parser;
 use orthtree::{Aabb, Ball, DynamicPointTree, PointTree};
+use orthtree_compare::limits;
+use orthtree_compare::points::{self as common, Distribution};
+use orthtree_compare::rivals::{Answers, Kiddo, Orthtree, Rival, Rstar, KIDDO_BUCKET};
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
-use rstar::{RTree, AABB};
+use rstar::RTree;
 use std::hint::black_box;
-use std::num::NonZeroUsize;
 use std::time::Instant;
 
-const KIDDO_BUCKET: usize = 32;
-type Kiddo<const D: usize> = ImmutableKdTree<f64, u64, D, KIDDO_BUCKET>;
-
-#[path = "common/cli.rs"]
-mod cli;
-use cli::{Cli, CliError};
-
-const USAGE: &str = "\
-usage: compare [--n N] [--queries Q] [--reps R] [--dim 2|3] [--workload NAME] [--parallel]
-
-orthtree beside kiddo and rstar: build, box, radius and k-nearest queries, then single updates.
-
-options:
-  --n N            points per workload, at least 1 (default 1000000); counts whose trees would
-                   not fit in memory are refused
-  --queries Q      queries per row and updates per tree, at least 1 (default 100000)
-  --reps R         timed runs per row, median reported (1 to 1000, default 5)
-  --dim D          only dimension 2 or 3
-  --workload NAME  only workloads whose name starts with NAME (uniform, clustered, duplicates,
-                   lattice)
-  --parallel       also rayon's speed-ups (needs --features rayon)
-  -h, --help       this text
-";
-
+/// orthtree beside kiddo and rstar: build, box, radius and k-nearest queries, then single
+/// updates.
+#[derive(Parser, Debug)]
+#[command(name = "compare", allow_negative_numbers = true)]
 struct Args {
+    /// Points per workload; counts whose trees would not fit in memory are refused
+    #[arg(long, value_name = "N", default_value_t = 1_000_000,
+          value_parser = limits::number(1usize, usize::MAX))]
     n: usize,
+    /// Queries per row and updates per tree
+    #[arg(long, value_name = "Q", default_value_t = 100_000,
+          value_parser = limits::number(1usize, usize::MAX))]
     queries: usize,
+    /// Timed runs per row, median reported
+    #[arg(long, value_name = "R", default_value_t = 5, value_parser = limits::number(1usize, 1000))]
     reps: usize,
-    parallel: bool,
-    /// Only this dimension (2 or 3) when set.
+    /// Only dimension 2 or 3
+    #[arg(long, value_name = "D", value_parser = limits::number(2usize, 3))]
     dim: Option<usize>,
-    /// Only workloads whose name starts with this when set.
+    /// Only workloads whose name starts with NAME (uniform, clustered, duplicates, lattice)
+    #[arg(long, value_name = "NAME", value_parser = workload)]
     workload: Option<String>,
+    /// Also rayon's speed-ups (needs the `rayon` feature)
+    #[arg(long)]
+    parallel: bool,
+}
+
+/// A `--workload` that starts at least one workload's name.
+fn workload(raw: &str) -> Result<String, String> {
+    let known = ["uniform", "clustered", "duplicates x8", "lattice"];
+    if known.iter().any(|k| k.starts_with(raw)) {
+        Ok(raw.to_string())
+    } else {
+        Err("no workload starts with it (uniform, clustered, duplicates, lattice)".into())
+    }
 }
 
 /// Peak bytes per point of one workload in 3D: the points, their entries, the three crates'
@@ -85,48 +85,26 @@ const PEAK_BYTES_PER_POINT: f64 = 600.0;
 /// consumed one query at a time).
 const PEAK_BYTES_PER_QUERY: f64 = 200.0;
 
-fn parse(cli: &mut Cli) -> Result<Args, CliError> {
-    let mut a = Args {
-        n: 1_000_000,
-        queries: 100_000,
-        reps: 5,
-        parallel: false,
-        dim: None,
-        workload: None,
+/// The parsed arguments, with the work they ask for checked against the memory.
+fn parse() -> Args {
+    let a = Args::parse();
+    let refuse = |message: String| -> ! {
+        use clap::CommandFactory;
+        Args::command()
+            .error(clap::error::ErrorKind::ValueValidation, message)
+            .exit()
     };
-    while let Some(flag) = cli.next_arg()? {
-        match flag.as_str() {
-            "--parallel" if cfg!(feature = "rayon") => a.parallel = true,
-            "--parallel" => return Err(CliError::new("--parallel needs --features rayon")),
-            "--workload" => {
-                let w = cli.value("--workload")?;
-                let known = ["uniform", "clustered", "duplicates x8", "lattice"];
-                if !known.iter().any(|k| k.starts_with(w.as_str())) {
-                    return Err(CliError::new(format!(
-                        "--workload {}: no workload starts with it (uniform, clustered, \
-                         duplicates, lattice)",
-                        cli::shown(&w)
-                    )));
-                }
-                a.workload = Some(w);
-            }
-            "--n" => a.n = cli.number("--n", 1, usize::MAX)?,
-            "--queries" => a.queries = cli.number("--queries", 1, usize::MAX)?,
-            "--reps" => a.reps = cli.number("--reps", 1, 1000)?,
-            "--dim" => a.dim = Some(cli.number("--dim", 2, 3)?),
-            other => return Err(CliError::unknown(other)),
-        }
+    if a.parallel && !cfg!(feature = "rayon") {
+        refuse("--parallel needs the `rayon` feature".into());
     }
     // The lattice workload rounds N to side^D points, at most (N^(1/2) + 1)^2 in 2D.
     let lattice = ((a.n as f64).sqrt() + 1.0).powi(2);
     let bytes =
         (a.n as f64).max(lattice) * PEAK_BYTES_PER_POINT + a.queries as f64 * PEAK_BYTES_PER_QUERY;
-    cli::check_memory(
-        &format!("--n {} --queries {}", a.n, a.queries),
-        bytes,
-        cli::memory_limit(),
-    )?;
-    Ok(a)
+    if let Err(e) = limits::check_memory(&format!("--n {} --queries {}", a.n, a.queries), bytes) {
+        refuse(e);
+    }
+    a
 }
 
 /// The median time in milliseconds of `reps` runs of `f`, and its (checked equal) result,
@@ -148,20 +126,20 @@ fn time<R: PartialEq + std::fmt::Debug>(reps: usize, mut f: impl FnMut() -> R) -
     (times[times.len() / 2], result.unwrap())
 }
 
+/// One table row: the median time of each crate, `None` where it has no such query.
 struct Row {
     workload: String,
     op: String,
-    ours: f64,
-    kiddo: Option<f64>,
-    rstar: Option<f64>,
+    /// orthtree, kiddo, rstar.
+    times: [Option<f64>; 3],
 }
 
 fn ratio(r: &Row) -> f64 {
-    let best = [r.kiddo, r.rstar]
-        .into_iter()
+    let best = r.times[1..]
+        .iter()
         .flatten()
-        .fold(f64::INFINITY, f64::min);
-    r.ours / best
+        .fold(f64::INFINITY, |a, &b| a.min(b));
+    r.times[0].unwrap_or(f64::NAN) / best
 }
 
 /// A side (or radius) `s` such that the average count over the first queries is about 100.
@@ -181,8 +159,38 @@ fn calibrate<const D: usize>(
     s
 }
 
-fn corners<const D: usize>(q: &[f64; D], s: f64) -> ([f64; D], [f64; D]) {
-    (q.map(|x| x - s / 2.0), q.map(|x| x + s / 2.0))
+/// The query sizes of one workload, calibrated on orthtree's tree.
+struct Workload<'a, const D: usize> {
+    points: &'a [[f64; D]],
+    queries: &'a [[f64; D]],
+    side: f64,
+    radius: f64,
+}
+
+/// One crate's times on `w`, by row (build, box, radius, k = 1, 10, 100), and its answers.
+fn measure<R: Rival<D>, const D: usize>(
+    w: &Workload<'_, D>,
+    reps: usize,
+) -> (Vec<Option<f64>>, Vec<Option<Answers>>) {
+    let input = R::prepare(w.points);
+    let (t_build, n) = time(reps, || R::build(&input).size());
+    assert_eq!(n, w.points.len(), "{} lost points", R::NAME);
+    let tree = R::build(&input);
+    drop(input);
+    let mut times = vec![Some(t_build)];
+    let mut answers = vec![None];
+    let (t, a) = time(reps, || tree.boxes(w.queries, w.side));
+    times.push(a.map(|_| t));
+    answers.push(a);
+    let (t, a) = time(reps, || tree.balls(w.queries, w.radius));
+    times.push(Some(t));
+    answers.push(Some(a));
+    for k in [1usize, 10, 100] {
+        let (t, a) = time(reps, || tree.nearest(w.queries, k));
+        times.push(Some(t));
+        answers.push(Some(a));
+    }
+    (times, answers)
 }
 
 fn run<const D: usize>(
@@ -191,7 +199,9 @@ fn run<const D: usize>(
     queries: &[[f64; D]],
     a: &Args,
     rows: &mut Vec<Row>,
-) {
+) where
+    [f64; D]: rstar::Point<Scalar = f64>,
+{
     let workload = format!("{name} {D}D");
     if a.workload
         .as_ref()
@@ -201,74 +211,11 @@ fn run<const D: usize>(
     }
     let n = points.len();
     eprintln!("{workload}: n = {n}, {} queries", queries.len());
-    let entries: Vec<([f64; D], u64)> = points
-        .iter()
-        .enumerate()
-        .map(|(i, &p)| (p, i as u64))
-        .collect();
-    let mut row = |op: &str, ours: f64, kiddo: Option<f64>, rstar: Option<f64>| {
-        rows.push(Row {
-            workload: workload.clone(),
-            op: op.into(),
-            ours,
-            kiddo,
-            rstar,
-        })
-    };
-
-    let (t_ours, ours) = time(a.reps, || {
-        PointTree::builder().build(&entries).unwrap().len()
-    });
-    let (t_kiddo, _) = time(a.reps, || Kiddo::<D>::new_from_slice(points).size());
-    let (t_rstar, _) = time(a.reps, || RTree::bulk_load(points.to_vec()).size());
-    assert_eq!(ours, n);
-    row("build", t_ours, Some(t_kiddo), Some(t_rstar));
-    let tree = PointTree::builder().build(&entries).unwrap();
-    let kd = Kiddo::<D>::new_from_slice(points);
-    let rt = RTree::bulk_load(points.to_vec());
-
-    // Box queries (kiddo has none).
+    let tree = Orthtree::build(&Orthtree::prepare(points)).0;
     let side = calibrate(&tree, queries, n, |t, q, s| {
-        let (lo, hi) = corners(q, s);
-        t.query_count(Aabb { min: lo, max: hi }).unwrap()
+        let (min, max) = orthtree_compare::rivals::corners(q, s);
+        t.query_count(Aabb { min, max }).unwrap()
     });
-    let (t_ours, ours) = time(a.reps, || {
-        let mut sum = 0u64;
-        for q in queries {
-            let (lo, hi) = corners(q, side);
-            sum += tree
-                .query(Aabb { min: lo, max: hi })
-                .unwrap()
-                .map(|(_, &i)| i)
-                .sum::<u64>();
-        }
-        sum
-    });
-    let (t_rstar, theirs) = time(a.reps, || {
-        let mut sum = 0u64;
-        for q in queries {
-            let (lo, hi) = corners(q, side);
-            sum += rt.locate_in_envelope(&AABB::from_corners(lo, hi)).count() as u64;
-        }
-        sum
-    });
-    let found: u64 = queries
-        .iter()
-        .map(|q| {
-            let (lo, hi) = corners(q, side);
-            tree.query_count(Aabb { min: lo, max: hi }).unwrap() as u64
-        })
-        .sum();
-    assert_eq!(found, theirs, "box counts differ");
-    black_box(ours);
-    row(
-        &format!("box (~{:.0} results)", found as f64 / queries.len() as f64),
-        t_ours,
-        None,
-        Some(t_rstar),
-    );
-
-    // Radius queries.
     let radius = calibrate(&tree, queries, n, |t, q, r| {
         t.query_count(Ball {
             center: *q,
@@ -276,104 +223,40 @@ fn run<const D: usize>(
         })
         .unwrap()
     });
-    let r2 = radius * radius;
-    let (t_ours, ours) = time(a.reps, || {
-        let mut sum = 0u64;
-        for q in queries {
-            sum += tree
-                .query(Ball { center: *q, radius })
-                .unwrap()
-                .map(|(_, &i)| i)
-                .sum::<u64>();
-        }
-        sum
-    });
-    let (t_kiddo, theirs_k) = time(a.reps, || {
-        let mut sum = 0u64;
-        for q in queries {
-            sum += kd
-                .within_unsorted::<KiddoSq>(q, r2)
-                .iter()
-                .map(|nn| nn.item)
-                .sum::<u64>();
-        }
-        sum
-    });
-    let (t_rstar, theirs_r) = time(a.reps, || {
-        let mut sum = 0u64;
-        for q in queries {
-            sum += rt.locate_within_distance(*q, r2).count() as u64;
-        }
-        sum
-    });
-    assert_eq!(ours, theirs_k, "radius answers differ");
-    let avg = theirs_r as f64 / queries.len() as f64;
-    row(
-        &format!("radius (~{avg:.0} results)"),
-        t_ours,
-        Some(t_kiddo),
-        Some(t_rstar),
-    );
-
-    // k-nearest.
-    for k in [1usize, 10, 100] {
-        let nz = NonZeroUsize::new(k).unwrap();
-        // Both read each answer's item, as a caller would (kiddo copies it into its answer; a
-        // tie may give another item, so only the distances are compared).
-        let (t_ours, (ours, _)) = time(a.reps, || {
-            let (mut sum, mut items) = (0.0, 0u64);
-            for q in queries {
-                if k == 1 {
-                    let nn = tree.nearest(q).unwrap().unwrap();
-                    sum += nn.distance;
-                    items = items.wrapping_add(*nn.item);
-                } else {
-                    for nn in tree.k_nearest(q, k).unwrap() {
-                        sum += nn.distance;
-                        items = items.wrapping_add(*nn.item);
-                    }
-                }
+    let w = Workload {
+        points,
+        queries,
+        side,
+        radius,
+    };
+    let (ours, ours_answers) = measure::<Orthtree<D>, D>(&w, a.reps);
+    let (kd, kd_answers) = measure::<Kiddo<D>, D>(&w, a.reps);
+    let (rt, rt_answers) = measure::<Rstar<D>, D>(&w, a.reps);
+    let per_query = |a: &Option<Answers>| a.map_or(0.0, |a| a.count as f64 / queries.len() as f64);
+    let ops = [
+        "build".to_string(),
+        format!("box (~{:.0} results)", per_query(&ours_answers[1])),
+        format!("radius (~{:.0} results)", per_query(&ours_answers[2])),
+        "1-nearest".into(),
+        "10-nearest".into(),
+        "100-nearest".into(),
+    ];
+    for (row, op) in ops.iter().enumerate() {
+        // Items of k-nearest answers may differ at ties; counts and distances may not.
+        let items = row < 3;
+        for (rival, theirs) in [("kiddo", &kd_answers[row]), ("rstar", &rt_answers[row])] {
+            if let (Some(ours), Some(theirs)) = (&ours_answers[row], theirs) {
+                assert!(
+                    ours.agrees_with(theirs, items),
+                    "{workload} {op}: orthtree {ours:?}, {rival} {theirs:?}"
+                );
             }
-            (sum, items)
+        }
+        rows.push(Row {
+            workload: workload.clone(),
+            op: op.clone(),
+            times: [ours[row], kd[row], rt[row]],
         });
-        let (t_kiddo, (theirs, _)) = time(a.reps, || {
-            let (mut sum, mut items) = (0.0, 0u64);
-            for q in queries {
-                if k == 1 {
-                    let nn = kd.nearest_one::<KiddoSq>(q);
-                    sum += nn.distance;
-                    items = items.wrapping_add(nn.item);
-                } else {
-                    for nn in kd.nearest_n::<KiddoSq>(q, nz) {
-                        sum += nn.distance;
-                        items = items.wrapping_add(nn.item);
-                    }
-                }
-            }
-            (sum, items)
-        });
-        let (t_rstar, _) = time(a.reps, || {
-            let mut sum = 0.0;
-            for q in queries {
-                sum += rt
-                    .nearest_neighbor_iter(q)
-                    .take(k)
-                    .map(|p| p[0])
-                    .sum::<f64>();
-            }
-            sum
-        });
-        let rel = (ours - theirs).abs() / theirs.abs().max(1e-300);
-        assert!(
-            rel < 1e-9,
-            "k = {k}: distance sums differ: {ours} vs {theirs}"
-        );
-        row(
-            &format!("{k}-nearest"),
-            t_ours,
-            Some(t_kiddo),
-            Some(t_rstar),
-        );
     }
 
     if name == "uniform" {
@@ -402,7 +285,10 @@ fn run<const D: usize>(
     }
 }
 
-fn workloads<const D: usize>(a: &Args, rows: &mut Vec<Row>) {
+fn workloads<const D: usize>(a: &Args, rows: &mut Vec<Row>)
+where
+    [f64; D]: rstar::Point<Scalar = f64>,
+{
     let mut rng = SmallRng::seed_from_u64(7);
     for dist in Distribution::ALL {
         let points = dist.points::<D>(a.n, 1);
@@ -435,7 +321,7 @@ fn workloads<const D: usize>(a: &Args, rows: &mut Vec<Row>) {
 }
 
 fn main() {
-    let a = cli::parse_or_exit(USAGE, parse);
+    let a = parse();
     let mut rows = Vec::new();
     if a.dim != Some(3) {
         workloads::<2>(&a, &mut rows);
@@ -455,9 +341,9 @@ fn main() {
             "| {} | {} | {:.1} | {} | {} | {:.2} |",
             r.workload,
             r.op,
-            r.ours,
-            show(r.kiddo),
-            show(r.rstar),
+            r.times[0].unwrap_or(f64::NAN),
+            show(r.times[1]),
+            show(r.times[2]),
             ratio(r)
         );
     }

@@ -1,6 +1,6 @@
-//! Triangle counts of the mesher's modes beside a quality Delaunay mesher (issue 9).
+//! Triangle counts of the mesher's modes beside a quality Delaunay mesher.
 //!
-//! `cargo run --release --example mesh_compare -- [--seeds N] [--runs R] [--target]`
+//! `cargo run --release -p orthtree-compare --bin mesh_compare -- [--seeds N] [--runs R] [--target]`
 //! (`--help` lists the options)
 //!
 //! `--target` meshes only the mesher's target workload, `random_board(7, 65536, 640)`, in both
@@ -18,44 +18,24 @@ use spade::{
 };
 use std::time::{Duration, Instant};
 
-#[path = "common/cli.rs"]
-mod cli;
-use cli::{Cli, CliError};
+use clap::Parser;
+use orthtree_compare::limits;
 
-const USAGE: &str = "\
-usage: mesh_compare [--seeds N] [--runs R] [--target]
-
-Triangle counts and times of the mesher's book and coarsest modes beside spade's refined
-constrained Delaunay triangulation, on Figure 14.2's input, the sample board and random boards.
-
-options:
-  --seeds N      random boards per size (0 to 10000, default 5); one board is held at a time
-  --runs R       timed runs per mesh, median reported (1 to 1000, default 3)
-  --target       only the mesher's target workload, random_board(7, 65536, 640), phase by phase
-  -h, --help     this text
-";
-
+/// Triangle counts and times of the mesher's book and coarsest modes beside spade's refined
+/// constrained Delaunay triangulation, on Figure 14.2's input, the sample board and random
+/// boards.
+#[derive(Parser, Debug)]
+#[command(name = "mesh_compare", allow_negative_numbers = true)]
 struct Args {
+    /// Random boards per size; one board is held at a time
+    #[arg(long, value_name = "N", default_value_t = 5, value_parser = limits::number(0u64, 10_000))]
     seeds: u64,
+    /// Timed runs per mesh, median reported
+    #[arg(long, value_name = "R", default_value_t = 3, value_parser = limits::number(1usize, 1000))]
     runs: usize,
+    /// Only the mesher's target workload, random_board(7, 65536, 640), phase by phase
+    #[arg(long = "target")]
     only_target: bool,
-}
-
-fn parse(cli: &mut Cli) -> Result<Args, CliError> {
-    let mut args = Args {
-        seeds: 5,
-        runs: 3,
-        only_target: false,
-    };
-    while let Some(flag) = cli.next_arg()? {
-        match flag.as_str() {
-            "--target" => args.only_target = true,
-            "--seeds" => args.seeds = cli.number("--seeds", 0, 10_000)?,
-            "--runs" => args.runs = cli.number("--runs", 1, 1000)?,
-            other => return Err(CliError::unknown(other)),
-        }
-    }
-    Ok(args)
 }
 
 /// The median of `runs` timings of `f`, and its last result.
@@ -189,7 +169,7 @@ fn main() {
         seeds,
         runs,
         only_target,
-    } = cli::parse_or_exit(USAGE, parse);
+    } = Args::parse();
     if only_target {
         return target(runs);
     }

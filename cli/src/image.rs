@@ -1,21 +1,21 @@
 //! Boolean operations on binary images with region quadtrees.
 //!
 //! ```sh
-//! cargo run --release --example image_ops -- A B --op and|or|xor|sub --out C
-//! cargo run --release --example image_ops -- A --op not --out C
-//! cargo run --release --example image_ops            # built-in disc and ring
-//! cargo run --release --example image_ops -- --help
+//! orthtree image A B --op and|or|xor|sub --out C
+//! orthtree image A --op not --out C
+//! orthtree image            # built-in disc and ring
 //! ```
 //!
-//! The output may also be an `.svg` (a picture of the tree's leaves). Every bad argument, file or
-//! pair of images of different sizes ends with a message and exit status 1 (2 for usage
-//! errors), never a panic.
+//! The output may also be an `.svg` (a picture of the tree's leaves). Every bad file or pair of
+//! images of different sizes ends with a message and exit code 1 (2 for usage errors), never a
+//! panic.
 //!
 //! Files are PBM (`.pbm`), or PNG (`.png`) when built with `--features png`, chosen by extension.
 //! Prints node counts, pixel counts and times. With no arguments it makes a disc and a ring on a
 //! 512 x 384 image, writes their symmetric difference as `image_ops.pbm` (and `image_ops.png`
 //! with the feature) and an SVG of its tree as `image_ops.svg` in the current directory.
 
+use crate::Failure;
 use orthtree::image::{BoolOp, ImageTree};
 use orthtree::io::pbm::{self, PbmFormat};
 use orthtree::io::svg::write_image_tree_svg;
@@ -44,11 +44,45 @@ fn read(path: &str) -> Result<ImageTree, Box<dyn Error>> {
     }
 }
 
-const USAGE: &str = "usage: image_ops A [B] --op and|or|xor|sub|not --out C
-       image_ops            (the built-in disc and ring demo)
-  A, B   input images: .pbm, or .png when built with --features png
-  --op   and, or, xor, sub (two images of one size) or not (one image)
-  --out  the result: .pbm, .png (with the feature) or .svg (a picture of the tree)";
+/// Boolean operations on binary images with region quadtrees
+///
+/// `orthtree image A B --op xor --out C.pbm`. With no arguments: a built-in disc and ring, their symmetric difference written
+/// as image_ops.pbm and image_ops.svg into the current folder.
+#[derive(clap::Args, Debug)]
+#[command(after_help = crate::EXIT_CODES, allow_negative_numbers = true)]
+pub struct ImageArgs {
+    /// Input images: .pbm, or .png when built with the `png` feature
+    #[arg(value_name = "IMAGE", num_args = 0..=2)]
+    images: Vec<String>,
+    /// and, or, xor, sub (two images of one size) or not (one image)
+    #[arg(long, value_enum)]
+    op: Option<OpArg>,
+    /// The result: .pbm, .png (with the `png` feature) or .svg (a picture of the tree)
+    #[arg(long, value_name = "C")]
+    out: Option<String>,
+}
+
+/// The operations on the command line.
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+enum OpArg {
+    And,
+    Or,
+    Xor,
+    Sub,
+    Not,
+}
+
+impl OpArg {
+    fn name(self) -> &'static str {
+        match self {
+            OpArg::And => "and",
+            OpArg::Or => "or",
+            OpArg::Xor => "xor",
+            OpArg::Sub => "sub",
+            OpArg::Not => "not",
+        }
+    }
+}
 
 fn write(tree: &ImageTree, path: &str) -> Result<(), Box<dyn Error>> {
     match extension(path).as_str() {
@@ -75,7 +109,7 @@ fn png_hint() -> &'static str {
     if cfg!(feature = "png") {
         ", png"
     } else {
-        "; png with --features png"
+        "; png with the `png` feature"
     }
 }
 
@@ -117,40 +151,33 @@ fn combine(a: &ImageTree, b: Option<&ImageTree>, op: &str) -> Result<ImageTree, 
     Ok(result)
 }
 
-fn run(args: &[String]) -> Result<(), Box<dyn Error>> {
-    let mut files = Vec::new();
-    let (mut op, mut out) = (None, None);
-    let mut it = args.iter();
-    while let Some(a) = it.next() {
-        match a.as_str() {
-            "--op" | "--out" => {
-                let Some(value) = it.next() else {
-                    return Err(Usage(format!("{a} needs a value")).into());
-                };
-                if a == "--op" {
-                    op = Some(value.clone());
-                } else {
-                    out = Some(value.clone());
-                }
-            }
-            flag if flag.starts_with("--") => {
-                return Err(Usage(format!("unknown option {flag}")).into())
-            }
-            _ => files.push(a.clone()),
+/// Runs `orthtree image`.
+pub fn run(args: &ImageArgs) -> Result<(), Failure> {
+    let outcome = match (&args.op, &args.out) {
+        (None, None) if args.images.is_empty() => demo(),
+        (Some(op), Some(out)) if !args.images.is_empty() => apply(&args.images, *op, out),
+        _ => {
+            return Err(Failure::Usage(
+                "give one or two images, --op and --out".into(),
+            ))
         }
-    }
-    let (Some(op), Some(out), 1..=2) = (op, out, files.len()) else {
-        return Err(Usage("give one or two images, --op and --out".into()).into());
     };
+    outcome.map_err(|e| match e.downcast::<Usage>() {
+        Ok(usage) => Failure::Usage(usage.0),
+        Err(e) => Failure::Input(e.to_string()),
+    })
+}
+
+fn apply(files: &[String], op: OpArg, out: &str) -> Result<(), Box<dyn Error>> {
     let writable = [
         "pbm",
         "svg",
         if cfg!(feature = "png") { "png" } else { "pbm" },
     ];
-    if !writable.contains(&extension(&out).as_str()) {
+    if !writable.contains(&extension(out).as_str()) {
         return Err(Usage(format!(
-            "{out}: unsupported extension {:?} (pbm, svg{})",
-            extension(&out),
+            "--out {out}: unsupported extension {:?} (pbm, svg{})",
+            extension(out),
             png_hint()
         ))
         .into());
@@ -164,9 +191,9 @@ fn run(args: &[String]) -> Result<(), Box<dyn Error>> {
     for (f, t) in files.iter().zip(&trees) {
         describe(f, t);
     }
-    let result = combine(&trees[0], trees.get(1), &op)?;
+    let result = combine(&trees[0], trees.get(1), op.name())?;
     describe("result", &result);
-    write(&result, &out)?;
+    write(&result, out)?;
     say!("wrote {out}");
     Ok(())
 }
@@ -201,30 +228,14 @@ fn demo() -> Result<(), Box<dyn Error>> {
     Ok(())
 }
 
-/// A mistake in the arguments (exit status 2, with the usage).
+/// A mistake in the arguments (exit code 2).
 #[derive(Debug)]
 struct Usage(String);
 
 impl std::fmt::Display for Usage {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}\n{USAGE}", self.0)
+        f.write_str(&self.0)
     }
 }
 
 impl Error for Usage {}
-
-fn main() {
-    let args: Vec<String> = std::env::args_os()
-        .skip(1)
-        .map(|a| a.to_string_lossy().into_owned())
-        .collect();
-    if args.iter().any(|a| a == "--help" || a == "-h") {
-        say!("{USAGE}");
-        return;
-    }
-    let outcome = if args.is_empty() { demo() } else { run(&args) };
-    if let Err(e) = outcome {
-        eprintln!("image_ops: {e}");
-        std::process::exit(if e.is::<Usage>() { 2 } else { 1 });
-    }
-}

@@ -1,8 +1,10 @@
-//! The heat example's finite elements (issue 8): the stiffness matrix on the mesher's meshes is
+//! The finite elements of `orthtree heat` (feature `heat`): the stiffness matrix on the mesher's meshes is
 //! an M-matrix and the discrete maximum principle holds; P1 converges at second order in L2 on
 //! the unit square; assembly and solve times (printed with `--nocapture`).
 
-#[path = "../examples/pcb_heat/fem.rs"]
+#![cfg(feature = "heat")]
+
+#[path = "../src/heat/fem.rs"]
 mod fem;
 
 use orthtree::mesh::{generate_mesh, random_board, sample_board};
