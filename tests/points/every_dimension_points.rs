@@ -6,7 +6,7 @@
 //!
 //! One generic check, instantiated for each D by `every_dimension!`.
 
-mod common;
+use crate::common;
 
 use common::points::check_all;
 use common::{dist2, rng};

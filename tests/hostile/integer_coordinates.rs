@@ -5,7 +5,7 @@
 //! nearest and k-nearest queries on `PointTree`, `DynamicPointTree`, `CompressedTree` and
 //! `SkipQuadtree`.
 
-mod common;
+use crate::common;
 
 use orthtree::query::{Ball, QueryError, Region};
 use orthtree::{

@@ -1,7 +1,7 @@
 //! Duplicates and near-duplicates: many copies of one point end at the maximum depth instead of
 //! looping; points one ulp apart; the maximum depth is respected.
 
-mod common;
+use crate::common;
 
 use common::points::{check_all, check_points};
 use orthtree::{Aabb, Cell, NodeId, PointTreeBuilder, Quadtree};

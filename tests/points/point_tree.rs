@@ -3,7 +3,7 @@
 //! checked against the chapter's recursive definition and every structural property, before and
 //! after balance with every option.
 
-mod common;
+use crate::common;
 
 use common::points::*;
 use orthtree::{Aabb, Octree, PointTree, PointTreeBuilder, Quadtree, Scalar, DEFAULT_BUCKET_SIZE};

@@ -4,8 +4,8 @@
 //! and the nodes a location touches on inputs as deep as the cells allow, beside the walk down
 //! the compressed tree from its root.
 
-mod common;
-#[path = "../benches/workloads/compressed.rs"]
+use crate::common;
+#[path = "../../benches/workloads/compressed.rs"]
 mod workload;
 
 use common::points::config;

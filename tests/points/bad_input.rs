@@ -2,7 +2,7 @@
 //! coordinates (±f64::MAX, subnormals, mixed magnitudes, 64-bit integers); empty and single-point
 //! input.
 
-mod common;
+use crate::common;
 
 use common::points::{check_all, check_points};
 use orthtree::{

@@ -3,8 +3,8 @@
 //! search for the triangle holding each query point; wheels (a vertex of high degree), features
 //! closer than the finest cell, points outside, and refused input.
 
-mod common;
-#[path = "../benches/workloads/compressed.rs"]
+use crate::common;
+#[path = "../../benches/workloads/compressed.rs"]
 mod workload;
 
 use common::points::config;

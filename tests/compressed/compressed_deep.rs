@@ -3,7 +3,7 @@
 //! tree's down to its deepest level, deeper nodes lying in its deepest leaves; updates and the
 //! skip quadtree on such points equal fresh builds; queries agree with brute force.
 
-mod common;
+use crate::common;
 
 use common::points::config;
 use orthtree::compressed::SkipQuadtree;

@@ -2,7 +2,7 @@
 //! brute force over every node and every one of the 3^D - 1 directions, in 1 to 4 dimensions, on
 //! random trees and on deep chains down to `Cell::MAX_LEVEL`.
 
-mod common;
+use crate::common;
 
 use common::*;
 use orthtree::{Cell, Connectivity, Direction, NodeId, Tree};

@@ -4,7 +4,7 @@
 //! updates that keep the tree equal to a fresh build, checked with `validate` after each; the
 //! node-count bound on pathological inputs beside the plain tree's count; conversions; errors.
 
-mod common;
+use crate::common;
 
 use common::points::config;
 use orthtree::query::{Chebyshev, Manhattan, Metric, SquaredEuclidean};

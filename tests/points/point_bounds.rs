@@ -2,7 +2,7 @@
 //! buckets: Lemma 14.1 (depth against the closest pair) and Theorem 14.2 (nodes against depth and
 //! number of points), on random and adversarial point sets.
 
-mod common;
+use crate::common;
 
 use common::points::check_points;
 use common::{closest_pair, dedup_points, rng};

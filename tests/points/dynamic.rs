@@ -5,7 +5,7 @@
 //! metrics, the nearest iterator) agrees with a brute-force scan of the stored pairs; and the
 //! slots the neighbours report name their items.
 
-mod common;
+use crate::common;
 
 use common::points::unit_builder as builder;
 use common::updates::{apply, coords, initial, op, sorted_pairs, Op, Pairs};

@@ -4,7 +4,7 @@
 //! spread points, duplicates, and points so close that their keys differ only in the bits the
 //! index took; serial and parallel builds agree.
 
-mod common;
+use crate::common;
 
 use common::points::config;
 use orthtree::{PointTree, PointTreeBuilder};

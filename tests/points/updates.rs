@@ -4,7 +4,7 @@
 //! every query kind (box, ball, half-space, k-nearest) agrees with a brute-force scan of the
 //! stored pairs.
 
-mod common;
+use crate::common;
 
 use common::updates::{apply, coords, initial, op, sorted_pairs, Op};
 use orthtree::{Aabb, Ball, Cell, Error, HalfSpace, PointTree};

@@ -3,44 +3,8 @@
 //! anything is allocated; counts that fill the board early cost memory by the board placed,
 //! never by the count asked (checked with a counting allocator).
 
+use crate::counting::peak_bytes;
 use orthtree::mesh::{random_board, random_board_capacity, try_random_board, RandomBoardError};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
-
-/// The system allocator, counting the live and the peak bytes of the calling thread (tests run
-/// on threads of their own, so one test's figures are not mixed with another's).
-struct Counting;
-
-thread_local! {
-    static LIVE: Cell<usize> = const { Cell::new(0) };
-    static PEAK: Cell<usize> = const { Cell::new(0) };
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let _ = LIVE.try_with(|live| {
-            live.set(live.get() + layout.size());
-            let _ = PEAK.try_with(|peak| peak.set(peak.get().max(live.get())));
-        });
-        System.alloc(layout)
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        let _ = LIVE.try_with(|live| live.set(live.get().saturating_sub(layout.size())));
-        System.dealloc(ptr, layout)
-    }
-}
-
-#[global_allocator]
-static ALLOCATOR: Counting = Counting;
-
-/// The peak bytes allocated on this thread while `f` runs, above what was live before.
-fn peak_bytes<T>(f: impl FnOnce() -> T) -> (usize, T) {
-    let before = LIVE.with(Cell::get);
-    PEAK.with(|p| p.set(before));
-    let out = f();
-    (PEAK.with(Cell::get) - before, out)
-}
 
 #[test]
 fn sizes_that_are_not_powers_of_two_from_8_to_2_30_are_refused() {
@@ -79,7 +43,7 @@ fn counts_above_the_capacity_are_refused_without_allocating() {
     ] {
         let capacity = random_board_capacity(size);
         assert_eq!(capacity, ((size / 2) * (size / 2)) as u64);
-        let (bytes, result) = peak_bytes(|| try_random_board(1, size, count));
+        let (result, bytes) = peak_bytes(|| try_random_board(1, size, count));
         let e = result.unwrap_err();
         assert_eq!(
             e,
@@ -121,7 +85,7 @@ fn memory_follows_the_board_placed_not_the_count_asked() {
     // placed, whatever the count asked for.
     for (seed, size) in [(4u64, 512i64), (5, 256), (6, 1024), (7, 64)] {
         let count = random_board_capacity(size) as usize;
-        let (bytes, board) = peak_bytes(|| try_random_board(seed, size, count).unwrap());
+        let (board, bytes) = peak_bytes(|| try_random_board(seed, size, count).unwrap());
         let placed = board.components().len();
         assert!(placed < count / 4, "U = {size}: {placed} of {count} placed");
         assert!(

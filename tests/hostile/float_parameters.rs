@@ -4,7 +4,7 @@
 //! distance holds everything, -0.0 is 0, a huge `eps` accepts any point), on `PointTree`,
 //! `DynamicPointTree` and `CompressedTree`, on ordinary points and on points near `f64::MAX`.
 
-mod common;
+use crate::common;
 
 use orthtree::query::{FloatBits, QueryError, Region};
 use orthtree::{

@@ -5,7 +5,7 @@
 //!
 //! Run with `--nocapture` to see the measured counts.
 
-mod mesh_oracle;
+use crate::mesh_oracle;
 
 use mesh_oracle::{assert_valid_board, assert_valid_mesh, board, figure_14_2};
 use orthtree::mesh::{

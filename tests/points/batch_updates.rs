@@ -2,7 +2,7 @@
 //! updates give (same points and items in the same order, same leaves), validates, and equals a
 //! fresh build of the same pairs; bad input leaves the tree unchanged and names the pair.
 
-mod common;
+use crate::common;
 
 use orthtree::{Aabb, Cell, Connectivity, Error, PointTree};
 use proptest::prelude::*;

@@ -9,7 +9,7 @@
 //! in a `u8` (2^8 = 256 children) or a mask `1u8 << D` used to break the 8-D balance test and
 //! balance.
 
-mod common;
+use crate::common;
 
 use common::*;
 use orthtree::{BalanceOptions, Cell, Connectivity, Direction, NodeId, Tree};

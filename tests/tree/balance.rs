@@ -3,7 +3,7 @@
 //! in 1 to 4 dimensions, for every connectivity; the split list they return; and the generalised
 //! Theorem 14.4 bound on random and adversarial trees.
 
-mod common;
+use crate::common;
 
 use common::*;
 use orthtree::{BalanceOptions, Cell, Connectivity, NodeId, Tree};
@@ -353,7 +353,7 @@ fn balanced_trees_are_left_alone() {
 #[cfg(feature = "rayon")]
 #[test]
 fn parallel_balance_equals_serial_on_the_fractal() {
-    #[path = "../benches/workloads/fractal.rs"]
+    #[path = "../../benches/workloads/fractal.rs"]
     mod fractal;
     fn run<const D: usize>(level: u8) {
         for connectivity in Connectivity::ALL {
