@@ -1,17 +1,17 @@
-//! Bulk build, side by side: orthtree's `PointTreeBuilder` against kiddo's `ImmutableKdTree` and
-//! rstar's `RTree::bulk_load`, on the same seeded points (uniform in the unit cube, and 64
-//! Gaussian clusters of sigma 0.01, unclamped), in 2D and 3D, `f64`, single-threaded.
+//! Bulk build of `PointTreeBuilder` on seeded points (uniform in the unit cube, and 64 Gaussian
+//! clusters of sigma 0.01, unclamped), in 2D and 3D, `f64`, single-threaded. The same groups with
+//! kiddo and rstar beside it are the comparison crate's `build` bench
+//! (`cargo bench -p orthtree-compare --bench build`).
 //!
-//! Each crate sits behind one small [`Adapter`] so that every crate runs the same workload: the
-//! adapter turns the shared points into the crate's input once, outside the timing, and then only
-//! the build is timed. Where the API takes ownership the input is cloned outside the timing
-//! (`iter_batched`); the built trees are dropped outside the timing for every crate.
+//! Each way of building sits behind one small [`Adapter`]: it turns the shared points into the
+//! input once, outside the timing, and then only the build is timed. Where the API takes
+//! ownership the input is cloned outside the timing (`iter_batched`); the built trees are dropped
+//! outside the timing.
 //!
 //! Groups are named `build/{2d,3d}/{uniform,clustered}/{n}` with functions `orthtree` (default
-//! bucket size, `build(&entries)`), `orthtree_vec` (`build_from_vec(entries)`), `kiddo` (bucket
-//! 32, `u32` items) and `rstar`.
+//! bucket size, `build(&entries)`) and `orthtree_vec` (`build_from_vec(entries)`).
 //!
-//! Run with `cargo bench --bench build` (about two minutes on two cores).
+//! Run with `cargo bench --bench build` (about a minute on two cores).
 
 mod common;
 
@@ -23,8 +23,6 @@ use criterion::measurement::WallTime;
 use criterion::{
     criterion_group, criterion_main, BatchSize, BenchmarkGroup, Criterion, SamplingMode, Throughput,
 };
-use kiddo::float_leaf_slice::leaf_slice::{LeafSliceFloat, LeafSliceFloatChunk};
-use kiddo::immutable::float::kdtree::ImmutableKdTree;
 use orthtree::{PointTree, PointTreeBuilder};
 
 /// The sizes of every group: a small one to show scaling, and 10^6.
@@ -90,44 +88,6 @@ impl<const D: usize> Adapter<D> for OrthtreeVec {
     }
 }
 
-/// kiddo 5, `ImmutableKdTree<f64, u32, D, 32>::new_from_slice` (items are the indices).
-struct Kiddo;
-
-impl<const D: usize> Adapter<D> for Kiddo
-where
-    f64: LeafSliceFloat<u32> + LeafSliceFloatChunk<u32, D>,
-{
-    const NAME: &'static str = "kiddo";
-    type Input = Vec<[f64; D]>;
-    type Tree = ImmutableKdTree<f64, u32, D, 32>;
-    const BUILD: Build<Self::Input, Self::Tree> = Build::Borrow(|p| Self::Tree::new_from_slice(p));
-    fn prepare(points: &[[f64; D]]) -> Self::Input {
-        points.to_vec()
-    }
-    fn len(tree: &Self::Tree) -> usize {
-        tree.size()
-    }
-}
-
-/// rstar 0.12, `RTree::bulk_load` of bare `[f64; D]` points (takes ownership).
-struct Rstar;
-
-impl<const D: usize> Adapter<D> for Rstar
-where
-    [f64; D]: rstar::Point,
-{
-    const NAME: &'static str = "rstar";
-    type Input = Vec<[f64; D]>;
-    type Tree = rstar::RTree<[f64; D]>;
-    const BUILD: Build<Self::Input, Self::Tree> = Build::Own(rstar::RTree::bulk_load);
-    fn prepare(points: &[[f64; D]]) -> Self::Input {
-        points.to_vec()
-    }
-    fn len(tree: &Self::Tree) -> usize {
-        tree.size()
-    }
-}
-
 /// orthtree's input: each point with its index as item.
 fn entries<const D: usize>(points: &[[f64; D]]) -> Vec<([f64; D], u32)> {
     points
@@ -164,8 +124,6 @@ fn bench_dim<const D: usize>(c: &mut Criterion)
 where
     Orthtree: Adapter<D>,
     OrthtreeVec: Adapter<D>,
-    Kiddo: Adapter<D>,
-    Rstar: Adapter<D>,
 {
     for dist in Distribution::ALL {
         for n in SIZES {
@@ -188,8 +146,6 @@ where
             }
             run::<Orthtree, D>(&mut group, &points);
             run::<OrthtreeVec, D>(&mut group, &points);
-            run::<Kiddo, D>(&mut group, &points);
-            run::<Rstar, D>(&mut group, &points);
             group.finish();
         }
     }

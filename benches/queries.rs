@@ -1,27 +1,23 @@
-//! Queries, side by side: orthtree's `PointTree` against kiddo's `ImmutableKdTree` (bucket 32)
-//! and rstar's `RTree`, on the same seeded points (uniform in the unit square, and 64 Gaussian
-//! clusters of sigma 0.01), 2D `f64`, single-threaded, for sizes 10^3 to 10^6.
+//! Queries of `PointTree` on seeded points (uniform in the unit square, and 64 Gaussian clusters
+//! of sigma 0.01), 2D `f64`, single-threaded, for sizes 10^3 to 10^6. The same groups with kiddo
+//! and rstar beside it are the comparison crate's `queries` bench
+//! (`cargo bench -p orthtree-compare --bench queries`).
 //!
-//! Groups `queries/{uniform,clustered}/{kind}/{n}` with functions `orthtree`, `kiddo` (where it
-//! has the query) and `rstar`; kinds: `box` (about 100 results; kiddo has no box query),
-//! `radius` (about 100 results), `knn1`, `knn10`, `knn100`. One iteration runs a batch of 1000
-//! queries centred on points of the same distribution; answers are consumed.
+//! Groups `queries/{uniform,clustered}/{kind}/{n}` with the function `orthtree`; kinds: `box`
+//! (about 100 results), `radius` (about 100 results), `knn1`, `knn10`, `knn100`. One iteration
+//! runs a batch of 1000 queries centred on points of the same distribution; answers are
+//! consumed.
 //!
-//! Run with `cargo bench --bench queries` (a few minutes; `-- knn10` to pick one kind).
+//! Run with `cargo bench --bench queries` (a minute; `-- knn10` to pick one kind).
 
 mod common;
 
 use orthtree::prelude::*;
-use std::hint::black_box;
-use std::num::NonZeroUsize;
 use std::time::Duration;
 
 use common::Distribution;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use kiddo::immutable::float::kdtree::ImmutableKdTree;
-use kiddo::SquaredEuclidean;
 use orthtree::{Aabb, Ball, PointTree};
-use rstar::{RTree, AABB};
 
 const SIZES: [usize; 4] = [1_000, 10_000, 100_000, 1_000_000];
 const BATCH: usize = 1000;
@@ -37,8 +33,6 @@ fn bench(c: &mut Criterion) {
                 .map(|(i, &p)| (p, i as u64))
                 .collect();
             let ours = PointTree::new(&entries).unwrap();
-            let kd: ImmutableKdTree<f64, u64, 2, 32> = ImmutableKdTree::new_from_slice(&points);
-            let rt = RTree::bulk_load(points.clone());
             // About 100 results: side and radius from the mean density (uniform) or measured.
             let mut side = (100.0 / n as f64).sqrt().min(1.0);
             let mut radius = side / core::f64::consts::PI.sqrt();
@@ -68,18 +62,6 @@ fn bench(c: &mut Criterion) {
                     s
                 })
             });
-            g.bench_function(n.to_string() + "/rstar", |b| {
-                b.iter(|| {
-                    let mut s = 0usize;
-                    for q in &queries {
-                        let e = square(q, side);
-                        s += rt
-                            .locate_in_envelope(&AABB::from_corners(e.min, e.max))
-                            .count();
-                    }
-                    s
-                })
-            });
             g.finish();
 
             let mut g = c.benchmark_group(format!("queries/{name}/radius"));
@@ -94,31 +76,11 @@ fn bench(c: &mut Criterion) {
                     s
                 })
             });
-            g.bench_function(n.to_string() + "/kiddo", |b| {
-                b.iter(|| {
-                    let mut s = 0u64;
-                    for q in &queries {
-                        let found = kd.within_unsorted::<SquaredEuclidean>(q, radius * radius);
-                        s += found.iter().map(|nn| nn.item).sum::<u64>();
-                    }
-                    s
-                })
-            });
-            g.bench_function(n.to_string() + "/rstar", |b| {
-                b.iter(|| {
-                    let mut s = 0usize;
-                    for q in &queries {
-                        s += rt.locate_within_distance(*q, radius * radius).count();
-                    }
-                    s
-                })
-            });
             g.finish();
 
             for k in [1usize, 10, 100] {
                 let mut g = c.benchmark_group(format!("queries/{name}/knn{k}"));
                 setup(&mut g);
-                let nz = NonZeroUsize::new(k).unwrap();
                 g.bench_function(n.to_string() + "/orthtree", |b| {
                     b.iter(|| {
                         let mut s = 0.0;
@@ -131,29 +93,6 @@ fn bench(c: &mut Criterion) {
                                 .sum::<f64>();
                         }
                         s
-                    })
-                });
-                g.bench_function(n.to_string() + "/kiddo", |b| {
-                    b.iter(|| {
-                        let mut s = 0.0;
-                        for q in &queries {
-                            let found = kd.nearest_n::<SquaredEuclidean>(q, nz);
-                            s += found.iter().map(|nn| nn.distance).sum::<f64>();
-                        }
-                        s
-                    })
-                });
-                g.bench_function(n.to_string() + "/rstar", |b| {
-                    b.iter(|| {
-                        let mut s = 0.0;
-                        for q in &queries {
-                            s += rt
-                                .nearest_neighbor_iter(q)
-                                .take(k)
-                                .map(|p| p[0])
-                                .sum::<f64>();
-                        }
-                        black_box(s)
                     })
                 });
                 g.finish();

@@ -1,4 +1,5 @@
-//! The examples' command lines, run as a user runs them: every example answers `--help` (usage
+//! The library examples' command lines (`quadtree_points`, `point_location`; the command-line
+//! program has its own tests), run as a user runs them: every example answers `--help` (usage
 //! text, exit 0); an unknown option, a missing or bad value, work too large for memory and an
 //! output path in a missing folder each give one `error:` line naming the argument and exit 2,
 //! at once and never with a panic; small valid runs succeed.
@@ -14,14 +15,7 @@ use std::sync::OnceLock;
 use std::time::{Duration, Instant, SystemTime};
 
 /// The examples covered here.
-const EXAMPLES: [&str; 6] = [
-    "balance_fractal",
-    "compare",
-    "mesh_compare",
-    "pcb_heat",
-    "point_location",
-    "quadtree_points",
-];
+const EXAMPLES: [&str; 2] = ["point_location", "quadtree_points"];
 
 /// The profile's folder (`target/release`): this test runs from its `deps/` folder.
 fn profile_dir() -> PathBuf {
@@ -204,37 +198,17 @@ fn unknown_options_and_stray_arguments_are_named() {
             refused(name, &[arg], &[arg]);
         }
     }
-    for name in [
-        "balance_fractal",
-        "compare",
-        "mesh_compare",
-        "quadtree_points",
-    ] {
-        refused(name, &["stray"], &["stray"]);
-    }
+    refused("quadtree_points", &["stray"], &["stray"]);
     refused(
         "point_location",
         &["a.svg", "b.svg"],
         &["b.svg", "only one"],
     );
-    refused("pcb_heat", &["a.poly", "b.poly"], &["b.poly"]);
 }
 
 #[test]
 fn missing_and_bad_values_are_named() {
-    let cases: [(&str, &str); 11] = [
-        ("balance_fractal", "--level"),
-        ("balance_fractal", "--dim"),
-        ("balance_fractal", "--reps"),
-        ("compare", "--n"),
-        ("compare", "--queries"),
-        ("compare", "--reps"),
-        ("compare", "--dim"),
-        ("mesh_compare", "--seeds"),
-        ("mesh_compare", "--runs"),
-        ("quadtree_points", "--n"),
-        ("pcb_heat", "--size"),
-    ];
+    let cases: [(&str, &str); 1] = [("quadtree_points", "--n")];
     for (name, flag) in cases {
         let missing = refused(name, &[flag], &[flag]);
         assert!(missing.contains("needs a value"), "{missing}");
@@ -252,115 +226,17 @@ fn missing_and_bad_values_are_named() {
             refused(name, &[flag, bad], &[flag, "expected a number from"]);
         }
     }
-    refused(
-        "balance_fractal",
-        &["--connect", "diagonal"],
-        &["--connect", "diagonal"],
-    );
-    refused(
-        "balance_fractal",
-        &["--dim", "5"],
-        &["--dim", "5", "from 2 to 4"],
-    );
-    refused("compare", &["--dim", "4"], &["--dim", "from 2 to 3"]);
-    refused(
-        "compare",
-        &["--workload", "gaussian"],
-        &["--workload", "gaussian"],
-    );
-    for zero in [
-        ("compare", "--n"),
-        ("compare", "--queries"),
-        ("compare", "--reps"),
-        ("balance_fractal", "--reps"),
-        ("mesh_compare", "--runs"),
-        ("quadtree_points", "--n"),
-        ("pcb_heat", "--size"),
-    ] {
-        refused(zero.0, &[zero.1, "0"], &[zero.1, "0"]);
-    }
-    for random in [
-        "1,2",
-        "1,2,3,4",
-        "a,64,3",
-        "1,64,x",
-        "1,63,3",
-        "1,4,1",
-        "1,2147483648,3",
-        ",",
-    ] {
-        refused("pcb_heat", &["--random", random], &["--random"]);
-    }
-    refused(
-        "pcb_heat",
-        &["--random", "1,64,3", "--size", "64"],
-        &["--size", "--random"],
-    );
-    refused(
-        "pcb_heat",
-        &["board.poly", "--random", "1,64,3"],
-        &["board.poly", "--random"],
-    );
+    refused("quadtree_points", &["--n", "0"], &["--n", "0"]);
 }
 
 #[test]
 fn work_too_large_for_memory_is_estimated_and_refused() {
-    // Levels past the tree's deepest level, then levels whose leaves cannot fit in memory.
-    for (dim, level, deepest) in [("2", "40", "32"), ("3", "22", "21"), ("4", "255", "16")] {
-        refused(
-            "balance_fractal",
-            &["--dim", dim, "--level", level],
-            &["--level", level, deepest],
-        );
-    }
-    for (dim, level) in [
-        ("2", "32"),
-        ("2", "24"),
-        ("3", "21"),
-        ("3", "16"),
-        ("4", "16"),
-    ] {
-        refused(
-            "balance_fractal",
-            &["--dim", dim, "--level", level],
-            &["--level", level, "leaves", "estimated", "the limit is"],
-        );
-    }
     for n in ["100000000000", "18446744073709551615", "10000000000000"] {
-        refused(
-            "compare",
-            &["--n", n],
-            &["--n", n, "estimated", "the limit is"],
-        );
         refused(
             "quadtree_points",
             &["--n", n],
             &["--n", n, "estimated", "the limit is"],
         );
-    }
-    refused(
-        "compare",
-        &["--queries", "100000000000"],
-        &["--queries", "estimated"],
-    );
-    refused(
-        "mesh_compare",
-        &["--seeds", "1000000000"],
-        &["--seeds", "to 10000"],
-    );
-    // pcb_heat's random boards: counts above the capacity (U / 2)^2, then counts that fit the
-    // board but whose mesh and solve would not fit in memory.
-    for (random, named) in [
-        ("1,8,17", "at most 16"),
-        ("1,8,1000", "at most 16"),
-        ("1,1024,262145", "at most 262144"),
-        ("1,1073741824,100000000", "estimated"),
-        (
-            "1,1073741824,18446744073709551615",
-            "at most 288230376151711744",
-        ),
-    ] {
-        refused("pcb_heat", &["--random", random], &["--random", named]);
     }
 }
 
@@ -387,20 +263,6 @@ fn outputs_in_missing_folders_are_refused_before_any_work() {
 
 #[test]
 fn small_valid_runs_succeed() {
-    // balance_fractal: the leaf estimate its memory check uses is exact.
-    for (dim, level) in [("2", "0"), ("2", "3"), ("2", "7"), ("3", "5"), ("4", "4")] {
-        let r = run("balance_fractal", &["--dim", dim, "--level", level]);
-        assert_eq!(r.code, 0, "{}", r.stderr);
-        let field = |key: &str| {
-            let line = r.stdout.lines().find(|l| l.starts_with(key)).unwrap();
-            line[key.len()..].trim().to_string()
-        };
-        assert_eq!(
-            field("leaves before balance:"),
-            field("estimated before:"),
-            "dim {dim}, level {level}"
-        );
-    }
     let dir = scratch_dir("outputs");
     let r = run_in(
         "quadtree_points",
@@ -417,28 +279,4 @@ fn small_valid_runs_succeed() {
     assert_eq!(r.code, 0, "{}", r.stderr);
     assert!(svg.is_file());
     let _ = std::fs::remove_dir_all(&dir);
-    for args in [
-        &["--n", "1", "--queries", "1", "--reps", "1"][..],
-        &["--n", "7", "--queries", "3", "--reps", "1", "--dim", "3"],
-        &[
-            "--n",
-            "2000",
-            "--queries",
-            "50",
-            "--reps",
-            "1",
-            "--workload",
-            "lattice",
-        ],
-    ] {
-        let r = run("compare", args);
-        assert_eq!(r.code, 0, "compare {args:?}: {}", r.stderr);
-    }
-    let r = run("mesh_compare", &["--target", "--runs", "1"]);
-    assert_eq!(r.code, 0, "{}", r.stderr);
-    for random in ["1,64,10", "2,8,16", "3,1024,0"] {
-        let r = run("pcb_heat", &["--random", random, "--no-files"]);
-        assert_eq!(r.code, 0, "pcb_heat --random {random}: {}", r.stderr);
-        assert!(r.stdout.contains("temperature:"), "{}", r.stdout);
-    }
 }

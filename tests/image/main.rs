@@ -1,0 +1,11 @@
+//! Region trees of images: Boolean operations and their laws, bounds, PBM and PNG (feature `png`),
+//! every dimension.
+//!
+//! One test binary per area: each former test file is a module of it.
+
+mod every_dimension_regions;
+mod image_bounds;
+mod image_laws;
+mod image_ops;
+mod image_pbm;
+mod image_png;

@@ -1,0 +1,20 @@
+//! The point trees (`PointTree`, `DynamicPointTree`): build, bounds, duplicates, queries against
+//! brute force, single and batch updates, every dimension, bad input, and the rayon entry points.
+//!
+//! One test binary per area: each former test file is a module of it.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod bad_input;
+mod batch_updates;
+mod build_order;
+mod duplicates;
+mod dynamic;
+mod every_dimension_points;
+mod parallel;
+mod point_bounds;
+mod point_sets;
+mod point_tree;
+mod queries;
+mod updates;
