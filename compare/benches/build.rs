@@ -21,6 +21,7 @@ use criterion::{
 };
 use kiddo::float_leaf_slice::leaf_slice::{LeafSliceFloat, LeafSliceFloatChunk};
 use kiddo::immutable::float::kdtree::ImmutableKdTree;
+use orthtree::prelude::*;
 use orthtree::{PointTree, PointTreeBuilder};
 use orthtree_compare::points::Distribution;
 

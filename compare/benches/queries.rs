@@ -16,6 +16,7 @@ use std::time::Duration;
 
 use criterion::measurement::WallTime;
 use criterion::{criterion_group, criterion_main, BenchmarkGroup, Criterion, Throughput};
+use orthtree::prelude::*;
 use orthtree::{Aabb, Ball};
 use orthtree_compare::points::Distribution;
 use orthtree_compare::rivals::{corners, Kiddo, Orthtree, Rival, Rstar};

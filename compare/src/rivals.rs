@@ -4,6 +4,7 @@
 
 use kiddo::immutable::float::kdtree::ImmutableKdTree;
 use kiddo::SquaredEuclidean;
+use orthtree::prelude::*;
 use orthtree::{Aabb, Ball, PointTree};
 use rstar::{RTree, AABB};
 use std::num::NonZeroUsize;

@@ -5,6 +5,8 @@
 
 #[path = "../common/mod.rs"]
 mod common;
+#[path = "../../benches/workloads/compressed.rs"]
+mod workload;
 
 mod compressed;
 mod compressed_deep;

@@ -4,8 +4,7 @@
 //! closer than the finest cell, points outside, and refused input.
 
 use crate::common;
-#[path = "../../benches/workloads/compressed.rs"]
-mod workload;
+use crate::workload;
 
 use common::points::config;
 use orthtree::compressed::{FaceId, PointLocator, Subdivision, SubdivisionError};

@@ -5,8 +5,7 @@
 //! the compressed tree from its root.
 
 use crate::common;
-#[path = "../../benches/workloads/compressed.rs"]
-mod workload;
+use crate::workload;
 
 use common::points::config;
 use orthtree::compressed::SkipQuadtree;
