@@ -1,4 +1,4 @@
-//! The mesher's options (issue 9): the coarsest mode, the grid unit, the near and maximum sizes
+//! The mesher's options: the coarsest mode, the grid unit, the near and maximum sizes
 //! and a user size function. Every setting must keep the guarantees (conforming, respects the
 //! input, every angle in [45, 90], regions right): each mesh here is checked by the oracle of
 //! `mesh_oracle` and by the crate's own `Mesh::validate`, on random boards for every mode.

@@ -1,4 +1,4 @@
-//! `DynamicPointTree` (issue 4, item 2: single updates in amortised O(depth)): after every
+//! `DynamicPointTree` (single updates in amortised O(depth)): after every
 //! update the tree validates and has exactly the leaves (cells) and the points per leaf of a
 //! `PointTree` freshly built from the same pairs with the same root box, bucket size and maximum
 //! depth; every query kind (box, ball, half-space, count, visitor, nearest, k-nearest under three

@@ -1,4 +1,4 @@
-//! Insert and remove on `PointTree` (issue 4, item 2): after every update the tree validates, and
+//! Insert and remove on `PointTree`: after every update the tree validates, and
 //! it has exactly the leaves (cells) and the points per leaf (as multisets) of a tree freshly built
 //! from the same (point, item) pairs with the same root box, bucket size and maximum depth; and
 //! every query kind (box, ball, half-space, k-nearest) agrees with a brute-force scan of the
