@@ -60,7 +60,6 @@ fn parse(cli: &mut Cli) -> Result<Args, CliError> {
     cli::check_memory(
         &format!("--n {}", args.n),
         args.n as f64 * PEAK_BYTES_PER_POINT,
-        cli::memory_limit(),
     )?;
     Ok(args)
 }

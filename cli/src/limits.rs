@@ -2,8 +2,8 @@
 //! paths whose folder exists, and work the arguments make huge (an estimate of its memory
 //! against the memory this process may use). Every message names the argument and the limit.
 //!
-//! The comparison crate includes this file too (with `#[path]`), so not every item is used by
-//! both.
+//! The comparison crate and the library's examples include this file too (with `#[path]`), so
+//! not every item is used by each.
 #![allow(dead_code)]
 
 use std::fmt::Display;

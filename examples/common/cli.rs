@@ -113,145 +113,41 @@ impl Cli {
     }
 }
 
+// The guards are the command-line program's own (one copy of the range, path and memory checks);
+// these wrappers only put the argument's name in front of their messages.
+#[path = "../../cli/src/limits.rs"]
+mod guards;
+pub use guards::shown;
+
+/// The message of a refused `raw`, naming the argument `what` and the value.
+fn named(what: &str, raw: &str) -> impl FnOnce(String) -> CliError {
+    let name = format!("{what} {}", shown(raw));
+    move |message| CliError::new(format!("{name}: {message}"))
+}
+
 /// `raw` as a number in `min..=max`, or an error naming `what`, the value and the range.
 pub fn parse_number<T>(what: &str, raw: &str, min: T, max: T) -> Result<T, CliError>
 where
     T: FromStr + PartialOrd + Display + Copy,
 {
-    match raw.trim().parse::<T>() {
-        Ok(v) if min <= v && v <= max => Ok(v),
-        _ => Err(CliError::new(format!(
-            "{what} {}: expected a number from {min} to {max}",
-            shown(raw)
-        ))),
-    }
+    guards::parse_number(raw, min, max).map_err(named(what, raw))
 }
 
 /// `raw` as a path to write, checked before any work: its folder must exist and the path must
 /// not be a folder itself.
 pub fn output_path(what: &str, raw: &str) -> Result<PathBuf, CliError> {
-    let path = PathBuf::from(raw);
-    if raw.is_empty() {
-        return Err(CliError::new(format!("{what}: the path is empty")));
-    }
-    if path.is_dir() {
-        return Err(CliError::new(format!(
-            "{what} {}: is a folder, not a file",
-            shown(raw)
-        )));
-    }
-    check_folder(what, raw, path.parent().unwrap_or(Path::new("")))?;
-    Ok(path)
+    guards::output_path(raw).map_err(named(what, raw))
 }
 
 /// An error naming `what` and `raw` unless `folder` (empty: the current folder) is a folder.
 pub fn check_folder(what: &str, raw: &str, folder: &Path) -> Result<(), CliError> {
-    let folder = if folder.as_os_str().is_empty() {
-        Path::new(".")
-    } else {
-        folder
-    };
-    let problem = if folder.is_dir() {
-        return Ok(());
-    } else if folder.exists() {
-        "is not a folder"
-    } else {
-        "does not exist"
-    };
-    Err(CliError::new(format!(
-        "{what} {}: the folder {:?} {problem}",
-        shown(raw),
-        folder.display().to_string()
-    )))
+    guards::check_folder(folder).map_err(named(what, raw))
 }
 
-/// `raw` quoted, cut to 60 characters, invisible characters escaped.
-pub fn shown(raw: &str) -> String {
-    let cut: String = raw.chars().take(60).collect();
-    let more = if cut.len() < raw.len() { "..." } else { "" };
-    format!("{cut:?}{more}")
-}
-
-/// The memory this process may use, and where that figure comes from.
-#[derive(Clone, Copy, Debug)]
-pub struct MemoryLimit {
-    /// Bytes.
-    pub bytes: f64,
-    /// What set it, for messages.
-    pub source: &'static str,
-}
-
-/// Used when the system does not say (no `/proc/meminfo`): 4 GiB.
-pub const FALLBACK_MEMORY_BYTES: f64 = 4.0 * 1024.0 * 1024.0 * 1024.0;
-
-/// The smaller of the available memory (`MemAvailable` in `/proc/meminfo`) and three quarters of
-/// the address-space limit (`ulimit -v`, `prlimit --as`; a quarter is left for code, stacks and
-/// allocator slack); [`FALLBACK_MEMORY_BYTES`] when neither is known.
-pub fn memory_limit() -> MemoryLimit {
-    let available = std::fs::read_to_string("/proc/meminfo")
-        .ok()
-        .and_then(|s| kib_field(&s, "MemAvailable:"))
-        .map(|kib| kib * 1024.0);
-    let address_space = std::fs::read_to_string("/proc/self/limits")
-        .ok()
-        .and_then(|s| {
-            let line = s.lines().find(|l| l.starts_with("Max address space"))?;
-            line.split_whitespace().nth(3)?.parse::<f64>().ok()
-        })
-        .map(|bytes| bytes * 0.75);
-    match (available, address_space) {
-        (Some(a), Some(l)) if l < a => MemoryLimit {
-            bytes: l,
-            source: "three quarters of the address-space limit",
-        },
-        (Some(a), _) => MemoryLimit {
-            bytes: a,
-            source: "the available memory",
-        },
-        (None, Some(l)) => MemoryLimit {
-            bytes: l,
-            source: "three quarters of the address-space limit",
-        },
-        (None, None) => MemoryLimit {
-            bytes: FALLBACK_MEMORY_BYTES,
-            source: "the fallback limit, 4 GiB",
-        },
-    }
-}
-
-fn kib_field(text: &str, name: &str) -> Option<f64> {
-    let line = text.lines().find(|l| l.starts_with(name))?;
-    line.split_whitespace().nth(1)?.parse().ok()
-}
-
-/// Refuses work estimated at `bytes` when it exceeds `limit`: the message names `what` (the
-/// arguments and the size they ask for), the estimate and the limit.
-pub fn check_memory(what: &str, bytes: f64, limit: MemoryLimit) -> Result<(), CliError> {
-    if bytes.is_finite() && bytes <= limit.bytes {
-        Ok(())
-    } else {
-        Err(CliError::new(format!(
-            "{what}: needs an estimated {}; the limit is {} ({})",
-            human_bytes(bytes),
-            human_bytes(limit.bytes),
-            limit.source
-        )))
-    }
-}
-
-/// Bytes with a binary prefix: `1.5 GiB`; huge or infinite values in scientific notation.
-pub fn human_bytes(bytes: f64) -> String {
-    const UNITS: [&str; 7] = ["B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"];
-    if !bytes.is_finite() || bytes >= 1024f64.powi(7) {
-        return format!("{bytes:.2e} bytes");
-    }
-    let mut value = bytes.max(0.0);
-    let mut unit = 0;
-    while value >= 1024.0 && unit + 1 < UNITS.len() {
-        value /= 1024.0;
-        unit += 1;
-    }
-    format!("{value:.1} {}", UNITS[unit])
+/// Refuses work estimated at `bytes` when it exceeds the memory this process may use: the
+/// message names `what` (the arguments and the size they ask for), the estimate and the limit.
+pub fn check_memory(what: &str, bytes: f64) -> Result<(), CliError> {
+    guards::check_memory(what, bytes).map_err(CliError::new)
 }
 
 /// Runs `parse` on the process's arguments: `--help` prints `usage` and exits 0; an error
