@@ -23,7 +23,7 @@ use criterion::measurement::WallTime;
 use criterion::{
     criterion_group, criterion_main, BatchSize, BenchmarkGroup, Criterion, SamplingMode, Throughput,
 };
-use orthtree::{PointTree, PointTreeBuilder};
+use orthtree::{points::PointTreeBuilder, PointTree};
 
 /// The sizes of every group: a small one to show scaling, and 10^6.
 const SIZES: [usize; 2] = [10_000, 1_000_000];

@@ -8,7 +8,7 @@
 
 use orthtree::io::svg::point_tree_svg;
 use orthtree::prelude::*;
-use orthtree::{Aabb, Connectivity, Quadtree, DEFAULT_BUCKET_SIZE};
+use orthtree::{points::DEFAULT_BUCKET_SIZE, Aabb, Connectivity, Quadtree};
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
 use std::path::PathBuf;

@@ -4,8 +4,24 @@
 //! split convention, neighbour finding and 2:1 balance (de Berg, Cheong, van Kreveld and
 //! Overmars, *Computational Geometry*, chapter 14).
 //!
-//! Layers: [`geom`] (scalars, boxes, cells, Morton keys, directions) → [`tree`] (topology:
-//! arena, traversals, neighbours, balance) → [`points`] (the point tree) → [`io`] (SVG).
+//! Layers, each using only those before it: [`geom`] (scalars, boxes, cells, Morton keys,
+//! directions, the root geometry) → [`tree`] (topology: arena, traversals, neighbours, balance)
+//! → [`query`] (the engines over an index trait, and the point-set traits) → the consumers
+//! [`points`], [`compressed`], [`image`] and [`mesh`] → [`io`] (readers and writers).
+//!
+//! # The public surface
+//! The crate root names what a first program names: the trees ([`PointTree`] with its aliases
+//! [`Quadtree`] and [`Octree`], [`DynamicPointTree`], [`CompressedTree`], [`SkipQuadtree`],
+//! [`RegionTree`] with [`ImageTree`] and [`VoxelTree`], and the topology [`Tree`]), the two
+//! point-set traits with what their queries take and give ([`PointSet`], [`PointSetMut`],
+//! [`Neighbor`], [`Region`], [`Ball`], [`Metric`]), the geometry every tree is built on
+//! ([`Aabb`], [`Cell`], [`Scalar`], [`Connectivity`]) and the three error types ([`Error`] for
+//! input, [`QueryError`] for queries, [`ValidationError`] for broken invariants). Everything
+//! else is reached through the module that defines it, at one path: builders, options and
+//! their errors with their tree's module, metrics and regions other than the ball in
+//! [`query`], every iterator type in [`iter`]. The reference algorithms that tests compare
+//! against (the chapter's balance) are compiled only with the `reference` feature.
+//! [`prelude`] brings the point-set traits into scope.
 //!
 //! ```
 //! use orthtree::prelude::*;
@@ -35,24 +51,31 @@ mod prefetch;
 pub mod query;
 pub mod tree;
 
-pub use compressed::{CompressedTree, CompressedTreeBuilder, SkipQuadtree};
+pub use compressed::{CompressedTree, SkipQuadtree};
 pub use error::{Error, ValidationError};
-pub use geom::{
-    morton, validate_point, Aabb, AabbError, Cell, Connectivity, DeepCell, Direction, RootGeometry,
-    Scalar,
-};
+pub use geom::{Aabb, Cell, Connectivity, Scalar};
 pub use image::{ImageTree, RegionTree, VoxelTree};
-pub use points::{
-    DynamicPointTree, Leaf, Leaves, Octree, PointTree, PointTreeBuilder, Quadtree,
-    DEFAULT_BUCKET_SIZE,
-};
-pub use query::{
-    Ball, HalfSpace, Metric, Neighbor, PointSet, PointSetMut, QueryError, Region, Relation,
-    SpatialIndex,
-};
-pub use tree::{
-    BalanceOptions, LevelDifferenceError, NodeId, PreOrder, SplitError, Tree, TreeError,
-};
+pub use points::{DynamicPointTree, Octree, PointTree, Quadtree};
+pub use query::{Ball, Metric, Neighbor, PointSet, PointSetMut, QueryError, Region};
+pub use tree::Tree;
+
+/// Every public iterator type of the crate, in one place. Each is returned by a method of the
+/// type named in its documentation and is rarely named by hand.
+///
+/// ```
+/// use orthtree::{iter::PreOrder, tree::NodeId, Tree};
+/// let mut t = Tree::<2>::new();
+/// t.split(NodeId::ROOT);
+/// let walk: PreOrder<'_, 2> = t.pre_order();
+/// assert_eq!(walk.count(), 5);
+/// ```
+pub mod iter {
+    pub use crate::image::iter::Blocks;
+    pub use crate::mesh::halfedge::Outgoing;
+    pub use crate::points::leaves::Leaves;
+    pub use crate::query::point_set::{NearestIter, RegionIter};
+    pub use crate::tree::traverse::PreOrder;
+}
 
 /// The traits whose methods are every point tree's queries and updates, to bring into scope
 /// with `use orthtree::prelude::*;`.

@@ -5,7 +5,7 @@
 //! when its child id has an even number of set bits: 0 or 3 in 2D, 0, 3, 5 or 6 in 3D (p4est's
 //! rule), and the same parity rule in higher dimensions.
 
-use orthtree::{NodeId, Tree};
+use orthtree::{tree::NodeId, Tree};
 
 /// The fractal tree of p4est's timings example at `level`.
 pub fn fractal<const D: usize>(level: u8) -> Tree<D> {

@@ -11,7 +11,7 @@
 
 use crate::limits;
 use crate::Failure;
-use orthtree::{BalanceOptions, Connectivity, Tree};
+use orthtree::{tree::BalanceOptions, Connectivity, Tree};
 use std::time::Instant;
 
 #[path = "../../benches/workloads/fractal.rs"]
@@ -155,7 +155,7 @@ fn checksum<const D: usize>(tree: &Tree<D>) -> u64 {
 }
 
 /// The serial balance, or with `--parallel` the rayon one.
-fn balance<const D: usize>(tree: &mut Tree<D>, args: &Args) -> Vec<orthtree::NodeId> {
+fn balance<const D: usize>(tree: &mut Tree<D>, args: &Args) -> Vec<orthtree::tree::NodeId> {
     #[cfg(feature = "rayon")]
     if args.parallel {
         return tree.par_balance(args.options);

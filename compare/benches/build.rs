@@ -22,7 +22,7 @@ use criterion::{
 use kiddo::float_leaf_slice::leaf_slice::{LeafSliceFloat, LeafSliceFloatChunk};
 use kiddo::immutable::float::kdtree::ImmutableKdTree;
 use orthtree::prelude::*;
-use orthtree::{PointTree, PointTreeBuilder};
+use orthtree::{points::PointTreeBuilder, PointTree};
 use orthtree_compare::points::Distribution;
 
 /// The sizes of every group: a small one to show scaling, and 10^6.

@@ -4,7 +4,7 @@
 //! 1. Check the points and choose the root cube exactly as [`PointTreeBuilder`] does (the same
 //!    code: a point tree with one bucket holding everything, which is only the validation, the
 //!    root cube and the Morton sort), so both trees have the same cells.
-//! 2. Key every point again at 64 levels ([`RootGeometry::deep_key`](crate::RootGeometry::deep_key)).
+//! 2. Key every point again at 64 levels ([`RootGeometry::deep_key`](crate::geom::RootGeometry::deep_key)).
 //!    The deep boundaries refine the point tree's, so step 1's order is already the deep Morton
 //!    order except among points sharing a finest [`Cell`]: one O(n) pass checks it, and only
 //!    when it fails does a stable merge sort of slot numbers put them in order (Rust's sort,
@@ -18,12 +18,12 @@
 //! but their number does not; this one costs O(n log n) whatever the spread.
 //!
 //! Conversions between [`PointTree`] and [`CompressedTree`] live here too. Both share
-//! [`RootGeometry`](crate::RootGeometry), so every point keeps its cell and its Morton key: the
+//! [`RootGeometry`](crate::geom::RootGeometry), so every point keeps its cell and its Morton key: the
 //! compressed tree of a point tree is exercise 14.5's compression of it, carried on below the
 //! point tree's deepest level to 64 levels (step 2 above), and the point tree of a compressed
 //! tree is the fresh build of the same points over the same root cube, a compressed node deeper
 //! than its maximum depth lying in one of its deepest leaves
-//! ([`DeepCell::to_cell`](crate::DeepCell::to_cell)). The point tree's order among points
+//! ([`DeepCell::to_cell`](crate::geom::DeepCell::to_cell)). The point tree's order among points
 //! sharing a finest [`Cell`] is its input order, the compressed tree's their deep Morton order.
 //! Both directions run over the points in Morton order without a full sort.
 
@@ -39,7 +39,7 @@ use crate::query::SpatialIndex;
 ///
 /// ```
 /// use orthtree::prelude::*;
-/// use orthtree::{Aabb, CompressedTreeBuilder};
+/// use orthtree::{Aabb, compressed::CompressedTreeBuilder};
 /// let root = Aabb::new([0.0, 0.0], [1.0, 1.0]).unwrap();
 /// let mut t = CompressedTreeBuilder::new().root_box(root).build(&[([0.5, 0.5], 'a')]).unwrap();
 /// t.insert([1.0, 1.0], 'b').unwrap();

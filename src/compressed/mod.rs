@@ -211,7 +211,7 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
         }
     }
 
-    /// The finest key of a query point, checked ([`crate::validate_point`]) and inside the
+    /// The finest key of a query point, checked ([`crate::geom::validate_point`]) and inside the
     /// domain.
     pub(crate) fn query_key(&self, point: &[S; D]) -> Result<DeepKey<D>, Error> {
         let p = crate::geom::exact_point(point).map_err(|(axis, f)| Error::bad_query(axis, f))?;
@@ -241,7 +241,7 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
     }
 
     /// The equivalent [`PointTree`] with the same root cube and cells, with `bucket_size` and
-    /// `max_depth` (as [`crate::PointTreeBuilder`] takes them): the points in Morton order, no
+    /// `max_depth` (as [`crate::points::PointTreeBuilder`] takes them): the points in Morton order, no
     /// sort. O(n + nodes).
     ///
     /// Errors: a zero bucket size; a maximum depth beyond

@@ -32,7 +32,7 @@ pub enum AabbError {
         /// The offending axis.
         axis: usize,
     },
-    /// A cube's side ([`crate::RootGeometry::try_new`]) that is NaN, infinite or negative.
+    /// A cube's side ([`crate::geom::RootGeometry::try_new`]) that is NaN, infinite or negative.
     InvalidSide {
         /// The side given (compared by its bits: NaN equals itself).
         side: super::FloatBits,
@@ -115,13 +115,13 @@ impl<S: Scalar, const D: usize> Aabb<S, D> {
 
     /// The box converted to `f64` coordinates exactly: an error when a corner is not finite
     /// ([`AabbError::NonFinite`]) or is an integer `f64` cannot hold ([`AabbError::Inexact`]),
-    /// naming the first such axis (the check of [`crate::validate_point`] on both corners).
+    /// naming the first such axis (the check of [`crate::geom::validate_point`] on both corners).
     ///
     /// # Errors
     /// [`AabbError::NonFinite`] or [`AabbError::Inexact`], naming the first such axis.
     ///
     /// ```
-    /// use orthtree::{Aabb, AabbError};
+    /// use orthtree::{Aabb, geom::AabbError};
     /// let b = Aabb { min: [0i64, 0], max: [1 << 53, (1 << 53) + 1] };
     /// assert_eq!(b.to_exact_f64(), Err(AabbError::Inexact { axis: 1, value: (1 << 53) + 1 }));
     /// let b = Aabb { min: [0i64, 0], max: [1 << 53, (1 << 53) + 2] };

@@ -7,7 +7,7 @@
 /// An offset of one cell in {-1, 0, +1}^D (not all zero), as bit masks over the axes.
 ///
 /// ```
-/// use orthtree::Direction;
+/// use orthtree::geom::Direction;
 /// let ne = Direction::NORTH.combine(Direction::EAST).unwrap();
 /// assert_eq!(ne.offset::<2>(), [1, 1]);
 /// assert_eq!(ne.axes_moved(), 2);
@@ -136,7 +136,7 @@ impl Direction {
     ///
     /// There are 2D face directions, and 3^D - 1 directions with corner connectivity.
     /// ```
-    /// use orthtree::{Connectivity, Direction};
+    /// use orthtree::{Connectivity, geom::Direction};
     /// assert_eq!(Direction::all::<3>(Connectivity::Face).count(), 6);
     /// assert_eq!(Direction::all::<3>(Connectivity::Edge).count(), 18);
     /// assert_eq!(Direction::all::<3>(Connectivity::Corner).count(), 26);

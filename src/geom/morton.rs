@@ -8,7 +8,7 @@
 /// Interleaves the low `bits` bits of each coordinate; `bits * D` must be at most 64.
 ///
 /// ```
-/// use orthtree::morton::{interleave, deinterleave};
+/// use orthtree::geom::morton::{interleave, deinterleave};
 /// // x = 0b01, y = 0b10: digits (y1 x1)(y0 x0) = (1 0)(0 1)
 /// assert_eq!(interleave([0b01, 0b10], 2), 0b1001);
 /// assert_eq!(deinterleave::<2>(0b1001, 2), [0b01, 0b10]);

@@ -11,7 +11,7 @@
 //! A coordinate on a split line (`x == b(t)`) therefore goes to the lower cell, as in the chapter,
 //! and a cell's points are exactly those whose key has the cell's key as prefix.
 //!
-//! The 64 levels of [`DeepCell`](crate::DeepCell)s, for the compressed trees, continue these
+//! The 64 levels of [`DeepCell`](crate::geom::DeepCell)s, for the compressed trees, continue these
 //! lines below level 32 (`root_deep.rs`: [`RootGeometry::deep_coordinate`]).
 
 use super::{Aabb, AabbError, Cell, Scalar};
@@ -22,7 +22,7 @@ const LANES: usize = 8;
 /// The root cube of a tree and the map between coordinates and cells.
 ///
 /// ```
-/// use orthtree::{Cell, RootGeometry};
+/// use orthtree::{Cell, geom::RootGeometry};
 /// let g = RootGeometry::<2>::new([0.0, 0.0], 16.0);
 /// let c = Cell::new(1, [1, 0]).unwrap(); // the chapter's SE quadrant
 /// assert_eq!(g.cell_box(&c).min, [8.0, 0.0]);
@@ -65,7 +65,7 @@ impl<const D: usize> RootGeometry<D> {
     /// ([`AabbError::NonFinite`]) or the bad side ([`AabbError::InvalidSide`]).
     ///
     /// ```
-    /// use orthtree::{AabbError, RootGeometry};
+    /// use orthtree::{geom::AabbError, geom::RootGeometry};
     /// assert!(RootGeometry::<2>::try_new([0.0, 1.0], 2.0).is_ok());
     /// assert_eq!(
     ///     RootGeometry::<2>::try_new([0.0, f64::NAN], 2.0),

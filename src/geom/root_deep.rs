@@ -65,7 +65,7 @@ impl<const D: usize> RootGeometry<D> {
     /// level-32 cell's `f64` values (the module doc).
     ///
     /// ```
-    /// use orthtree::RootGeometry;
+    /// use orthtree::geom::RootGeometry;
     /// let g = RootGeometry::<2>::new([0.0, 0.0], 1.0);
     /// assert_eq!(g.deep_boundary(0, 3, 2), g.boundary(0, 3, 2));
     /// assert_eq!(g.deep_boundary(0, (1 << 52) + 1, 53), 0.5 + (-53f64).exp2());
@@ -99,7 +99,7 @@ impl<const D: usize> RootGeometry<D> {
     /// [`Cell::MAX_LEVEL`](crate::Cell::MAX_LEVEL) bits are [`RootGeometry::coordinate`]. O(1).
     ///
     /// ```
-    /// use orthtree::RootGeometry;
+    /// use orthtree::geom::RootGeometry;
     /// let g = RootGeometry::<2>::new([0.0, 0.0], 1.0);
     /// assert_eq!(g.deep_coordinate(0, 0.5), (1 << 63) - 1); // on a split line: the lower cell
     /// assert_eq!(g.deep_coordinate(0, 0.5f64.next_up()), (1 << 63) + (1 << 11) - 1);
@@ -142,7 +142,7 @@ impl<const D: usize> RootGeometry<D> {
     /// The deep cell at `level` (at most 64) that holds `point` under the split convention.
     ///
     /// ```
-    /// use orthtree::RootGeometry;
+    /// use orthtree::geom::RootGeometry;
     /// let g = RootGeometry::<2>::new([0.0, 0.0], 1.0);
     /// let (a, b) = (g.deep_cell_of(&[0.5, 0.5], 64), g.deep_cell_of(&[0.5f64.next_up(), 0.5], 64));
     /// assert_ne!(a, b);

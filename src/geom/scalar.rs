@@ -1,7 +1,7 @@
 //! The coordinate trait [`Scalar`], implemented for `f32`, `f64` and the primitive integers, and
 //! the one check every coordinate passes before it enters a tree or a query.
 //!
-//! Every coordinate is compared and subdivided in `f64` (see [`crate::RootGeometry`]). That is
+//! Every coordinate is compared and subdivided in `f64` (see [`crate::geom::RootGeometry`]). That is
 //! exact for `f32`, `f64` and integers up to 32 bits; a 64-bit integer is exact only when `f64`
 //! holds it (every value up to 2^53 in magnitude, and beyond that the multiples of a large enough
 //! power of two: `2^53 + 2`, `u64::MAX - 2047`, `i64::MIN`, but not `2^53 + 1`, `u64::MAX` or
@@ -122,7 +122,7 @@ int_scalar!(i8, i16, i32, i64, u8, u16, u32, u64);
 /// O(D).
 ///
 /// ```
-/// use orthtree::validate_point;
+/// use orthtree::geom::validate_point;
 /// assert_eq!(validate_point(&[0.0, 1.0]), Ok(()));
 /// assert_eq!(validate_point(&[0.0, f64::INFINITY]), Err(1));
 /// assert_eq!(validate_point(&[1i64 << 53, (1 << 53) + 1]), Err(1));

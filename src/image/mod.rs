@@ -70,7 +70,7 @@
 mod budget;
 mod build;
 mod count;
-mod iter;
+pub(crate) mod iter;
 mod operators;
 mod ops;
 mod rows;
@@ -78,7 +78,7 @@ mod validate;
 
 pub use budget::DEFAULT_MAX_NODES;
 pub use build::Coverage;
-pub use iter::{Block, Blocks};
+pub use iter::Block;
 pub use ops::BoolOp;
 pub use rows::RowBuilder;
 pub use validate::Malformation;

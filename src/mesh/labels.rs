@@ -10,8 +10,8 @@
 
 use super::outline::{Outlines, Piece, RISING};
 use super::vertices::Grid;
+use crate::geom::Direction;
 use crate::tree::NodeId;
-use crate::Direction;
 
 /// The sides of a cell in the order south, east, north, west (counter-clockwise from the bottom).
 pub(super) const SIDES: [Direction; 4] = [

@@ -20,8 +20,8 @@
 
 use super::Point;
 use crate::geom::Cell;
+use crate::geom::Direction;
 use crate::tree::{NodeId, Tree};
-use crate::Direction;
 
 /// The balanced quadtree with the cell of every node, on a board of side `size` grid units.
 #[derive(Clone, Copy)]

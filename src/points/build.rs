@@ -39,7 +39,7 @@ pub const DEFAULT_BUCKET_SIZE: usize = 64;
 ///
 /// ```
 /// use orthtree::prelude::*;
-/// use orthtree::{Aabb, PointTreeBuilder};
+/// use orthtree::{Aabb, points::PointTreeBuilder};
 /// let pts = [([1.0, 1.0], 'a'), ([3.0, 3.0], 'b'), ([3.5, 3.5], 'c')];
 /// let t = PointTreeBuilder::new()
 ///     .root_box(Aabb::new([0.0, 0.0], [4.0, 4.0]).unwrap())

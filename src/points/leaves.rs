@@ -4,7 +4,7 @@
 use super::PointTree;
 use crate::geom::{Cell, Scalar};
 use crate::query::PointSet;
-use crate::tree::{NodeId, PreOrder};
+use crate::tree::{traverse::PreOrder, NodeId};
 
 /// One leaf of a [`PointTree`]: its node, cell, points and items.
 #[derive(Clone, Copy, Debug)]

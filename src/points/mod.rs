@@ -9,7 +9,7 @@ mod batch_update;
 mod build;
 mod dynamic;
 mod index;
-mod leaves;
+pub(crate) mod leaves;
 mod network;
 #[cfg(feature = "rayon")]
 mod parallel;
@@ -21,7 +21,7 @@ pub(crate) use build::check_point;
 pub use build::{PointTreeBuilder, DEFAULT_BUCKET_SIZE};
 pub use dynamic::{DynamicIndex, DynamicNode, DynamicPointTree};
 pub use index::PointNode;
-pub use leaves::{Leaf, Leaves};
+pub use leaves::Leaf;
 
 use crate::error::{Error, ValidationError};
 use crate::geom::{Aabb, Cell, Dim, RootGeometry, Scalar};

@@ -29,7 +29,7 @@ mod index;
 mod knn;
 mod metric;
 mod nearest_iter;
-mod point_set;
+pub(crate) mod point_set;
 pub mod range;
 mod region;
 
@@ -40,7 +40,7 @@ pub(crate) use index::nearest_child_by_boxes;
 pub use index::SpatialIndex;
 pub use knn::Neighbor;
 pub use metric::{Chebyshev, Manhattan, Metric, SquaredEuclidean};
-pub use point_set::{NearestIter, Payload, PointSet, PointSetMut, RegionIter};
+pub use point_set::{Payload, PointSet, PointSetMut};
 pub use range::QueryStats;
 pub use region::{Ball, HalfSpace, Region, Relation};
 
@@ -138,7 +138,7 @@ impl core::fmt::Display for QueryError {
 impl std::error::Error for QueryError {}
 
 /// A query point (or ball centre) in `f64`, exactly: an error naming the first axis that fails
-/// [`crate::validate_point`].
+/// [`crate::geom::validate_point`].
 #[inline]
 pub(crate) fn query_point<S: crate::Scalar, const D: usize>(
     p: &[S; D],

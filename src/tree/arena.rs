@@ -31,7 +31,7 @@ impl NodeId {
 /// The topology of a 2^D-tree: which nodes exist, their parents, children and levels.
 ///
 /// ```
-/// use orthtree::{Tree, NodeId};
+/// use orthtree::{Tree, tree::NodeId};
 /// let mut t = Tree::<2>::new();
 /// let first = t.split(NodeId::ROOT);
 /// assert_eq!(t.node_count(), 5);

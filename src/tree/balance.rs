@@ -38,7 +38,7 @@ impl<const D: usize> Tree<D> {
     /// search, one search per internal node and outward direction.
     ///
     /// ```
-    /// use orthtree::{Connectivity, NodeId, Tree};
+    /// use orthtree::{Connectivity, tree::NodeId, Tree};
     /// let mut t = Tree::<2>::new();
     /// // refine towards the centre from the SW quadrant, down to level 4
     /// let mut v = t.split(NodeId::ROOT); // the SW child

@@ -136,7 +136,7 @@ impl<const D: usize> Tree<D> {
     /// search; it stops at the first node in violation.
     ///
     /// ```
-    /// use orthtree::{BalanceOptions, Connectivity, NodeId, Tree};
+    /// use orthtree::{tree::BalanceOptions, Connectivity, tree::NodeId, Tree};
     /// let mut t = Tree::<3>::new();
     /// let first = t.split(NodeId::ROOT);
     /// let g = t.split(first);
@@ -180,7 +180,7 @@ impl<const D: usize> Tree<D> {
     /// expanded breadth-first until there are enough subtrees, which are then tested in parallel.
     ///
     /// ```
-    /// use orthtree::{Connectivity, NodeId, Tree};
+    /// use orthtree::{Connectivity, tree::NodeId, Tree};
     /// let mut t = Tree::<2>::new();
     /// let sw = t.split(NodeId::ROOT);
     /// let corner = t.split(sw); // level 2

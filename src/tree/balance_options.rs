@@ -15,7 +15,7 @@ use core::num::NonZeroU8;
 /// other value, checked.
 ///
 /// ```
-/// use orthtree::{BalanceOptions, Connectivity};
+/// use orthtree::{tree::BalanceOptions, Connectivity};
 /// let strict = BalanceOptions::new(Connectivity::Face); // the chapter's 2:1 balance
 /// let weak = strict.weak();                              // exercise 14.6: factor 4
 /// assert_eq!((strict.max_level_difference(), weak.max_level_difference()), (1, 2));

@@ -25,7 +25,7 @@ impl<const D: usize> Tree<D> {
     /// the module doc); gives the same leaves. Returns the leaves split, each after its parent.
     ///
     /// ```
-    /// use orthtree::{Connectivity, NodeId, Tree};
+    /// use orthtree::{Connectivity, tree::NodeId, Tree};
     /// let mut t = Tree::<2>::new();
     /// let mut v = t.split(NodeId::ROOT);
     /// for _ in 0..6 {

@@ -25,7 +25,7 @@ impl<const D: usize> Tree<D> {
     /// If `leaf` is not a leaf or is at [`crate::Cell::MAX_LEVEL`].
     ///
     /// ```
-    /// use orthtree::{Connectivity, NodeId, Tree};
+    /// use orthtree::{Connectivity, tree::NodeId, Tree};
     /// let mut t = Tree::<2>::new();
     /// let mut v = NodeId::ROOT;
     /// for c in [0, 3, 3, 3] {

@@ -45,7 +45,7 @@ impl<const D: usize> Tree<D> {
     /// O(2^D), plus O(levels) when the tree's depth drops.
     ///
     /// ```
-    /// use orthtree::{NodeId, Tree};
+    /// use orthtree::{tree::NodeId, Tree};
     /// let mut t = Tree::<2>::new();
     /// let first = t.split(NodeId::ROOT);
     /// t.merge(NodeId::ROOT).unwrap();
@@ -107,7 +107,7 @@ impl<const D: usize> Tree<D> {
 mod tests {
     use super::*;
     use crate::geom::Cell;
-    use crate::{BalanceOptions, Connectivity};
+    use crate::{tree::BalanceOptions, Connectivity};
 
     #[test]
     fn merge_refuses_leaves_and_grandparents() {
@@ -187,7 +187,7 @@ mod tests {
         assert_eq!(cells(&t), cells(&fresh));
         assert_eq!(t.depth(), fresh.depth());
         assert_eq!(t.leaf_count(), fresh.leaf_count());
-        let dirs: Vec<_> = crate::Direction::all::<2>(Connectivity::Corner).collect();
+        let dirs: Vec<_> = crate::geom::Direction::all::<2>(Connectivity::Corner).collect();
         for ((a, ca), (b, cb)) in t.pre_order().zip(fresh.pre_order()) {
             assert_eq!(ca, cb);
             for &d in &dirs {

@@ -24,11 +24,10 @@ mod balanced_split;
 mod inner;
 mod merge;
 mod neighbors;
-mod traverse;
+pub(crate) mod traverse;
 mod validate;
 
 pub use arena::{NodeId, SplitError, Tree};
 pub use balance_options::{BalanceOptions, LevelDifferenceError};
 pub use merge::MergeError;
-pub use traverse::PreOrder;
 pub use validate::TreeError;

@@ -21,7 +21,7 @@ impl<const D: usize> Tree<D> {
     /// O(level(id) + 1) (Theorem 14.3), no allocation for depth up to 64.
     ///
     /// ```
-    /// use orthtree::{Direction, NodeId, Tree};
+    /// use orthtree::{geom::Direction, tree::NodeId, Tree};
     /// let mut t = Tree::<2>::new();
     /// let sw = t.split(NodeId::ROOT);            // children: SW = 0, SE = 1, NW = 2, NE = 3
     /// let nw = t.child(NodeId::ROOT, 2).unwrap();
@@ -74,7 +74,7 @@ impl<const D: usize> Tree<D> {
     /// paths below the neighbour.
     ///
     /// ```
-    /// use orthtree::{Direction, NodeId, Tree};
+    /// use orthtree::{geom::Direction, tree::NodeId, Tree};
     /// let mut t = Tree::<2>::new();
     /// let sw = t.split(NodeId::ROOT);
     /// let se = t.child(NodeId::ROOT, 1).unwrap();

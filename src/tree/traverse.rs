@@ -37,7 +37,7 @@ impl<const D: usize> Tree<D> {
     /// depth * (2^D - 1) + 1 entries.
     ///
     /// ```
-    /// use orthtree::{Tree, NodeId};
+    /// use orthtree::{Tree, tree::NodeId};
     /// let mut t = Tree::<2>::new();
     /// t.split(NodeId::ROOT);
     /// let levels: Vec<u8> = t.pre_order().map(|(_, c)| c.level()).collect();
@@ -50,7 +50,7 @@ impl<const D: usize> Tree<D> {
     /// The leaves with their cells in Morton order (the chapter's quadtree subdivision).
     ///
     /// ```
-    /// use orthtree::{Tree, NodeId};
+    /// use orthtree::{Tree, tree::NodeId};
     /// let mut t = Tree::<1>::new();
     /// let first = t.split(NodeId::ROOT);
     /// t.split(first);

@@ -159,7 +159,7 @@ impl<const D: usize> Tree<D> {
     /// recursion.
     ///
     /// ```
-    /// use orthtree::{NodeId, Tree};
+    /// use orthtree::{tree::NodeId, Tree};
     /// let mut t = Tree::<3>::new();
     /// let first = t.split(NodeId::ROOT);
     /// t.split(first);

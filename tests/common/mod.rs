@@ -9,7 +9,7 @@
 pub mod points;
 pub mod updates;
 
-use orthtree::{BalanceOptions, Cell, Connectivity, Direction, NodeId, Tree};
+use orthtree::{geom::Direction, tree::BalanceOptions, tree::NodeId, Cell, Connectivity, Tree};
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
 use std::collections::{BTreeSet, HashSet};

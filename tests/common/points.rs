@@ -4,7 +4,10 @@
 
 use super::{all_options, leaf_cells};
 use orthtree::prelude::*;
-use orthtree::{Aabb, BalanceOptions, Cell, PointTree, PointTreeBuilder, RootGeometry, Scalar};
+use orthtree::{
+    geom::RootGeometry, points::PointTreeBuilder, tree::BalanceOptions, Aabb, Cell, PointTree,
+    Scalar,
+};
 use proptest::test_runner::{Config, RngSeed};
 
 /// A proptest configuration with a fixed seed, `cases` cases and no regression files.

@@ -10,7 +10,8 @@ use common::points::config;
 use orthtree::prelude::*;
 use orthtree::query::{Chebyshev, Manhattan, Metric, SquaredEuclidean};
 use orthtree::{
-    Aabb, Ball, CompressedTree, DeepCell, Error, HalfSpace, PointTree, Quadtree, Region, Scalar,
+    geom::DeepCell, query::HalfSpace, Aabb, Ball, CompressedTree, Error, PointTree, Quadtree,
+    Region, Scalar,
 };
 use proptest::prelude::*;
 

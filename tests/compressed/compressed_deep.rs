@@ -8,7 +8,7 @@ use crate::common;
 use common::points::config;
 use orthtree::compressed::SkipQuadtree;
 use orthtree::prelude::*;
-use orthtree::{Aabb, Cell, CompressedTree, DeepCell, PointTree, Quadtree};
+use orthtree::{geom::DeepCell, Aabb, Cell, CompressedTree, PointTree, Quadtree};
 use proptest::prelude::*;
 
 fn unit<const D: usize>() -> Aabb<f64, D> {

@@ -17,7 +17,7 @@ fn grid_point() -> impl Strategy<Value = [f64; 2]> {
     proptest::array::uniform2((0u32..=32).prop_map(|j| j as f64 / 32.0))
 }
 
-fn shape(t: &SkipQuadtree<f64, usize, 2>) -> Vec<Vec<(orthtree::DeepCell<2>, bool)>> {
+fn shape(t: &SkipQuadtree<f64, usize, 2>) -> Vec<Vec<(orthtree::geom::DeepCell<2>, bool)>> {
     (0..t.level_count())
         .map(|i| t.level_cells(i).collect())
         .collect()

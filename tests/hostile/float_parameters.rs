@@ -9,8 +9,8 @@ use crate::common;
 use orthtree::prelude::*;
 use orthtree::query::{FloatBits, QueryError, Region};
 use orthtree::{
-    Aabb, AabbError, Ball, CompressedTree, DynamicPointTree, Error, HalfSpace, PointTree,
-    PointTreeBuilder, RootGeometry, SkipQuadtree,
+    geom::AabbError, geom::RootGeometry, points::PointTreeBuilder, query::HalfSpace, Aabb, Ball,
+    CompressedTree, DynamicPointTree, Error, PointTree, SkipQuadtree,
 };
 use rand::Rng;
 

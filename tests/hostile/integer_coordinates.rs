@@ -10,8 +10,8 @@ use crate::common;
 use orthtree::prelude::*;
 use orthtree::query::{Ball, QueryError, Region};
 use orthtree::{
-    Aabb, AabbError, CompressedTree, DynamicPointTree, Error, PointTree, PointTreeBuilder, Scalar,
-    SkipQuadtree,
+    geom::AabbError, points::PointTreeBuilder, Aabb, CompressedTree, DynamicPointTree, Error,
+    PointTree, Scalar, SkipQuadtree,
 };
 use proptest::prelude::*;
 

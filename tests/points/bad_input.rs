@@ -7,7 +7,8 @@ use crate::common;
 use common::points::{check_all, check_points};
 use orthtree::prelude::*;
 use orthtree::{
-    Aabb, AabbError, Cell, Error, NodeId, Octree, PointTree, PointTreeBuilder, Quadtree,
+    geom::AabbError, points::PointTreeBuilder, tree::NodeId, Aabb, Cell, Error, Octree, PointTree,
+    Quadtree,
 };
 use rand::Rng;
 

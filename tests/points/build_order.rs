@@ -8,7 +8,7 @@ use crate::common;
 
 use common::points::config;
 use orthtree::prelude::*;
-use orthtree::{PointTree, PointTreeBuilder};
+use orthtree::{points::PointTreeBuilder, PointTree};
 use proptest::prelude::*;
 
 /// The input's items in (Morton key, input index) order, under the tree's own geometry.

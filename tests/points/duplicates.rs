@@ -5,7 +5,7 @@ use crate::common;
 
 use common::points::{check_all, check_points};
 use orthtree::prelude::*;
-use orthtree::{Aabb, Cell, NodeId, PointTreeBuilder, Quadtree};
+use orthtree::{points::PointTreeBuilder, tree::NodeId, Aabb, Cell, Quadtree};
 use rand::Rng;
 
 /// n copies of one point: no bucket can part them, so the tree is one chain of splits down to the
@@ -41,14 +41,14 @@ fn copies<const D: usize>(p: [f64; D], n: usize, bucket: usize, max_depth: Optio
 fn hundred_thousand_copies_of_one_point() {
     let n = 100_000;
     copies::<2>([0.3, 0.7], n, 1, None);
-    copies::<2>([0.3, 0.7], n, orthtree::DEFAULT_BUCKET_SIZE, None);
+    copies::<2>([0.3, 0.7], n, orthtree::points::DEFAULT_BUCKET_SIZE, None);
     copies::<2>([-5.0, 1e9], n, 1, Some(5));
     copies::<3>([1.0, 2.0, 3.0], n, 1, None);
     copies::<1>([42.0], n, 3, None);
     copies::<2>(
         [0.0, 0.0],
-        orthtree::DEFAULT_BUCKET_SIZE,
-        orthtree::DEFAULT_BUCKET_SIZE,
+        orthtree::points::DEFAULT_BUCKET_SIZE,
+        orthtree::points::DEFAULT_BUCKET_SIZE,
         None,
     );
 }

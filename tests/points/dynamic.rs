@@ -11,7 +11,7 @@ use common::points::unit_builder as builder;
 use common::updates::{apply, coords, initial, op, sorted_pairs, Op, Pairs};
 use orthtree::prelude::*;
 use orthtree::query::{Chebyshev, Manhattan, Metric, SquaredEuclidean};
-use orthtree::{Aabb, Ball, Cell, DynamicPointTree, Error, HalfSpace, PointTree};
+use orthtree::{query::HalfSpace, Aabb, Ball, Cell, DynamicPointTree, Error, PointTree};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 
@@ -205,7 +205,7 @@ fn many_updates_grow_shrink_and_compact_the_chunks() {
     t.validate().unwrap();
     check_queries(&t, &model).unwrap();
     // compaction keeps the chunk array within a few times the live points
-    assert!(orthtree::SpatialIndex::points(t.index()).len() <= 4 * model.len() + 8192);
+    assert!(orthtree::query::SpatialIndex::points(t.index()).len() <= 4 * model.len() + 8192);
 }
 
 #[test]

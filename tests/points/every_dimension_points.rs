@@ -12,7 +12,7 @@ use common::points::check_all;
 use common::{dist2, rng};
 use orthtree::prelude::*;
 use orthtree::{
-    Aabb, Ball, Cell, CompressedTree, DynamicPointTree, HalfSpace, PointTree, SkipQuadtree,
+    query::HalfSpace, Aabb, Ball, Cell, CompressedTree, DynamicPointTree, PointTree, SkipQuadtree,
 };
 use rand::rngs::SmallRng;
 use rand::Rng;

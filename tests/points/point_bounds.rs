@@ -6,7 +6,7 @@ use crate::common;
 
 use common::points::check_points;
 use common::{closest_pair, dedup_points, rng};
-use orthtree::{Aabb, Cell, PointTreeBuilder};
+use orthtree::{points::PointTreeBuilder, Aabb, Cell};
 use rand::rngs::SmallRng;
 use rand::Rng;
 

@@ -12,8 +12,8 @@ use common::points::config;
 use orthtree::prelude::*;
 use orthtree::query::{Chebyshev, Manhattan, Metric, SquaredEuclidean};
 use orthtree::{
-    Aabb, Ball, CompressedTree, DynamicPointTree, HalfSpace, PointTree, Region, Relation,
-    SkipQuadtree,
+    query::HalfSpace, query::Relation, Aabb, Ball, CompressedTree, DynamicPointTree, PointTree,
+    Region, SkipQuadtree,
 };
 use proptest::prelude::*;
 

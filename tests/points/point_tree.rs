@@ -7,7 +7,10 @@ use crate::common;
 
 use common::points::*;
 use orthtree::prelude::*;
-use orthtree::{Aabb, Octree, PointTree, PointTreeBuilder, Quadtree, Scalar, DEFAULT_BUCKET_SIZE};
+use orthtree::{
+    points::PointTreeBuilder, points::DEFAULT_BUCKET_SIZE, Aabb, Octree, PointTree, Quadtree,
+    Scalar,
+};
 use proptest::collection::vec;
 use proptest::prelude::*;
 use proptest::sample::Index;

@@ -7,7 +7,9 @@
 use orthtree::points::PointNode;
 use orthtree::prelude::*;
 use orthtree::query::{Chebyshev, Manhattan, Metric, QueryError, SpatialIndex, SquaredEuclidean};
-use orthtree::{Aabb, Ball, HalfSpace, PointTree, Quadtree, Region, Relation, Scalar};
+use orthtree::{
+    query::HalfSpace, query::Relation, Aabb, Ball, PointTree, Quadtree, Region, Scalar,
+};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
 use std::cell::Cell as Counter;

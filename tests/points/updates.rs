@@ -8,7 +8,7 @@ use crate::common;
 
 use common::updates::{apply, coords, initial, op, sorted_pairs, Op};
 use orthtree::prelude::*;
-use orthtree::{Aabb, Ball, Cell, Error, HalfSpace, PointTree};
+use orthtree::{query::HalfSpace, Aabb, Ball, Cell, Error, PointTree};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 

@@ -6,7 +6,7 @@
 use crate::common;
 
 use common::*;
-use orthtree::{BalanceOptions, Cell, Connectivity, NodeId, Tree};
+use orthtree::{tree::BalanceOptions, tree::NodeId, Cell, Connectivity, Tree};
 use std::collections::HashSet;
 
 /// Largest expected result (in leaves) still checked against the O(L^2)-per-round brute force.

@@ -12,7 +12,7 @@
 use crate::common;
 
 use common::*;
-use orthtree::{BalanceOptions, Cell, Connectivity, Direction, NodeId, Tree};
+use orthtree::{geom::Direction, tree::BalanceOptions, tree::NodeId, Cell, Connectivity, Tree};
 use rand::rngs::SmallRng;
 use rand::Rng;
 use std::collections::BTreeSet;

@@ -10,3 +10,4 @@ mod balance;
 mod every_dimension_tree;
 mod module_graph;
 mod neighbors;
+mod public_surface;

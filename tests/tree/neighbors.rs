@@ -5,7 +5,7 @@
 use crate::common;
 
 use common::*;
-use orthtree::{Cell, Connectivity, Direction, NodeId, Tree};
+use orthtree::{geom::Direction, tree::NodeId, Cell, Connectivity, Tree};
 use rand::Rng;
 use std::collections::BTreeSet;
 
