@@ -2,6 +2,7 @@
 //! holds: about twenty names at the crate root, and every public iterator type in `iter`, at
 //! that one path. Reads `src/lib.rs` and every file under `src/`.
 
+use crate::module_graph::sources;
 use std::fs;
 use std::path::Path;
 
@@ -80,29 +81,21 @@ fn iter_module_names(lib: &str) -> Vec<String> {
 /// Every public struct of `src/` that implements `Iterator`, with its file.
 fn public_iterators(src: &Path) -> Vec<(String, String)> {
     let mut out = Vec::new();
-    let mut stack = vec![src.to_path_buf()];
-    while let Some(dir) = stack.pop() {
-        for entry in fs::read_dir(&dir).unwrap() {
-            let path = entry.unwrap().path();
-            if path.is_dir() {
-                stack.push(path);
+    for path in sources(src) {
+        let text = fs::read_to_string(&path).unwrap();
+        for line in text.lines() {
+            let Some(rest) = line.trim().strip_prefix("impl") else {
                 continue;
-            }
-            let text = fs::read_to_string(&path).unwrap();
-            for line in text.lines() {
-                let Some(rest) = line.trim().strip_prefix("impl") else {
-                    continue;
-                };
-                let Some(after) = rest.split(" Iterator for ").nth(1) else {
-                    continue;
-                };
-                let name: String = after
-                    .chars()
-                    .take_while(|c| c.is_alphanumeric() || *c == '_')
-                    .collect();
-                if text.contains(&format!("pub struct {name}")) {
-                    out.push((name, path.display().to_string()));
-                }
+            };
+            let Some(after) = rest.split(" Iterator for ").nth(1) else {
+                continue;
+            };
+            let name: String = after
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_')
+                .collect();
+            if text.contains(&format!("pub struct {name}")) {
+                out.push((name, path.display().to_string()));
             }
         }
     }
@@ -153,26 +146,18 @@ fn every_public_iterator_is_in_the_iter_module_only() {
         );
     }
     // No module re-exports an iterator a second time.
-    let mut stack = vec![root.join("src")];
-    while let Some(dir) = stack.pop() {
-        for entry in fs::read_dir(&dir).unwrap() {
-            let path = entry.unwrap().path();
-            if path.is_dir() {
-                stack.push(path);
-                continue;
-            }
-            if path.ends_with("lib.rs") {
-                continue;
-            }
-            let text = fs::read_to_string(&path).unwrap();
-            for statement in top_level_reexports(&text) {
-                for name in used_names(&statement) {
-                    assert!(
-                        !in_iter.contains(&name),
-                        "{} re-exports the iterator {name}, which lives at `orthtree::iter`",
-                        path.display()
-                    );
-                }
+    for path in sources(&root.join("src")) {
+        if path.ends_with("lib.rs") {
+            continue;
+        }
+        let text = fs::read_to_string(&path).unwrap();
+        for statement in top_level_reexports(&text) {
+            for name in used_names(&statement) {
+                assert!(
+                    !in_iter.contains(&name),
+                    "{} re-exports the iterator {name}, which lives at `orthtree::iter`",
+                    path.display()
+                );
             }
         }
     }
