@@ -90,7 +90,7 @@ fn locate(
         b.iter(|| {
             queries
                 .iter()
-                .map(|q| ct.locate(q).unwrap().node as usize)
+                .map(|q| ct.locate(q).unwrap().inside().unwrap().node as usize)
                 .sum::<usize>()
         })
     });
@@ -98,7 +98,7 @@ fn locate(
         b.iter(|| {
             queries
                 .iter()
-                .map(|q| st.locate(q).unwrap().node as usize)
+                .map(|q| st.locate(q).unwrap().inside().unwrap().node as usize)
                 .sum::<usize>()
         })
     });
@@ -110,8 +110,8 @@ fn locate(
         "{group} {label}, n = {}: depth {}, nodes touched per location: compressed walk {:.1}, skip {:.1} ({} levels)",
         ct.len(),
         ct.depth(),
-        touched(&|q| ct.locate(q).unwrap().touched),
-        touched(&|q| st.locate(q).unwrap().touched),
+        touched(&|q| ct.locate(q).unwrap().inside().unwrap().touched),
+        touched(&|q| st.locate(q).unwrap().inside().unwrap().touched),
         st.level_count()
     );
 }
@@ -221,7 +221,7 @@ fn point_location(c: &mut Criterion) {
                 b.iter(|| {
                     queries
                         .iter()
-                        .map(|q| locator.locate(q).unwrap().0)
+                        .map(|q| locator.face(q).unwrap().0)
                         .sum::<u32>()
                 })
             });

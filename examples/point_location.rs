@@ -112,7 +112,7 @@ fn main() {
         let t = Instant::now();
         let sum: u64 = queries
             .iter()
-            .map(|q| locator.locate(q).unwrap().0 as u64)
+            .map(|q| locator.face(q).unwrap().0 as u64)
             .sum();
         let per = t.elapsed().as_secs_f64() * 1e9 / queries.len() as f64;
         println!(
@@ -136,7 +136,7 @@ fn main() {
                 -0.5 + (j as f64 + 0.5) * k as f64 / n as f64,
                 -0.5 + (i as f64 + 0.5) * k as f64 / n as f64,
             ];
-            by_face[locator.locate(&p).unwrap().0 as usize].push(p);
+            by_face[locator.face(&p).unwrap().0 as usize].push(p);
         }
     }
     for (f, pts) in by_face.iter().enumerate() {

@@ -40,7 +40,7 @@
 #![deny(unsafe_code)]
 
 pub mod compressed;
-mod error;
+pub mod error;
 pub mod geom;
 mod hash;
 pub mod image;

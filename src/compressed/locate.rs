@@ -43,9 +43,9 @@
 
 use super::subdivision::{FaceId, Subdivision, SubdivisionError};
 use super::topology::NIL;
-use crate::error::Error;
 use crate::geom::RootGeometry;
 use crate::geom::{Aabb, Cell};
+use crate::query::{Location, QueryError};
 
 /// A node of the locator's tree.
 #[derive(Clone, Debug)]
@@ -76,14 +76,15 @@ struct Task {
 ///
 /// ```
 /// use orthtree::compressed::{PointLocator, Subdivision};
+/// use orthtree::query::Location;
 /// let v = vec![[0.0, 0.0], [4.0, 0.0], [4.0, 4.0], [0.0, 4.0]];
 /// let e = vec![[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]];
 /// let s = Subdivision::new(v, e).unwrap();
 /// let lower = s.left_face(0); // the triangle 0, 1, 2
 /// let locator = PointLocator::new(s).unwrap();
-/// assert_eq!(locator.locate(&[3.0, 1.0]).unwrap(), lower);
-/// assert_ne!(locator.locate(&[1.0, 3.0]).unwrap(), lower);
-/// assert_eq!(locator.locate(&[5.0, 1.0]).unwrap(), locator.subdivision().outer_face());
+/// assert_eq!(locator.locate(&[3.0, 1.0]).unwrap(), Location::Inside(lower));
+/// assert_ne!(locator.locate(&[1.0, 3.0]).unwrap(), Location::Inside(lower));
+/// assert_eq!(locator.locate(&[5.0, 1.0]).unwrap(), Location::Outside { axis: 0 });
 /// ```
 #[derive(Clone, Debug)]
 pub struct PointLocator {
@@ -347,27 +348,60 @@ impl PointLocator {
         (face.0, edges.len())
     }
 
-    /// The face holding `point`; a point on an edge gets the face left of it (first vertex to
-    /// second), a point outside the root square the outer face. O(h + log degree).
+    /// The face holding `point` inside the root square (a point on an edge gets the face left
+    /// of it, first vertex to second; a point inside the square but outside every bounded face
+    /// the outer face), or [`Location::Outside`] for a point outside the root square, which lies
+    /// in the outer face.
     ///
-    /// Errors: a NaN or infinite coordinate.
-    pub fn locate(&self, point: &[f64; 2]) -> Result<FaceId, Error> {
+    /// # Errors
+    /// [`QueryError::NotFinite`] for a NaN or infinite coordinate, naming its axis.
+    ///
+    /// # Complexity
+    /// O(h + log degree), h the height of the tree.
+    pub fn locate(&self, point: &[f64; 2]) -> Result<Location<FaceId>, QueryError> {
         self.locate_counted(point).map(|(f, _)| f)
     }
 
+    /// The face holding `point` anywhere in the plane: [`PointLocator::locate`]'s face inside
+    /// the root square, the outer face outside it.
+    ///
+    /// # Errors
+    /// As [`PointLocator::locate`].
+    ///
+    /// ```
+    /// use orthtree::compressed::{PointLocator, Subdivision};
+    /// let s = Subdivision::new(vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], vec![[0, 1], [1, 2], [2, 0]]).unwrap();
+    /// let locator = PointLocator::new(s).unwrap();
+    /// assert_eq!(locator.face(&[7.0, 7.0]), Ok(locator.subdivision().outer_face()));
+    /// assert_ne!(locator.face(&[0.2, 0.2]), Ok(locator.subdivision().outer_face()));
+    /// ```
+    pub fn face(&self, point: &[f64; 2]) -> Result<FaceId, QueryError> {
+        Ok(self
+            .locate(point)?
+            .inside()
+            .unwrap_or(self.subdivision.outer_face()))
+    }
+
     /// [`PointLocator::locate`], with the number of nodes visited plus edges examined.
-    pub fn locate_counted(&self, point: &[f64; 2]) -> Result<(FaceId, usize), Error> {
-        if let Some(axis) = point.iter().position(|x| !x.is_finite()) {
-            return Err(Error::QueryNotFinite {
-                axis,
-                value: point[axis],
-            });
+    ///
+    /// # Errors
+    /// As [`PointLocator::locate`].
+    pub fn locate_counted(
+        &self,
+        point: &[f64; 2],
+    ) -> Result<(Location<FaceId>, usize), QueryError> {
+        match crate::query::place_point(point, &self.geometry.root_box())? {
+            Location::Inside(p) => {
+                let (face, work) = self.face_of(&p);
+                Ok((Location::Inside(face), work))
+            }
+            Location::Outside { axis } => Ok((Location::Outside { axis }, 0)),
         }
+    }
+
+    /// The face holding `point`, a point inside the root square, with the work it took.
+    fn face_of(&self, point: &[f64; 2]) -> (FaceId, usize) {
         let s = &self.subdivision;
-        let root = self.geometry.root_box();
-        if !root.contains(point) {
-            return Ok((s.outer_face(), 0));
-        }
         let key = self.geometry.key(point);
         let mut v = 0usize;
         let mut touched = 1;
@@ -381,12 +415,12 @@ impl PointLocator {
                     [e] => (side(s, *e as usize, point).0, 1),
                     _ => self.face_near(point, &self.geometry.cell_box(&node.cell), edges),
                 };
-                return Ok((FaceId(face), touched + work));
+                return (FaceId(face), touched + work);
             }
             let q = digit(key, node.cell.level());
             let c = node.children[q];
             if c == NIL || !holds(&self.nodes[c as usize], key) {
-                return Ok((FaceId(node.faces[q]), touched));
+                return (FaceId(node.faces[q]), touched);
             }
             v = c as usize;
             touched += 1;

@@ -59,7 +59,7 @@ use crate::error::ValidationError;
 use crate::geom::RootGeometry;
 use crate::geom::{Aabb, DeepCell, DeepKey, Scalar};
 use crate::points::PointTree;
-use crate::query::PointSet;
+use crate::query::{Location, PointSet, QueryError};
 use topology::NIL;
 
 /// A compressed quadtree (D = 2), octree (D = 3) or 2^D-tree storing (point, item) pairs: the
@@ -89,10 +89,11 @@ pub struct CompressedTree<S, T, const D: usize> {
     items: Vec<T>,
 }
 
-/// Where a point lies in a [`CompressedTree`] or [`SkipQuadtree`]: the deepest node whose cell
-/// holds it, and the work it took.
+/// The node holding a point inside a [`CompressedTree`]'s or [`SkipQuadtree`]'s domain (what
+/// their `locate` gives in [`Location::Inside`]): the deepest node whose cell holds it, and the
+/// work it took.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Location<const D: usize> {
+pub struct Located<const D: usize> {
     /// The node's id in the tree's arena (valid until the next update).
     pub node: u32,
     /// Its cell (down to level 64; [`DeepCell::to_cell`] gives the [`PointTree`] cell holding
@@ -183,27 +184,36 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
         t.pre_order().map(move |v| (t.node(v).cell, t.is_leaf(v)))
     }
 
-    /// The deepest node whose cell holds `point`, walking down from the root: O(depth).
+    /// The deepest node whose cell holds `point`, walking down from the root, or
+    /// [`Location::Outside`] for a point outside [`CompressedTree::domain`](crate::query::PointSet::domain).
     ///
-    /// Errors: a NaN, infinite or inexact coordinate (an integer `f64` cannot hold), or one outside [`CompressedTree::domain`](crate::query::PointSet::domain).
+    /// # Errors
+    /// [`QueryError::NotFinite`] or [`QueryError::Inexact`] for a coordinate that is NaN,
+    /// infinite or an integer `f64` cannot hold, naming its axis.
+    ///
+    /// # Complexity
+    /// O(depth).
     ///
     /// ```
+    /// use orthtree::query::Location;
     /// use orthtree::CompressedTree;
     /// let t = CompressedTree::new(&[([0.0, 0.0], 'a'), ([1.0, 1.0], 'b')]).unwrap();
-    /// assert!(t.locate(&[1.0, 1.0]).unwrap().leaf);
-    /// let empty_spot = t.locate(&[0.9, 0.1]).unwrap();
+    /// assert!(t.locate(&[1.0, 1.0]).unwrap().inside().unwrap().leaf);
+    /// let empty_spot = t.locate(&[0.9, 0.1]).unwrap().inside().unwrap();
     /// assert_eq!((empty_spot.leaf, empty_spot.cell.level(), empty_spot.touched), (false, 0, 1));
+    /// assert_eq!(t.locate(&[0.5, 1.5]), Ok(Location::Outside { axis: 1 }));
     /// ```
-    pub fn locate(&self, point: &[S; D]) -> Result<Location<D>, Error> {
-        let key = self.query_key(point)?;
-        let mut touched = 0;
-        let v = self.index.topology.descend(0, &key, |_| touched += 1);
-        Ok(self.location(v, touched))
+    pub fn locate(&self, point: &[S; D]) -> Result<Location<Located<D>>, QueryError> {
+        Ok(self.query_key(point)?.map(|key| {
+            let mut touched = 0;
+            let v = self.index.topology.descend(0, &key, |_| touched += 1);
+            self.located(v, touched)
+        }))
     }
 
-    pub(crate) fn location(&self, v: u32, touched: usize) -> Location<D> {
+    pub(crate) fn located(&self, v: u32, touched: usize) -> Located<D> {
         let t = &self.index.topology;
-        Location {
+        Located {
             node: v,
             cell: t.node(v).cell,
             leaf: t.is_leaf(v),
@@ -211,33 +221,16 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
         }
     }
 
-    /// The finest key of a query point, checked ([`crate::geom::validate_point`]) and inside the
-    /// domain.
-    pub(crate) fn query_key(&self, point: &[S; D]) -> Result<DeepKey<D>, Error> {
-        let p = crate::geom::exact_point(point).map_err(|(axis, f)| Error::bad_query(axis, f))?;
-        match outside(&p, self.domain()) {
-            Some(axis) => Err(Error::QueryOutsideRootBox {
-                axis,
-                value: p[axis],
-                interval: (self.domain().min[axis], self.domain().max[axis]),
-            }),
-            None => Ok(self.geometry().deep_key(&p)),
-        }
+    /// The finest key of a point to locate, checked ([`crate::geom::validate_point`]) and
+    /// placed against the domain.
+    pub(crate) fn query_key(&self, point: &[S; D]) -> Result<Location<DeepKey<D>>, QueryError> {
+        Ok(crate::query::place_point(point, self.domain())?.map(|p| self.geometry().deep_key(&p)))
     }
 
     /// The finest key of a point to insert as number `index`, checked like the build's input.
     pub(crate) fn input_key(&self, point: &[S; D], index: usize) -> Result<DeepKey<D>, Error> {
-        let p = crate::geom::exact_point(point)
-            .map_err(|(axis, f)| Error::bad_input(index, axis, f))?;
-        match outside(&p, self.domain()) {
-            Some(axis) => Err(Error::OutsideRootBox {
-                index,
-                axis,
-                value: p[axis],
-                interval: (self.domain().min[axis], self.domain().max[axis]),
-            }),
-            None => Ok(self.geometry().deep_key(&p)),
-        }
+        let p = Error::check_input(point, Some(self.domain()), index)?;
+        Ok(self.geometry().deep_key(&p))
     }
 
     /// The equivalent [`PointTree`] with the same root cube and cells, with `bucket_size` and
@@ -256,11 +249,6 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
     {
         build::to_point_tree(self, bucket_size, max_depth)
     }
-}
-
-/// The first axis on which `p` lies outside `domain`.
-fn outside<const D: usize>(p: &[f64; D], domain: &Aabb<f64, D>) -> Option<usize> {
-    (0..D).find(|&a| !(domain.min[a] <= p[a] && p[a] <= domain.max[a]))
 }
 
 impl<S: Scalar, T, const D: usize> PointSet<D> for CompressedTree<S, T, D> {
@@ -297,15 +285,16 @@ impl<S: Scalar, T, const D: usize> PointSet<D> for CompressedTree<S, T, D> {
     /// (canonical: every non-root internal node branches, leaves are finest cells), every
     /// point's key and leaf, the leaves' lists, every leaf non-empty, every point in the domain.
     fn validate(&self) -> Result<(), ValidationError> {
-        let fail = |msg: String| Err(ValidationError(msg));
+        use crate::error::Invariant as I;
+        let fail = |e: ValidationError| Err(e);
         let ix = &self.index;
         let t = &ix.topology;
         if let Err(e) = t.validate() {
-            return fail(e);
+            return fail(ValidationError::new(I::Topology).detail(e));
         }
         let n = self.len();
         if [ix.points.len(), ix.keys.len(), ix.leaf.len(), ix.prev.len()] != [n; 4] {
-            return fail("slot arrays of different lengths".into());
+            return fail(ValidationError::new(I::Lengths).detail("slot arrays"));
         }
         let mut listed = 0;
         for v in t.pre_order().filter(|&v| t.is_leaf(v)) {
@@ -313,25 +302,32 @@ impl<S: Scalar, T, const D: usize> PointSet<D> for CompressedTree<S, T, D> {
             for s in ix.leaf_slots(v) {
                 listed += 1;
                 if listed > n || ix.leaf[s] != v || ix.prev[s] != previous {
-                    return fail(format!("slot {s} is badly linked in leaf {v}"));
+                    return fail(ValidationError::new(I::Links).node(v).point(s));
                 }
                 previous = s as u32;
             }
             if previous == NIL || t.node(v).tail != previous {
-                return fail(format!("leaf {v} is empty or its tail is wrong"));
+                return fail(
+                    ValidationError::new(I::Links)
+                        .node(v)
+                        .detail("empty leaf or wrong tail"),
+                );
             }
         }
         if listed != n {
-            return fail(format!("{listed} of {n} points are in leaves"));
+            return fail(
+                ValidationError::new(I::Counts)
+                    .detail(format!("{listed} of {n} points are in leaves")),
+            );
         }
         for (s, p) in ix.points.iter().enumerate() {
             let q = p.map(Scalar::to_f64);
             if !self.domain().contains(&q) {
-                return fail(format!("point {s} lies outside the domain"));
+                return fail(ValidationError::new(I::InDomain).point(s));
             }
             let key = self.geometry().deep_key(&q);
             if key != ix.keys[s] || t.node(ix.leaf[s]).cell.anchor() != key {
-                return fail(format!("point {s} is not in its key's leaf"));
+                return fail(ValidationError::new(I::InLeaf).node(ix.leaf[s]).point(s));
             }
         }
         Ok(())

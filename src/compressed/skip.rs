@@ -30,10 +30,11 @@
 
 use super::topology::{Inserted, Topology, NIL};
 use super::CompressedIndex;
-use super::{CompressedTree, Location};
+use super::{CompressedTree, Located};
 use crate::error::Error;
 use crate::error::ValidationError;
 use crate::geom::{Aabb, DeepCell, DeepKey, Scalar};
+use crate::query::{InsertError, Location};
 use crate::query::{
     Metric, Neighbor, PointSet, PointSetMut, QueryError, SpatialIndex, SquaredEuclidean,
 };
@@ -58,7 +59,7 @@ const MAX_HEIGHT: u32 = 48;
 /// use orthtree::compressed::SkipQuadtree;
 /// let pts: Vec<([f64; 2], usize)> = (0..1000).map(|i| ([(i % 37) as f64, (i / 37) as f64], i)).collect();
 /// let mut t = SkipQuadtree::new(&pts).unwrap();
-/// let at = t.locate(&[5.0, 3.0]).unwrap();
+/// let at = t.locate(&[5.0, 3.0]).unwrap().inside().unwrap();
 /// assert!(at.leaf);
 /// t.insert([5.5, 3.0], 1000).unwrap();
 /// assert_eq!(t.remove_point(&[5.0, 3.0]), Some(5 + 3 * 37));
@@ -171,15 +172,21 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
         path
     }
 
-    /// The deepest node of level 0 whose cell holds `point`, found from the top level down:
-    /// expected O(log n) nodes visited ([`Location::touched`]).
+    /// The deepest node of level 0 whose cell holds `point`, found from the top level down, or
+    /// [`Location::Outside`] for a point outside the domain.
     ///
-    /// Errors: a NaN, infinite or inexact coordinate (an integer `f64` cannot hold), or one outside the domain.
-    pub fn locate(&self, point: &[S; D]) -> Result<Location<D>, Error> {
-        let key = self.base.query_key(point)?;
-        let mut touched = 0;
-        let path = self.search(&key, &mut touched);
-        Ok(self.base.location(path[0], touched))
+    /// # Errors
+    /// [`QueryError::NotFinite`] or [`QueryError::Inexact`] for a coordinate that is NaN,
+    /// infinite or an integer `f64` cannot hold, naming its axis.
+    ///
+    /// # Complexity
+    /// Expected O(log n) nodes visited ([`Located::touched`]).
+    pub fn locate(&self, point: &[S; D]) -> Result<Location<Located<D>>, QueryError> {
+        Ok(self.base.query_key(point)?.map(|key| {
+            let mut touched = 0;
+            let path = self.search(&key, &mut touched);
+            self.base.located(path[0], touched)
+        }))
     }
 
     /// Sets the `down` links of the nodes an insert created on level `i`, `below` being what
@@ -199,7 +206,7 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
     }
 
     fn remove_where(&mut self, point: &[S; D], accept: impl Fn(&T) -> bool) -> Option<T> {
-        let key = self.base.query_key(point).ok()?;
+        let key = self.base.query_key(point).ok()?.inside()?;
         let path = self.search(&key, &mut 0);
         let (item, removed) = self.base.remove_in_leaf(path[0], &key, point, accept)?;
         if removed != NIL {
@@ -353,11 +360,11 @@ impl<S: Scalar, T, const D: usize> PointSet<D> for SkipQuadtree<S, T, D> {
     /// each node linked down to the node with its cell; no empty level on top.
     fn validate(&self) -> Result<(), ValidationError> {
         self.base.validate()?;
-        let fail = |msg: String| Err(ValidationError(msg));
+        use crate::error::Invariant as I;
         for i in 1..=self.levels.len() {
             let (level, below) = (self.level(i), self.level(i - 1));
             if let Err(e) = level.validate() {
-                return fail(format!("level {i}: {e}"));
+                return Err(ValidationError::new(I::Topology).detail(format!("level {i}: {e}")));
             }
             let keys = |t: &Topology<D>| -> Vec<DeepKey<D>> {
                 let leaves = t.pre_order().filter(|&v| t.is_leaf(v));
@@ -366,13 +373,16 @@ impl<S: Scalar, T, const D: usize> PointSet<D> for SkipQuadtree<S, T, D> {
             let mut want = keys(below);
             want.retain(|k| self.height(k) >= i as u32);
             if keys(level) != want || want.is_empty() {
-                return fail(format!("level {i} does not hold its sample"));
+                return Err(ValidationError::new(I::SkipLevels)
+                    .detail(format!("level {i} does not hold its sample")));
             }
             let live: HashSet<u32> = below.pre_order().collect();
             for v in level.pre_order() {
                 let w = level.node(v).down;
                 if !live.contains(&w) || below.node(w).cell != level.node(v).cell {
-                    return fail(format!("level {i}: node {v} is badly linked down"));
+                    return Err(ValidationError::new(I::SkipLevels)
+                        .node(v)
+                        .detail(format!("level {i}: badly linked down")));
                 }
             }
         }
@@ -384,8 +394,11 @@ impl<S: Scalar, T, const D: usize> PointSetMut<D> for SkipQuadtree<S, T, D> {
     /// Inserts `item` at `point`. Expected O(log n).
     ///
     /// Errors: those of [`CompressedTree::insert`](crate::query::PointSetMut::insert).
-    fn insert(&mut self, point: [S; D], item: T) -> Result<(), Error> {
-        let key = self.base.checked_insert_key(&point)?;
+    fn insert(&mut self, point: [S; D], item: T) -> Result<(), InsertError<T>> {
+        let key = match self.base.checked_insert_key(&point) {
+            Ok(key) => key,
+            Err(error) => return Err(InsertError { error, item }),
+        };
         let path = self.search(&key, &mut 0);
         let mut below = self.base.insert_below(path[0], point, key, item);
         if !below.created {

@@ -22,7 +22,7 @@ use super::topology::NIL;
 use super::CompressedTree;
 use crate::error::Error;
 use crate::geom::{DeepKey, Scalar};
-use crate::query::{PointSet, PointSetMut};
+use crate::query::{InsertError, PointSet, PointSetMut};
 
 impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
     /// The key of a point to insert, checked (finiteness, domain, room for one more).
@@ -55,7 +55,7 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
         point: &[S; D],
         accept: impl Fn(&T) -> bool,
     ) -> Option<(T, u32)> {
-        let key = self.query_key(point).ok()?;
+        let key = self.query_key(point).ok()?.inside()?;
         let leaf = self.index.topology.descend(0, &key, |_| {});
         self.remove_in_leaf(leaf, &key, point, accept)
     }
@@ -100,8 +100,11 @@ impl<S: Scalar, T, const D: usize> PointSetMut<D> for CompressedTree<S, T, D> {
     /// assert_eq!(t.node_count(), 2);
     /// t.validate().unwrap();
     /// ```
-    fn insert(&mut self, point: [S; D], item: T) -> Result<(), Error> {
-        let key = self.checked_insert_key(&point)?;
+    fn insert(&mut self, point: [S; D], item: T) -> Result<(), InsertError<T>> {
+        let key = match self.checked_insert_key(&point) {
+            Ok(key) => key,
+            Err(error) => return Err(InsertError { error, item }),
+        };
         let at = self.index.topology.descend(0, &key, |_| {});
         self.insert_below(at, point, key, item);
         Ok(())

@@ -20,7 +20,7 @@ pub struct Aabb<S, const D: usize> {
 }
 
 /// Why a box was refused by [`Aabb::new`].
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum AabbError {
     /// A coordinate on this axis is NaN or infinite.
     NonFinite {

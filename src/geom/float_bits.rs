@@ -4,7 +4,7 @@
 /// An `f64` compared by its bits, so that errors holding NaN still compare equal to themselves.
 ///
 /// ```
-/// use orthtree::query::FloatBits;
+/// use orthtree::geom::FloatBits;
 /// assert_eq!(FloatBits::from(f64::NAN), FloatBits::from(f64::NAN));
 /// assert_eq!(FloatBits::from(-1.5).get(), -1.5);
 /// ```
@@ -21,5 +21,11 @@ impl FloatBits {
 impl From<f64> for FloatBits {
     fn from(x: f64) -> Self {
         FloatBits(x.to_bits())
+    }
+}
+
+impl core::fmt::Display for FloatBits {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        core::fmt::Display::fmt(&self.get(), f)
     }
 }

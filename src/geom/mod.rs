@@ -21,5 +21,5 @@ pub use direction::{Connectivity, Direction};
 pub use float_bits::FloatBits;
 pub(crate) use root::child_box;
 pub use root::RootGeometry;
-pub(crate) use scalar::{exact_point, fault, Fault};
+pub(crate) use scalar::{check_point, exact_point, fault, Checked, Fault};
 pub use scalar::{validate_point, Scalar};

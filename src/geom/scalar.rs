@@ -154,6 +154,32 @@ pub(crate) fn exact_point<S: Scalar, const D: usize>(
     }
 }
 
+/// The point check every tree and query shares: `point` in `f64` exactly, inside the closed
+/// box `domain` or outside it (first on some axis), or the first axis whose coordinate is no
+/// point coordinate at all and why.
+#[inline]
+pub(crate) fn check_point<S: Scalar, const D: usize>(
+    point: &[S; D],
+    domain: &crate::geom::Aabb<f64, D>,
+) -> Result<Checked<D>, (usize, Fault)> {
+    let p = exact_point(point)?;
+    Ok(
+        match (0..D).find(|&a| !(domain.min[a] <= p[a] && p[a] <= domain.max[a])) {
+            None => Checked::Inside(p),
+            Some(axis) => Checked::Outside(axis, p),
+        },
+    )
+}
+
+/// A point that passed [`validate_point`], placed against a domain ([`check_point`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Checked<const D: usize> {
+    /// Inside the closed box; the point in `f64`.
+    Inside([f64; D]),
+    /// Outside it, first on the axis given; the point in `f64`.
+    Outside(usize, [f64; D]),
+}
+
 /// Why `x` fails [`Scalar::converts_exactly`] (taken to fail it).
 pub(crate) fn fault<S: Scalar>(x: S) -> Fault {
     match x.integer_value() {

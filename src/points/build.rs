@@ -240,33 +240,10 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
     {
         let mut bounds = Aabb::empty();
         for index in range {
-            bounds.add_point(&check_point(point(index), root, index)?);
+            bounds.add_point(&Error::check_input(point(index), root, index)?);
         }
         Ok(bounds)
     }
-}
-
-/// `p` as `f64`, or the error naming it (as point `index`) when a coordinate is NaN, infinite or
-/// an integer `f64` cannot hold,
-/// or outside `root` when one is given.
-pub(crate) fn check_point<S: Scalar, const D: usize>(
-    p: &[S; D],
-    root: Option<&Aabb<f64, D>>,
-    index: usize,
-) -> Result<[f64; D], Error> {
-    let p = crate::geom::exact_point(p)
-        .map_err(|(axis, fault)| Error::bad_input(index, axis, fault))?;
-    if let Some(root) = root {
-        if let Some(axis) = (0..D).find(|&a| !(root.min[a] <= p[a] && p[a] <= root.max[a])) {
-            return Err(Error::OutsideRootBox {
-                index,
-                axis,
-                value: p[axis],
-                interval: (root.min[axis], root.max[axis]),
-            });
-        }
-    }
-    Ok(p)
 }
 
 /// The number of low key bits [`pack`] gives to the index for `n` points: enough for `n - 1`.

@@ -17,7 +17,6 @@ mod radix;
 mod runs;
 mod update;
 
-pub(crate) use build::check_point;
 pub use build::{PointTreeBuilder, DEFAULT_BUCKET_SIZE};
 pub use dynamic::{DynamicIndex, DynamicNode, DynamicPointTree};
 pub use index::PointNode;
@@ -25,7 +24,7 @@ pub use leaves::Leaf;
 
 use crate::error::{Error, ValidationError};
 use crate::geom::{Aabb, Cell, Dim, RootGeometry, Scalar};
-use crate::query::PointSet;
+use crate::query::{Location, PointSet, QueryError};
 use crate::tree::{BalanceOptions, NodeId, Tree};
 pub(crate) use runs::Runs;
 
@@ -40,7 +39,7 @@ pub(crate) use runs::Runs;
 /// let pts: Vec<([f64; 2], usize)> = (0..100).map(|i| ([i as f64, (i * i % 100) as f64], i)).collect();
 /// let mut t = Quadtree::new(&pts).unwrap();
 /// assert_eq!(t.len(), 100);
-/// let leaf = t.locate(&[42.0, 64.0]).unwrap();
+/// let leaf = t.locate(&[42.0, 64.0]).unwrap().inside().unwrap();
 /// assert!(t.node_items(leaf).contains(&42));
 /// t.balance(Connectivity::Face);
 /// assert!(t.tree().is_balanced(Connectivity::Face));
@@ -187,29 +186,25 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
             + self.tree.heap_bytes()
     }
 
-    /// The leaf whose cell holds `point` under the split convention. O(depth).
+    /// The leaf whose cell holds `point` under the split convention, or
+    /// [`Location::Outside`] for a point outside [`PointTree::domain`](crate::query::PointSet::domain).
     ///
-    /// Errors: a coordinate that is NaN, infinite or an integer `f64` cannot hold
-    /// ([`Error::QueryInexact`]), or outside [`PointTree::domain`](crate::query::PointSet::domain).
-    pub fn locate(&self, point: &[S; D]) -> Result<NodeId, Error> {
-        let p = crate::geom::exact_point(point).map_err(|(axis, f)| Error::bad_query(axis, f))?;
-        for (axis, &value) in p.iter().enumerate() {
-            let interval = (self.domain.min[axis], self.domain.max[axis]);
-            if !(interval.0 <= value && value <= interval.1) {
-                return Err(Error::QueryOutsideRootBox {
-                    axis,
-                    value,
-                    interval,
-                });
+    /// # Errors
+    /// [`QueryError::NotFinite`] or [`QueryError::Inexact`] for a coordinate that is NaN,
+    /// infinite or an integer `f64` cannot hold, naming its axis.
+    ///
+    /// # Complexity
+    /// O(depth).
+    pub fn locate(&self, point: &[S; D]) -> Result<Location<NodeId>, QueryError> {
+        Ok(crate::query::place_point(point, &self.domain)?.map(|p| {
+            let key = self.geometry.key(&p);
+            let mut v = NodeId::ROOT;
+            while let Some(first) = self.tree.child(v, 0) {
+                let c = digit::<D>(key, self.tree.level(v));
+                v = NodeId(first.0 + c as u32);
             }
-        }
-        let key = self.geometry.key(&p);
-        let mut v = NodeId::ROOT;
-        while let Some(first) = self.tree.child(v, 0) {
-            let c = digit::<D>(key, self.tree.level(v));
-            v = NodeId(first.0 + c as u32);
-        }
-        Ok(v)
+            v
+        }))
     }
 
     /// Refines the tree to the coarsest balanced tree containing it ([`Tree::balance`]) and moves
@@ -322,16 +317,24 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// maximum depth; an internal node holds more than the bucket size unless balance split it,
     /// and then the tree is balanced.
     fn check_invariants(&self) -> Result<(), ValidationError> {
-        let fail = |msg: String| Err(ValidationError(msg));
-        if self.runs.len() != self.tree.node_count() {
-            return fail(format!(
-                "{} runs for {} nodes",
-                self.runs.len(),
-                self.tree.node_count()
-            ));
+        use crate::error::Invariant as I;
+        let fail = |e: ValidationError| Err(e);
+        if let Err(e) = self.tree.validate() {
+            return fail(ValidationError::new(I::Topology).detail(e.to_string()));
         }
-        if self.runs.total() != self.len() as u32 || self.items.len() != self.len() {
-            return fail("the root does not own every point".into());
+        if self.runs.len() != self.tree.node_count() || self.items.len() != self.len() {
+            return fail(ValidationError::new(I::Lengths).detail(format!(
+                "{} runs for {} nodes, {} items for {} points",
+                self.runs.len(),
+                self.tree.node_count(),
+                self.items.len(),
+                self.len()
+            )));
+        }
+        if self.runs.total() != self.len() as u32 {
+            return fail(
+                ValidationError::new(I::Counts).detail("the root does not own every point"),
+            );
         }
         // Absolute runs, filled parent first by the pre-order walk.
         let mut runs = vec![(0u32, 0u32); self.tree.node_count()];
@@ -340,28 +343,33 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         for (id, cell) in self.tree.pre_order() {
             let (s, e) = runs[id.index()];
             if self.runs.run(&self.tree, id) != (s, e) {
-                return fail(format!("node {}'s run found upwards differs", id.0));
+                return fail(
+                    ValidationError::new(I::Counts)
+                        .node(id.0)
+                        .detail("its run found upwards differs"),
+                );
             }
             let count = (e - s) as usize;
             if self.tree.is_leaf(id) {
                 if count > self.bucket_size && cell.level() < self.max_depth {
-                    return fail(format!(
-                        "leaf {} holds {count} points above the maximum depth",
-                        id.0
-                    ));
+                    return fail(
+                        ValidationError::new(I::LeafSize)
+                            .node(id.0)
+                            .detail(format!("holds {count} points")),
+                    );
                 }
                 for (i, p) in self.points[s as usize..e as usize].iter().enumerate() {
                     let q = p.map(Scalar::to_f64);
                     if !self.domain.contains(&q) {
-                        return fail(format!("point {} lies outside the domain", s as usize + i));
+                        return fail(ValidationError::new(I::InDomain).point(s as usize + i));
                     }
                     let key = self.geometry.key(&q);
                     if key < previous_key || Cell::from_aligned_key(key, cell.level()) != cell {
-                        return fail(format!(
-                            "point {} is out of place in leaf {}",
-                            s as usize + i,
-                            id.0
-                        ));
+                        return fail(
+                            ValidationError::new(I::InLeaf)
+                                .node(id.0)
+                                .point(s as usize + i),
+                        );
                     }
                     previous_key = key;
                 }
@@ -371,25 +379,34 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
                 for (child, &end) in self.tree.children(id).zip(self.runs.block::<D>(first)) {
                     let ce = s.wrapping_add(end);
                     if ce < at || ce > e {
-                        return fail(format!("node {}'s children do not partition its run", id.0));
+                        return fail(
+                            ValidationError::new(I::Counts)
+                                .node(id.0)
+                                .detail("its children do not partition its run"),
+                        );
                     }
                     runs[child.index()] = (at, ce);
                     at = ce;
                 }
                 if at != e {
-                    return fail(format!("node {}'s children do not cover its run", id.0));
+                    return fail(
+                        ValidationError::new(I::Counts)
+                            .node(id.0)
+                            .detail("its children do not cover its run"),
+                    );
                 }
                 if count <= self.bucket_size && self.balanced.is_none() {
-                    return fail(format!(
-                        "node {} was split holding only {count} points",
-                        id.0
-                    ));
+                    return fail(
+                        ValidationError::new(I::SplitNeeded)
+                            .node(id.0)
+                            .detail(format!("holds {count} points")),
+                    );
                 }
             }
         }
         if let Some(options) = self.balanced {
             if !self.tree.is_balanced(options) {
-                return fail("the tree is not balanced after balance()".into());
+                return fail(ValidationError::new(I::Balanced));
             }
         }
         Ok(())

@@ -52,7 +52,7 @@
 use super::PointTree;
 use crate::error::Error;
 use crate::geom::Scalar;
-use crate::query::{PointSet, PointSetMut};
+use crate::query::{InsertError, PointSet, PointSetMut};
 use crate::tree::NodeId;
 use smallvec::SmallVec;
 
@@ -60,11 +60,9 @@ type Path = SmallVec<[NodeId; 40]>;
 
 impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     fn remove_where(&mut self, point: &[S; D], wanted: impl Fn(&T) -> bool) -> Option<T> {
-        crate::geom::validate_point(point).ok()?;
-        let p = point.map(Scalar::to_f64);
-        if !self.domain.contains(&p) {
-            return None;
-        }
+        let p = crate::query::place_point(point, &self.domain)
+            .ok()?
+            .inside()?;
         let key = self.geometry.key(&p);
         let (_, (s, e)) = self.path(key);
         // The first point of the leaf with this key, then scan the equal keys.
@@ -108,7 +106,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// Refuses a point that is not finite or lies outside the domain; `index` names it in the
     /// error.
     pub(super) fn check_insertable(&self, point: &[S; D], index: usize) -> Result<(), Error> {
-        super::build::check_point(point, Some(&self.domain), index).map(|_| ())
+        Error::check_input(point, Some(&self.domain), index).map(|_| ())
     }
 
     /// The Morton key of stored point `i`.
@@ -167,13 +165,18 @@ impl<S: Scalar, T, const D: usize> PointSetMut<D> for PointTree<S, T, D> {
     /// assert_eq!(t.leaf_count(), 1); // merged back: as if built from 'a' alone
     /// t.validate().unwrap();
     /// ```
-    fn insert(&mut self, point: [S; D], item: T) -> Result<(), Error> {
+    fn insert(&mut self, point: [S; D], item: T) -> Result<(), InsertError<T>> {
         let index = self.len();
-        self.check_insertable(&point, index)?;
-        let p = point.map(Scalar::to_f64);
-        if index + 1 >= u32::MAX as usize {
-            return Err(Error::TooManyPoints { len: index + 1 });
+        let checked = self.check_insertable(&point, index).and_then(|()| {
+            if index + 1 >= u32::MAX as usize {
+                return Err(Error::TooManyPoints { len: index + 1 });
+            }
+            Ok(())
+        });
+        if let Err(error) = checked {
+            return Err(InsertError { error, item });
         }
+        let p = point.map(Scalar::to_f64);
         if self.balanced.is_some() {
             self.rebuild_canonical();
         }

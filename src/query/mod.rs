@@ -27,20 +27,22 @@
 mod batch;
 mod index;
 mod knn;
+mod location;
 mod metric;
 mod nearest_iter;
 pub(crate) mod point_set;
 pub mod range;
 mod region;
 
-pub use crate::geom::FloatBits;
+use crate::geom::FloatBits;
 #[cfg(feature = "rayon")]
 pub use batch::{BatchError, ParallelQueries};
 pub(crate) use index::nearest_child_by_boxes;
 pub use index::SpatialIndex;
 pub use knn::Neighbor;
+pub use location::Location;
 pub use metric::{Chebyshev, Manhattan, Metric, SquaredEuclidean};
-pub use point_set::{Payload, PointSet, PointSetMut};
+pub use point_set::{InsertError, Payload, PointSet, PointSetMut};
 pub use range::QueryStats;
 pub use region::{Ball, HalfSpace, Region, Relation};
 
@@ -56,7 +58,7 @@ pub use region::{Ball, HalfSpace, Region, Relation};
 /// );
 /// assert!(matches!(t.in_ball(&[0.0, 0.0], -1.0), Err(QueryError::InvalidRadius { .. })));
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum QueryError {
     /// A query point or ball centre has NaN or an infinity on `axis`.
@@ -143,13 +145,34 @@ impl std::error::Error for QueryError {}
 pub(crate) fn query_point<S: crate::Scalar, const D: usize>(
     p: &[S; D],
 ) -> Result<[f64; D], QueryError> {
-    crate::geom::exact_point(p).map_err(|(axis, fault)| match fault {
+    crate::geom::exact_point(p).map_err(query_fault)
+}
+
+/// Where a point to locate lies against `domain` (in `f64`, exactly, when inside), or the error
+/// naming the first axis that fails [`crate::geom::validate_point`]: the one check of every
+/// tree's `locate`.
+#[inline]
+pub(crate) fn place_point<S: crate::Scalar, const D: usize>(
+    p: &[S; D],
+    domain: &crate::Aabb<f64, D>,
+) -> Result<Location<[f64; D]>, QueryError> {
+    Ok(
+        match crate::geom::check_point(p, domain).map_err(query_fault)? {
+            crate::geom::Checked::Inside(p) => Location::Inside(p),
+            crate::geom::Checked::Outside(axis, _) => Location::Outside { axis },
+        },
+    )
+}
+
+/// The query error for a coordinate failing the point check on `axis`.
+fn query_fault((axis, fault): (usize, crate::geom::Fault)) -> QueryError {
+    match fault {
         crate::geom::Fault::NotFinite(v) => QueryError::NotFinite {
             axis,
             value: v.into(),
         },
         crate::geom::Fault::Inexact(value) => QueryError::Inexact { axis, value },
-    })
+    }
 }
 
 /// A query box in `f64`: infinite float bounds pass (a NaN is refused by the box's
@@ -169,17 +192,6 @@ pub(crate) fn query_box<S: crate::Scalar, const D: usize>(
         }
     }
     Ok(b.to_f64())
-}
-
-/// Checks a query point: every coordinate finite.
-pub(crate) fn check_point<const D: usize>(p: &[f64; D]) -> Result<(), QueryError> {
-    match p.iter().position(|x| !x.is_finite()) {
-        Some(axis) => Err(QueryError::NotFinite {
-            axis,
-            value: p[axis].into(),
-        }),
-        None => Ok(()),
-    }
 }
 
 /// Checks a maximum distance: not negative, not NaN (infinity means no limit, -0.0 is 0).

@@ -11,7 +11,7 @@
 use super::index::SpatialIndex;
 use super::knn::Neighbor;
 use super::metric::Metric;
-use super::{check_max, check_point, QueryError};
+use super::{check_max, query_point, QueryError};
 use crate::geom::{Aabb, Scalar};
 use core::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -67,7 +67,7 @@ impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> IndexNearestIter<'a, 
     ///
     /// Errors: a non-finite `q`; a negative or NaN `max`.
     pub(crate) fn new(index: &'a I, q: [f64; D], max: f64, metric: M) -> Result<Self, QueryError> {
-        check_point(&q)?;
+        query_point(&q)?;
         check_max(max)?;
         let mut heap = BinaryHeap::new();
         if let Some((root, b)) = index.root() {

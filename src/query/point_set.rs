@@ -541,8 +541,13 @@ pub trait PointSetMut<const D: usize>: PointSet<D> {
     ///
     /// # Errors
     /// A NaN, infinite or inexact coordinate, or a point outside [`PointSet::domain`] (a tree
-    /// never grows its root box); too many points. The set is unchanged then.
-    fn insert(&mut self, point: [Self::Scalar; D], item: Self::Item) -> Result<(), Error>;
+    /// never grows its root box); too many points. The set is unchanged then, and the error
+    /// hands the item back ([`InsertError::item`]).
+    fn insert(
+        &mut self,
+        point: [Self::Scalar; D],
+        item: Self::Item,
+    ) -> Result<(), InsertError<Self::Item>>;
 
     /// Removes one stored pair equal to (`point`, `item`); `false` if there is none.
     fn remove(&mut self, point: &[Self::Scalar; D], item: &Self::Item) -> bool
@@ -551,6 +556,43 @@ pub trait PointSetMut<const D: usize>: PointSet<D> {
 
     /// Removes one point at exactly `point` and returns its item; `None` if there is none.
     fn remove_point(&mut self, point: &[Self::Scalar; D]) -> Option<Self::Item>;
+}
+
+/// An insert [`PointSetMut::insert`] refused: why, and the item, handed back unchanged.
+///
+/// ```
+/// use orthtree::prelude::*;
+/// use orthtree::{Error, Quadtree};
+/// let mut t = Quadtree::new(&[([0.0, 0.0], String::from("a"))]).unwrap();
+/// let refused = t.insert([f64::NAN, 0.0], String::from("kept")).unwrap_err();
+/// assert!(matches!(refused.error, Error::NonFiniteCoordinate { axis: 0, .. }));
+/// assert_eq!(refused.item, "kept");
+/// assert_eq!(t.len(), 1);
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct InsertError<T> {
+    /// Why the point was refused.
+    pub error: Error,
+    /// The item that was to be inserted.
+    pub item: T,
+}
+
+impl<T> core::fmt::Display for InsertError<T> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(f, "insert refused: {}", self.error)
+    }
+}
+
+impl<T: core::fmt::Debug> std::error::Error for InsertError<T> {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(&self.error)
+    }
+}
+
+impl<T> From<InsertError<T>> for Error {
+    fn from(e: InsertError<T>) -> Self {
+        e.error
+    }
 }
 
 /// Iterator returned by [`PointSet::query`] (and [`PointSet::in_box`], [`PointSet::in_ball`],

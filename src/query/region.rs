@@ -211,7 +211,7 @@ impl<const D: usize> Region<D> for Ball<D> {
         d2 <= r2
     }
     fn validate(&self) -> Result<(), QueryError> {
-        super::check_point(&self.center)?;
+        super::query_point(&self.center)?;
         if self.radius >= 0.0 {
             Ok(())
         } else {

@@ -4,6 +4,7 @@
 
 use super::{all_options, leaf_cells};
 use orthtree::prelude::*;
+use orthtree::query::Location;
 use orthtree::{
     geom::RootGeometry, points::PointTreeBuilder, tree::BalanceOptions, Aabb, Cell, PointTree,
     Scalar,
@@ -118,7 +119,7 @@ pub fn check_points<S: Scalar, const D: usize>(
         for (p, &item) in leaf.points.iter().zip(leaf.items) {
             seen += 1;
             assert_eq!(*p, entries[item].0);
-            assert_eq!(t.locate(p), Ok(leaf.id), "locate {p:?}");
+            assert_eq!(t.locate(p), Ok(Location::Inside(leaf.id)), "locate {p:?}");
             let q = p.map(Scalar::to_f64);
             assert!(t.domain().contains(&q), "{q:?} in the domain");
             assert_eq!(g.cell_of(&q, leaf.cell.level()), leaf.cell);

@@ -27,7 +27,10 @@ fn build<const D: usize>(pts: &[[f64; D]]) -> CompressedTree<f64, usize, D> {
 
 /// Two points share a leaf exactly when they are equal, and every point is in a leaf.
 fn leaves_part_points<const D: usize>(t: &CompressedTree<f64, usize, D>, pts: &[[f64; D]]) {
-    let at: Vec<_> = pts.iter().map(|p| t.locate(p).unwrap()).collect();
+    let at: Vec<_> = pts
+        .iter()
+        .map(|p| t.locate(p).unwrap().inside().unwrap())
+        .collect();
     for (i, a) in at.iter().enumerate() {
         assert!(a.leaf && a.cell.level() == DeepCell::<D>::MAX_LEVEL);
         for (j, b) in at.iter().enumerate() {
@@ -194,7 +197,7 @@ proptest! {
             let f = fresh(&stored);
             prop_assert_eq!(c.cells().collect::<Vec<_>>(), f.cells().collect::<Vec<_>>());
             prop_assert_eq!(shape(&s), shape(&SkipQuadtree::with_seed(f, seed)));
-            let (at, walk) = (s.locate(&p).unwrap(), c.locate(&p).unwrap());
+            let (at, walk) = (s.locate(&p).unwrap().inside().unwrap(), c.locate(&p).unwrap().inside().unwrap());
             prop_assert_eq!((at.cell, at.leaf), (walk.cell, walk.leaf));
         }
         let pts: Vec<[f64; 2]> = stored.iter().map(|&(p, _)| p).collect();

@@ -54,9 +54,9 @@ proptest! {
                 let [a, b, c] = [a, b, c].map(|x| v[x as usize]);
                 [(a, b), (b, c), (c, a)].iter().any(|&(p, r)| orient(p, r, q).abs() <= 1e-9)
             });
-            let got = locator.locate(&q).unwrap();
+            let got = locator.face(&q).unwrap();
             if !near_edge {
-                prop_assert_eq!(got, exercise.locate(&q).unwrap());
+                prop_assert_eq!(got, exercise.face(&q).unwrap());
             }
             match inside {
                 Some(t) => prop_assert_eq!(got, faces[t]),
@@ -86,11 +86,11 @@ fn a_wheel_answers_by_angle() {
         for r in [1e-9, 0.01, 0.5, 0.99] {
             let q = [r * mid.cos(), r * mid.sin()];
             let want = face_left_of(&s, 0, i + 1);
-            assert_eq!(locator.locate(&q).unwrap(), want, "spoke {i}, r {r}");
+            assert_eq!(locator.face(&q).unwrap(), want, "spoke {i}, r {r}");
         }
     }
-    assert_eq!(locator.locate(&[1.5, 0.0]).unwrap(), s.outer_face());
-    assert_eq!(locator.locate(&[9.0, 9.0]).unwrap(), s.outer_face());
+    assert_eq!(locator.face(&[1.5, 0.0]).unwrap(), s.outer_face());
+    assert_eq!(locator.face(&[9.0, 9.0]).unwrap(), s.outer_face());
 }
 
 #[test]
@@ -104,9 +104,9 @@ fn features_closer_than_the_finest_cell() {
     let sliver = s.left_face(0);
     let above = face_left_of(&s, 3, 2);
     assert_ne!(sliver, above);
-    assert_eq!(locator.locate(&[0.5, d / 2.0]).unwrap(), sliver);
-    assert_eq!(locator.locate(&[0.5, 2.0 * d]).unwrap(), above);
-    assert_eq!(locator.locate(&[0.5, -d]).unwrap(), s.outer_face());
+    assert_eq!(locator.face(&[0.5, d / 2.0]).unwrap(), sliver);
+    assert_eq!(locator.face(&[0.5, 2.0 * d]).unwrap(), above);
+    assert_eq!(locator.face(&[0.5, -d]).unwrap(), s.outer_face());
     assert!(locator.height() <= 34);
 }
 
@@ -148,8 +148,13 @@ fn bad_subdivisions_are_refused_by_name() {
         Err(SubdivisionError::Crossing { .. })
     ));
     let one = PointLocator::new(Subdivision::new(vec![[2.0, 2.0]], vec![]).unwrap()).unwrap();
-    assert_eq!(one.locate(&[2.0, 2.0]).unwrap(), FaceId(0));
+    assert_eq!(one.face(&[2.0, 2.0]).unwrap(), FaceId(0));
     assert!(one.locate(&[f64::NAN, 0.0]).is_err());
+    assert!(one.face(&[0.0, f64::INFINITY]).is_err());
+    assert_eq!(
+        one.locate(&[2.0, 1e9]),
+        Ok(orthtree::query::Location::Outside { axis: 1 })
+    );
 }
 
 #[test]

@@ -51,8 +51,8 @@ proptest! {
             }
             t.validate().unwrap();
             prop_assert_eq!(shape(&t), shape(&build(&stored)));
-            let at = t.locate(&p).unwrap();
-            let plain = t.base().locate(&p).unwrap();
+            let at = t.locate(&p).unwrap().inside().unwrap();
+            let plain = t.base().locate(&p).unwrap().inside().unwrap();
             prop_assert_eq!((at.node, at.cell, at.leaf), (plain.node, plain.cell, plain.leaf));
         }
         prop_assert_eq!(t.len(), stored.len());
@@ -117,7 +117,7 @@ fn bad_input_and_empty_trees() {
     assert_eq!((t.len(), t.level_count()), (0, 1));
     assert!(t.approx_nearest(&[0.0, 0.0], 0.1).unwrap().0.is_none());
     assert!(matches!(
-        t.insert([2.0, 0.0], 1),
+        t.insert([2.0, 0.0], 1).map_err(|e| e.error),
         Err(Error::OutsideRootBox {
             index: 0,
             axis: 0,
@@ -126,7 +126,7 @@ fn bad_input_and_empty_trees() {
     ));
     assert!(matches!(
         t.locate(&[f64::NAN, 0.0]),
-        Err(Error::QueryNotFinite { axis: 0, .. })
+        Err(orthtree::QueryError::NotFinite { axis: 0, .. })
     ));
     assert!(matches!(
         t.approx_nearest(&[0.0, 0.0], -1.0),
@@ -157,8 +157,8 @@ fn touched(copies: usize, legs: u32) -> (usize, usize, usize, [f64; 4]) {
     let mean = |qs: &[[f64; 2]], f: &dyn Fn(&[f64; 2]) -> usize| {
         qs.iter().map(f).sum::<usize>() as f64 / qs.len() as f64
     };
-    let walk = |q: &[f64; 2]| t.base().locate(q).unwrap().touched;
-    let skip = |q: &[f64; 2]| t.locate(q).unwrap().touched;
+    let walk = |q: &[f64; 2]| t.base().locate(q).unwrap().inside().unwrap().touched;
+    let skip = |q: &[f64; 2]| t.locate(q).unwrap().inside().unwrap().touched;
     let deep = workload::deep_legs(&pts, legs);
     let means = [
         mean(&pts, &walk),

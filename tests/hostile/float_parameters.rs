@@ -6,8 +6,9 @@
 
 use crate::common;
 
+use orthtree::geom::FloatBits;
 use orthtree::prelude::*;
-use orthtree::query::{FloatBits, QueryError, Region};
+use orthtree::query::{QueryError, Region};
 use orthtree::{
     geom::AabbError, geom::RootGeometry, points::PointTreeBuilder, query::HalfSpace, Aabb, Ball,
     CompressedTree, DynamicPointTree, Error, PointTree, SkipQuadtree,

@@ -46,14 +46,14 @@ fn odd_integers_beyond_2_pow_53_are_refused_by_every_tree() {
 
     let first = &e[..1];
     let mut p = PointTree::new(first).unwrap();
-    assert_eq!(p.insert(e[1].0, 'b').unwrap_err(), want);
+    assert_eq!(p.insert(e[1].0, 'b').unwrap_err().error, want);
     assert_eq!(p.extend_from_vec(vec![e[1]]).unwrap_err(), want);
     let mut d = DynamicPointTree::new(first).unwrap();
-    assert_eq!(d.insert(e[1].0, 'b').unwrap_err(), want);
+    assert_eq!(d.insert(e[1].0, 'b').unwrap_err().error, want);
     let mut c = CompressedTree::new(first).unwrap();
-    assert_eq!(c.insert(e[1].0, 'b').unwrap_err(), want);
+    assert_eq!(c.insert(e[1].0, 'b').unwrap_err().error, want);
     let mut s = SkipQuadtree::new(first).unwrap();
-    assert_eq!(s.insert(e[1].0, 'b').unwrap_err(), want);
+    assert_eq!(s.insert(e[1].0, 'b').unwrap_err().error, want);
     // nothing was added, and removing the inexact point never takes its neighbour
     assert!(!p.remove(&e[1].0, &'a') && p.remove_point(&e[1].0).is_none());
     assert!(!d.remove(&e[1].0, &'a') && d.remove_point(&e[1].0).is_none());
@@ -169,7 +169,7 @@ fn queries_refuse_inexact_parameters_and_answer_exactly_beside_them() {
     let (n, _) = s.approx_nearest(&[P53 + 2, 0], 0.0).unwrap();
     assert_eq!(*n.unwrap().item, 1);
     assert_eq!(s.approx_nearest(&bad, 0.0).unwrap_err(), inexact(0));
-    let q = Error::QueryInexact {
+    let q = QueryError::Inexact {
         axis: 0,
         value: (P53 + 1) as i128,
     };

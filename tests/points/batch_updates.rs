@@ -184,7 +184,7 @@ fn a_bad_pair_in_a_batch_is_named_and_changes_nothing() {
         Err(Error::OutsideRootBox {
             index, axis, value, ..
         }) => {
-            assert_eq!((index, axis, value), (3, 0, 2.0))
+            assert_eq!((index, axis, value.get()), (3, 0, 2.0))
         }
         other => panic!("expected an outside-the-root-box error, got {other:?}"),
     }

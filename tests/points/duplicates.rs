@@ -5,7 +5,7 @@ use crate::common;
 
 use common::points::{check_all, check_points};
 use orthtree::prelude::*;
-use orthtree::{points::PointTreeBuilder, tree::NodeId, Aabb, Cell, Quadtree};
+use orthtree::{points::PointTreeBuilder, query::Location, tree::NodeId, Aabb, Cell, Quadtree};
 use rand::Rng;
 
 /// n copies of one point: no bucket can part them, so the tree is one chain of splits down to the
@@ -25,7 +25,7 @@ fn copies<const D: usize>(p: [f64; D], n: usize, bucket: usize, max_depth: Optio
     } else {
         assert_eq!(t.depth(), 0);
     }
-    let leaf = t.locate(&p).unwrap();
+    let leaf = t.locate(&p).unwrap().inside().unwrap();
     assert_eq!(t.node_points(leaf).len(), n, "every copy in one leaf");
     let mut items = t.node_items(leaf).to_vec();
     items.sort_unstable();
@@ -139,7 +139,7 @@ fn max_depth_is_respected() {
         assert!(t.leaves().any(|l| l.points.len() > 1));
         if max_depth == 0 {
             assert_eq!(t.node_count(), 1);
-            assert_eq!(t.locate(&e[17].0), Ok(NodeId::ROOT));
+            assert_eq!(t.locate(&e[17].0), Ok(Location::Inside(NodeId::ROOT)));
         }
     }
 }

@@ -241,12 +241,22 @@ fn bad_input_is_a_typed_error_or_a_miss() {
     let mut t: Tree<2> =
         DynamicPointTree::from(builder::<2>(1, None).build(&[([0.25, 0.25], 0u8)]).unwrap());
     let e = t.insert([0.5, 1.5], 1).unwrap_err();
+    assert_eq!(e.item, 1, "the refused item is handed back");
+    assert_eq!(
+        e.error,
+        Error::OutsideRootBox {
+            index: 1,
+            axis: 1,
+            value: 1.5.into(),
+            interval: (0.0.into(), 1.0.into())
+        }
+    );
+    let e = t.insert([f64::NAN, 0.5], 2).unwrap_err();
+    assert_eq!(e.item, 2);
     assert!(matches!(
-        e,
-        Error::OutsideRootBox { index: 1, axis: 1, value, interval: (0.0, 1.0) } if value == 1.5
+        e.error,
+        Error::NonFiniteCoordinate { axis: 0, .. }
     ));
-    let e = t.insert([f64::NAN, 0.5], 1).unwrap_err();
-    assert!(matches!(e, Error::NonFiniteCoordinate { axis: 0, .. }));
     assert!(!t.remove(&[f64::INFINITY, 0.0], &0));
     assert!(!t.remove(&[-1.0, 0.0], &0));
     assert!(!t.remove(&[0.25, 0.25], &9));

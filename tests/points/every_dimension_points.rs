@@ -165,7 +165,7 @@ fn check_point_tree<const D: usize>(rng: &mut SmallRng, entries: &[([f64; D], us
     }
     check_queries!(t, &live, rng);
     for (p, i) in &live {
-        let leaf = t.locate(p).unwrap();
+        let leaf = t.locate(p).unwrap().inside().unwrap();
         assert!(t.tree().is_leaf(leaf) && t.node_items(leaf).contains(i));
     }
 }
@@ -216,7 +216,7 @@ fn check_compressed<const D: usize>(rng: &mut SmallRng, entries: &[([f64; D], us
     }
     check_queries!(t, &live, rng);
     for (p, _) in &live {
-        let at = t.locate(p).unwrap();
+        let at = t.locate(p).unwrap().inside().unwrap();
         assert!(at.leaf, "D = {D}: a stored point's finest cell is a leaf");
     }
 }

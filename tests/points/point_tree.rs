@@ -216,7 +216,7 @@ fn chapter_quadrant_convention() {
         .build(&pts)
         .unwrap();
     let quadrant = |item: usize| {
-        let leaf = t.locate(&pts[item].0).unwrap();
+        let leaf = t.locate(&pts[item].0).unwrap().inside().unwrap();
         t.tree().cell(leaf).ancestor(1).child_index()
     };
     assert_eq!(quadrant(0), 0);

@@ -184,12 +184,18 @@ fn duplicates_at_the_maximum_depth_are_kept_and_removed_one_at_a_time() {
 fn bad_inserts_are_typed_errors_and_bad_removals_are_misses() {
     let mut t = builder::<2>(1, None).build(&[([0.25, 0.25], 0u8)]).unwrap();
     let e = t.insert([0.5, 1.5], 1).unwrap_err();
+    assert_eq!(e.item, 1, "the refused item is handed back");
     assert!(matches!(
-        e,
-        Error::OutsideRootBox { axis: 1, value, interval: (0.0, 1.0), .. } if value == 1.5
+        e.error,
+        Error::OutsideRootBox { axis: 1, value, interval, .. }
+            if value.get() == 1.5 && (interval.0.get(), interval.1.get()) == (0.0, 1.0)
     ));
-    let e = t.insert([f64::NAN, 0.5], 1).unwrap_err();
-    assert!(matches!(e, Error::NonFiniteCoordinate { axis: 0, .. }));
+    let e = t.insert([f64::NAN, 0.5], 2).unwrap_err();
+    assert_eq!(e.item, 2);
+    assert!(matches!(
+        e.error,
+        Error::NonFiniteCoordinate { axis: 0, .. }
+    ));
     assert!(!t.remove(&[f64::INFINITY, 0.0], &0));
     assert!(!t.remove(&[-1.0, 0.0], &0));
     assert!(!t.remove(&[0.25, 0.25], &9));

@@ -255,16 +255,22 @@ impl<S: Scalar, T, const D: usize> PointSet<D> for DynamicPointTree<S, T, D> {
     /// depth and an inner node only over it (the canonical shape); every point in its leaf's
     /// cell and the domain; chunks inside the pool and disjoint; slots and positions inverse.
     fn validate(&self) -> Result<(), ValidationError> {
-        let fail = |msg: String| Err(ValidationError(msg));
+        use crate::error::Invariant as I;
+        let fail = |e: ValidationError| Err(e);
         let ix = &self.index;
-        if ix.nodes.len() < ix.tree.node_count() {
-            return fail("fewer node records than nodes".into());
+        if let Err(e) = ix.tree.validate() {
+            return fail(ValidationError::new(I::Topology).detail(e.to_string()));
         }
-        if self.pos.len() != self.items.len() {
-            return fail("one position per item".into());
+        if ix.nodes.len() < ix.tree.node_count() || self.pos.len() != self.items.len() {
+            return fail(
+                ValidationError::new(I::Lengths)
+                    .detail("one record per node and one position per item"),
+            );
         }
         if ix.nodes[0].count as usize != self.len() {
-            return fail("the root does not count every point".into());
+            return fail(
+                ValidationError::new(I::Counts).detail("the root does not count every point"),
+            );
         }
         let mut owned = vec![false; ix.pool.len()];
         for (id, cell) in ix.tree.pre_order() {
@@ -272,51 +278,72 @@ impl<S: Scalar, T, const D: usize> PointSet<D> for DynamicPointTree<S, T, D> {
             if let Some(first) = ix.tree.child(id, 0) {
                 let sum: u32 = (0..1 << D).map(|i| ix.nodes[first.index() + i].count).sum();
                 if sum != d.count {
-                    return fail(format!(
-                        "node {}'s children count {sum} of {}",
-                        id.0, d.count
-                    ));
+                    return fail(
+                        ValidationError::new(I::Counts)
+                            .node(id.0)
+                            .detail(format!("its children count {sum} of {}", d.count)),
+                    );
                 }
                 if d.count as usize <= self.bucket_size {
-                    return fail(format!(
-                        "node {} was split holding {} points",
-                        id.0, d.count
-                    ));
+                    return fail(
+                        ValidationError::new(I::SplitNeeded)
+                            .node(id.0)
+                            .detail(format!("holds {} points", d.count)),
+                    );
                 }
                 continue;
             }
             if d.count as usize > self.bucket_size && cell.level() < self.max_depth {
-                return fail(format!(
-                    "leaf {} holds {} above the maximum depth",
-                    id.0, d.count
-                ));
+                return fail(
+                    ValidationError::new(I::LeafSize)
+                        .node(id.0)
+                        .detail(format!("holds {} points", d.count)),
+                );
             }
             if d.count > d.cap || (d.start + d.cap) as usize > ix.pool.len() {
-                return fail(format!("leaf {}'s chunk is too small or outside", id.0));
+                return fail(
+                    ValidationError::new(I::Links)
+                        .node(id.0)
+                        .detail("its chunk is too small or outside the pool"),
+                );
             }
             for e in d.start..d.start + d.cap {
                 if std::mem::replace(&mut owned[e as usize], true) {
-                    return fail(format!("entry {e} belongs to two chunks"));
+                    return fail(
+                        ValidationError::new(I::Links)
+                            .node(id.0)
+                            .detail(format!("entry {e} belongs to two chunks")),
+                    );
                 }
                 let slot = ix.pool.slots[e as usize];
                 if e >= d.start + d.count {
                     continue;
                 }
                 if slot as usize >= self.len() || self.pos[slot as usize] != e {
-                    return fail(format!("entry {e}'s slot {slot} does not point back"));
+                    return fail(
+                        ValidationError::new(I::Links)
+                            .point(slot as usize)
+                            .detail(format!("entry {e} and its slot disagree")),
+                    );
                 }
                 let p = ix.pool.points[e as usize].map(Scalar::to_f64);
                 if !self.domain.contains(&p) {
-                    return fail(format!("slot {slot}'s point lies outside the domain"));
+                    return fail(ValidationError::new(I::InDomain).point(slot as usize));
                 }
                 let key = ix.geometry.key(&p);
                 if Cell::from_aligned_key(key, cell.level()) != cell {
-                    return fail(format!("slot {slot} is out of place in leaf {}", id.0));
+                    return fail(
+                        ValidationError::new(I::InLeaf)
+                            .node(id.0)
+                            .point(slot as usize),
+                    );
                 }
             }
         }
         if let Some(e) = (0..ix.pool.len()).find(|&e| !owned[e] && ix.pool.slots[e] != GAP) {
-            return fail(format!("free entry {e} holds a slot"));
+            return fail(
+                ValidationError::new(I::Links).detail(format!("free entry {e} holds a slot")),
+            );
         }
         Ok(())
     }

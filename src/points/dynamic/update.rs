@@ -15,7 +15,7 @@ use super::{DynamicPointTree, NodeData, GAP};
 use crate::error::Error;
 use crate::geom::Scalar;
 use crate::points::digit;
-use crate::query::{PointSet, PointSetMut};
+use crate::query::{InsertError, Location, PointSet, PointSetMut, QueryError};
 use crate::tree::NodeId;
 use smallvec::SmallVec;
 
@@ -23,11 +23,32 @@ use smallvec::SmallVec;
 type Path = SmallVec<[NodeId; 40]>;
 
 impl<S: Scalar, T, const D: usize> DynamicPointTree<S, T, D> {
+    /// The leaf whose cell holds `point` under the split convention, or
+    /// [`Location::Outside`] for a point outside the domain (as
+    /// [`PointTree::locate`](crate::PointTree::locate)).
+    ///
+    /// # Errors
+    /// [`QueryError::NotFinite`](crate::QueryError::NotFinite) or
+    /// [`QueryError::Inexact`](crate::QueryError::Inexact) for a coordinate that is NaN,
+    /// infinite or an integer `f64` cannot hold, naming its axis.
+    ///
+    /// # Complexity
+    /// O(depth).
+    ///
+    /// ```
+    /// use orthtree::query::Location;
+    /// use orthtree::{tree::NodeId, DynamicPointTree};
+    /// let t = DynamicPointTree::new(&[([0.0, 0.0], 'a'), ([1.0, 1.0], 'b')]).unwrap();
+    /// assert_eq!(t.locate(&[0.5, 0.5]), Ok(Location::Inside(NodeId::ROOT)));
+    /// assert_eq!(t.locate(&[-1.0, 0.5]), Ok(Location::Outside { axis: 0 }));
+    /// ```
+    pub fn locate(&self, point: &[S; D]) -> Result<Location<NodeId>, QueryError> {
+        Ok(crate::query::place_point(point, &self.domain)?
+            .map(|_| *self.path(point).last().expect("the path holds the root")))
+    }
+
     fn remove_where(&mut self, point: &[S; D], wanted: impl Fn(&T) -> bool) -> Option<T> {
-        crate::geom::validate_point(point).ok()?;
-        if !self.domain.contains(&point.map(Scalar::to_f64)) {
-            return None;
-        }
+        self.locate(point).ok()?.inside()?;
         let path = self.path(point);
         let v = *path.last().expect("the path holds the root");
         let ix = &self.index;
@@ -228,11 +249,16 @@ impl<S: Scalar, T, const D: usize> PointSetMut<D> for DynamicPointTree<S, T, D> 
     /// assert!(t.insert([f64::NAN, 0.0, 0.0], 100).is_err());
     /// t.validate().unwrap();
     /// ```
-    fn insert(&mut self, point: [S; D], item: T) -> Result<(), Error> {
+    fn insert(&mut self, point: [S; D], item: T) -> Result<(), InsertError<T>> {
         let slot = self.len();
-        crate::points::check_point(&point, Some(&self.domain), slot)?;
-        if slot + 1 >= u32::MAX as usize {
-            return Err(Error::TooManyPoints { len: slot + 1 });
+        let checked = Error::check_input(&point, Some(&self.domain), slot).and_then(|_| {
+            if slot + 1 >= u32::MAX as usize {
+                return Err(Error::TooManyPoints { len: slot + 1 });
+            }
+            Ok(())
+        });
+        if let Err(error) = checked {
+            return Err(InsertError { error, item });
         }
         let path = self.path(&point);
         for &u in &path {
