@@ -34,6 +34,7 @@
 //! assert_eq!(t.len(), 3);
 //! ```
 #![warn(missing_docs)]
+#![warn(clippy::missing_errors_doc)]
 #![deny(rustdoc::broken_intra_doc_links)]
 // One exception, allowed where it stands: the cache prefetch of the build's gather and of the
 // query engines (`prefetch.rs`, measured there and in `query/range.rs`).

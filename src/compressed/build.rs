@@ -74,7 +74,8 @@ impl<S: Scalar, const D: usize> CompressedTreeBuilder<S, D> {
 
     /// Builds from (point, item) pairs, cloning the items.
     ///
-    /// Errors: a NaN, infinite or inexact coordinate (an integer `f64` cannot hold), a point outside the root box (naming the point,
+    /// # Errors
+    /// A NaN, infinite or inexact coordinate (an integer `f64` cannot hold), a point outside the root box (naming the point,
     /// axis and value), an invalid root box, too many points.
     pub fn build<T: Clone>(
         &self,
@@ -84,6 +85,12 @@ impl<S: Scalar, const D: usize> CompressedTreeBuilder<S, D> {
     }
 
     /// Builds from owned (point, item) pairs, moving the items.
+    ///
+    /// # Errors
+    /// [`crate::Error::NonFiniteCoordinate`] or [`crate::Error::InexactCoordinate`] for a coordinate that is NaN,
+    /// infinite or an integer `f64` cannot hold, [`crate::Error::OutsideRootBox`] for a point outside a
+    /// given root box (each naming the point, axis and value), [`crate::Error::InvalidRootBox`],
+    /// [`crate::Error::ZeroBucketSize`], [`crate::Error::MaxDepthTooLarge`], [`crate::Error::TooManyPoints`].
     pub fn build_from_vec<T>(
         &self,
         entries: Vec<([S; D], T)>,

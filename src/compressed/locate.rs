@@ -97,7 +97,8 @@ pub struct PointLocator {
 impl PointLocator {
     /// Builds the tree (see the module doc for the time).
     ///
-    /// Errors: [`SubdivisionError::Crossing`] for two edges found to meet other than at a shared
+    /// # Errors
+    /// [`SubdivisionError::Crossing`] for two edges found to meet other than at a shared
     /// endpoint.
     pub fn new(subdivision: Subdivision) -> Result<Self, SubdivisionError> {
         Self::build_with(subdivision, false)
@@ -108,7 +109,8 @@ impl PointLocator {
     /// finest cells, but the size grows like the length of close edges over their distance
     /// (two unit edges 2^-40 apart need about 2^33 squares): use it on well-spaced input.
     ///
-    /// Errors: those of [`PointLocator::new`], and [`SubdivisionError::TooManySquares`] once the
+    /// # Errors
+    /// Those of [`PointLocator::new`], and [`SubdivisionError::TooManySquares`] once the
     /// tree would pass 64 squares per vertex and edge plus 4096.
     pub fn with_exercise_rule(subdivision: Subdivision) -> Result<Self, SubdivisionError> {
         Self::build_with(subdivision, true)

@@ -115,7 +115,8 @@ impl<S: Scalar, const D: usize> CompressedTree<S, (), D> {
 impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
     /// Builds over the smallest enclosing cube of the points, cloning the items.
     ///
-    /// Errors: a NaN, infinite or inexact coordinate (an integer `f64` cannot hold) (naming the point and axis); too many points.
+    /// # Errors
+    /// A NaN, infinite or inexact coordinate (an integer `f64` cannot hold) (naming the point and axis); too many points.
     pub fn new(entries: &[([S; D], T)]) -> Result<Self, Error>
     where
         T: Clone,
@@ -237,7 +238,8 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
     /// `max_depth` (as [`crate::points::PointTreeBuilder`] takes them): the points in Morton order, no
     /// sort. O(n + nodes).
     ///
-    /// Errors: a zero bucket size; a maximum depth beyond
+    /// # Errors
+    /// A zero bucket size; a maximum depth beyond
     /// [`Cell::MAX_LEVEL`](crate::Cell::MAX_LEVEL).
     pub fn to_point_tree(
         &self,

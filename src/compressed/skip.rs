@@ -78,7 +78,8 @@ pub struct SkipQuadtree<S, T, const D: usize> {
 impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
     /// Builds over the smallest enclosing cube of the points, cloning the items.
     ///
-    /// Errors: those of [`CompressedTree::new`].
+    /// # Errors
+    /// Those of [`CompressedTree::new`].
     pub fn new(entries: &[([S; D], T)]) -> Result<Self, Error>
     where
         T: Clone,
@@ -227,7 +228,8 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
     /// exact nearest point (and so does `-0.0`); an infinite or huge `eps` (for which
     /// `(1 + eps)^2` overflows) accepts any point, the first found.
     ///
-    /// Errors: a non-finite `p` or an integer coordinate `f64` cannot hold; `eps` negative or
+    /// # Errors
+    /// A non-finite `p` or an integer coordinate `f64` cannot hold; `eps` negative or
     /// NaN ([`QueryError::InvalidEpsilon`]).
     pub fn approx_nearest(
         &self,
@@ -393,7 +395,8 @@ impl<S: Scalar, T, const D: usize> PointSet<D> for SkipQuadtree<S, T, D> {
 impl<S: Scalar, T, const D: usize> PointSetMut<D> for SkipQuadtree<S, T, D> {
     /// Inserts `item` at `point`. Expected O(log n).
     ///
-    /// Errors: those of [`CompressedTree::insert`](crate::query::PointSetMut::insert).
+    /// # Errors
+    /// Those of [`CompressedTree::insert`](crate::query::PointSetMut::insert).
     fn insert(&mut self, point: [S; D], item: T) -> Result<(), InsertError<T>> {
         let key = match self.base.checked_insert_key(&point) {
             Ok(key) => key,

@@ -85,7 +85,8 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
 impl<S: Scalar, T, const D: usize> PointSetMut<D> for CompressedTree<S, T, D> {
     /// Inserts `item` at `point`. O(depth).
     ///
-    /// Errors: a NaN or infinite coordinate, or one outside [`CompressedTree::domain`](crate::query::PointSet::domain); more
+    /// # Errors
+    /// A NaN or infinite coordinate, or one outside [`CompressedTree::domain`](crate::query::PointSet::domain); more
     /// points than a `u32` can index.
     ///
     /// ```

@@ -61,8 +61,11 @@ impl<const D: usize> RootGeometry<D> {
         }
     }
 
-    /// [`RootGeometry::new`], or an error naming the first non-finite axis of `min`
-    /// ([`AabbError::NonFinite`]) or the bad side ([`AabbError::InvalidSide`]).
+    /// [`RootGeometry::new`], or an error.
+    ///
+    /// # Errors
+    /// [`AabbError::NonFinite`] naming the first non-finite axis of `min`,
+    /// [`AabbError::InvalidSide`] for a side that is NaN, infinite or negative.
     ///
     /// ```
     /// use orthtree::{geom::AabbError, geom::RootGeometry};

@@ -29,6 +29,10 @@ use std::path::Path;
 /// assert!(text.contains("CELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n"));
 /// assert!(text.ends_with("SCALARS region int 1\nLOOKUP_TABLE default\n0\n"));
 /// ```
+///
+/// # Errors
+/// [`io::ErrorKind::InvalidData`] for a triangle or segment naming a vertex the mesh does not
+/// have (checked before anything is written), else the writer's I/O error.
 pub fn write_vtk(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
     super::triangle::checked(mesh)?;
     write_unchecked(mesh, out)
@@ -67,6 +71,9 @@ fn write_unchecked(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
 }
 
 /// Writes [`write_vtk`]'s output to a file (checking the indices before creating it).
+///
+/// # Errors
+/// As [`write_vtk`], and the file's I/O error.
 pub fn write_vtk_to(mesh: &Mesh, path: impl AsRef<Path>) -> io::Result<()> {
     super::triangle::checked(mesh)?;
     let mut out = BufWriter::new(std::fs::File::create(path)?);

@@ -44,6 +44,10 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// assert!(t.extend_from_vec(vec![([0.5, 2.0], 7)]).is_err()); // outside the root box
     /// assert_eq!(t.len(), 100);
     /// ```
+    ///
+    /// # Errors
+    /// As [`PointSetMut::insert`](crate::query::PointSetMut::insert), naming the first refused
+    /// entry by its future index; the tree is unchanged then.
     pub fn extend_from_vec(&mut self, entries: Vec<([S; D], T)>) -> Result<(), Error> {
         let n = self.len();
         if entries.is_empty() {

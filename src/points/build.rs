@@ -98,6 +98,12 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
     }
 
     /// Builds from a slice of (point, item) pairs, cloning the items.
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteCoordinate`] or [`Error::InexactCoordinate`] for a coordinate that is NaN,
+    /// infinite or an integer `f64` cannot hold, [`Error::OutsideRootBox`] for a point outside a
+    /// given root box (each naming the point, axis and value), [`Error::InvalidRootBox`],
+    /// [`Error::ZeroBucketSize`], [`Error::MaxDepthTooLarge`], [`Error::TooManyPoints`].
     pub fn build<T: Clone>(&self, entries: &[([S; D], T)]) -> Result<PointTree<S, T, D>, Error> {
         self.build_with(
             entries.len(),
@@ -110,6 +116,12 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
     }
 
     /// Builds from owned (point, item) pairs, moving the items.
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteCoordinate`] or [`Error::InexactCoordinate`] for a coordinate that is NaN,
+    /// infinite or an integer `f64` cannot hold, [`Error::OutsideRootBox`] for a point outside a
+    /// given root box (each naming the point, axis and value), [`Error::InvalidRootBox`],
+    /// [`Error::ZeroBucketSize`], [`Error::MaxDepthTooLarge`], [`Error::TooManyPoints`].
     pub fn build_from_vec<T>(
         &self,
         entries: Vec<([S; D], T)>,

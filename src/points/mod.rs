@@ -72,6 +72,12 @@ pub type Octree<T> = PointTree<f64, T, 3>;
 
 impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// Builds with the default settings ([`PointTreeBuilder::new`]), cloning the items.
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteCoordinate`] or [`Error::InexactCoordinate`] for a coordinate that is NaN,
+    /// infinite or an integer `f64` cannot hold, [`Error::OutsideRootBox`] for a point outside a
+    /// given root box (each naming the point, axis and value), [`Error::InvalidRootBox`],
+    /// [`Error::ZeroBucketSize`], [`Error::MaxDepthTooLarge`], [`Error::TooManyPoints`].
     pub fn new(entries: &[([S; D], T)]) -> Result<Self, Error>
     where
         T: Clone,

@@ -31,6 +31,12 @@ impl<S: Scalar + Send + Sync, const D: usize> PointTreeBuilder<S, D> {
     /// assert_eq!(parallel.items(), serial.items());
     /// assert_eq!(parallel.leaf_count(), serial.leaf_count());
     /// ```
+    ///
+    /// # Errors
+    /// [`crate::Error::NonFiniteCoordinate`] or [`crate::Error::InexactCoordinate`] for a coordinate that is NaN,
+    /// infinite or an integer `f64` cannot hold, [`crate::Error::OutsideRootBox`] for a point outside a
+    /// given root box (each naming the point, axis and value), [`crate::Error::InvalidRootBox`],
+    /// [`crate::Error::ZeroBucketSize`], [`crate::Error::MaxDepthTooLarge`], [`crate::Error::TooManyPoints`].
     pub fn par_build<T: Clone + Send + Sync>(
         &self,
         entries: &[([S; D], T)],

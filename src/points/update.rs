@@ -149,7 +149,8 @@ impl<S: Scalar, T, const D: usize> PointSetMut<D> for PointTree<S, T, D> {
     /// Inserts `item` at `point`, splitting the point's leaf while it holds more than the bucket
     /// size and is above the maximum depth. See the module doc for the cost.
     ///
-    /// Errors: a coordinate that is NaN or infinite, or outside [`PointTree::domain`](crate::query::PointSet::domain); more points
+    /// # Errors
+    /// A coordinate that is NaN or infinite, or outside [`PointTree::domain`](crate::query::PointSet::domain); more points
     /// than a `u32` can index.
     ///
     /// ```

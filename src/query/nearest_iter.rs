@@ -65,7 +65,8 @@ pub(crate) struct IndexNearestIter<'a, I: SpatialIndex<D>, M, const D: usize> {
 impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> IndexNearestIter<'a, I, M, D> {
     /// A lazy nearest-first search from `q` on `index`, up to distance `max` (inclusive).
     ///
-    /// Errors: a non-finite `q`; a negative or NaN `max`.
+    /// # Errors
+    /// A non-finite `q`; a negative or NaN `max`.
     pub(crate) fn new(index: &'a I, q: [f64; D], max: f64, metric: M) -> Result<Self, QueryError> {
         query_point(&q)?;
         check_max(max)?;

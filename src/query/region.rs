@@ -60,6 +60,9 @@ pub trait Region<const D: usize> {
     /// `true` when `p` lies in the region.
     fn contains(&self, p: &[f64; D]) -> bool;
     /// Checks the region's parameters before a query; the default accepts everything.
+    ///
+    /// # Errors
+    /// The region's own [`QueryError`] (a NaN radius, a non-finite normal, ...).
     fn validate(&self) -> Result<(), QueryError> {
         Ok(())
     }
@@ -146,6 +149,10 @@ pub struct Ball<const D: usize> {
 
 impl<const D: usize> Ball<D> {
     /// A ball; an error for a non-finite centre or a negative or NaN radius.
+    ///
+    /// # Errors
+    /// [`QueryError::NotFinite`] for a non-finite centre (naming the axis),
+    /// [`QueryError::InvalidRadius`] for a negative or NaN radius.
     pub fn new(center: [f64; D], radius: f64) -> Result<Self, QueryError> {
         let b = Ball { center, radius };
         b.validate()?;
@@ -252,6 +259,10 @@ pub struct HalfSpace<const D: usize> {
 
 impl<const D: usize> HalfSpace<D> {
     /// A half-space; an error for a non-finite normal or a NaN offset.
+    ///
+    /// # Errors
+    /// [`QueryError::InvalidNormal`] for a non-finite normal (naming the axis),
+    /// [`QueryError::NanOffset`] for a NaN offset.
     pub fn new(normal: [f64; D], offset: f64) -> Result<Self, QueryError> {
         let h = HalfSpace { normal, offset };
         h.validate()?;

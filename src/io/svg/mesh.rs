@@ -144,6 +144,9 @@ pub fn mesh_svg(mesh: &Mesh, board: &Board) -> String {
 }
 
 /// [`write_mesh_svg`] to a file, through a buffer.
+///
+/// # Errors
+/// The writer's (or the file's) I/O error.
 pub fn write_mesh_svg_to(mesh: &Mesh, board: &Board, path: impl AsRef<Path>) -> io::Result<()> {
     let mut out = io::BufWriter::new(std::fs::File::create(path)?);
     write_mesh_svg(mesh, board, &mut out)?;

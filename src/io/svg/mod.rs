@@ -231,6 +231,9 @@ impl Svg {
     }
 
     /// Writes [`Svg::finish`] to `out`, without building the document in one string.
+    ///
+    /// # Errors
+    /// The writer's (or the file's) I/O error.
     pub fn write(&self, out: &mut impl std::io::Write) -> std::io::Result<()> {
         out.write_all(self.header().as_bytes())?;
         out.write_all(self.body.as_bytes())?;
@@ -238,6 +241,9 @@ impl Svg {
     }
 
     /// Writes [`Svg::finish`] to a file, through a buffer.
+    ///
+    /// # Errors
+    /// The writer's (or the file's) I/O error.
     pub fn write_to(&self, path: impl AsRef<std::path::Path>) -> std::io::Result<()> {
         let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
         self.write(&mut out)?;

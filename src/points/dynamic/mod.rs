@@ -152,6 +152,12 @@ impl<S: Scalar, T, const D: usize> From<PointTree<S, T, D>> for DynamicPointTree
 impl<S: Scalar, T, const D: usize> DynamicPointTree<S, T, D> {
     /// Builds with [`PointTree::new`]'s defaults (the root box the enclosing cube of the points),
     /// cloning the items.
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteCoordinate`] or [`Error::InexactCoordinate`] for a coordinate that is NaN,
+    /// infinite or an integer `f64` cannot hold, [`Error::OutsideRootBox`] for a point outside a
+    /// given root box (each naming the point, axis and value), [`Error::InvalidRootBox`],
+    /// [`Error::ZeroBucketSize`], [`Error::MaxDepthTooLarge`], [`Error::TooManyPoints`].
     pub fn new(entries: &[([S; D], T)]) -> Result<Self, Error>
     where
         T: Clone,

@@ -233,7 +233,8 @@ impl<S: Scalar, T, const D: usize> DynamicPointTree<S, T, D> {
 impl<S: Scalar, T, const D: usize> PointSetMut<D> for DynamicPointTree<S, T, D> {
     /// Inserts `item` at `point` in amortised O(depth).
     ///
-    /// Errors: a coordinate that is NaN or infinite, or outside [`DynamicPointTree::domain`](crate::query::PointSet::domain);
+    /// # Errors
+    /// A coordinate that is NaN or infinite, or outside [`DynamicPointTree::domain`](crate::query::PointSet::domain);
     /// more points than a `u32` can index.
     ///
     /// ```
