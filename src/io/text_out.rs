@@ -165,6 +165,46 @@ fn f3_slow(x: f64) -> String {
     if trimmed == "-0" { "0" } else { trimmed }.to_string()
 }
 
+/// Consecutive integers, as line numbers are: the digits of the current value kept as text, so
+/// that the next one costs an increment of the last digit (a carry now and then) instead of a
+/// conversion. Written with [`TextOut::count`].
+pub(crate) struct Counter {
+    /// The digits, `digits[..len]`; the bytes past them are `'0'`.
+    digits: [u8; INTEGER_BYTES],
+    len: usize,
+}
+
+impl Counter {
+    /// A counter whose first value is `first`.
+    pub fn new(first: u64) -> Self {
+        let mut digits = [b'0'; INTEGER_BYTES];
+        let mut scratch = [0u8; INTEGER_BYTES];
+        let len = put_u64(&mut scratch, first);
+        digits[..len].copy_from_slice(&scratch[..len]);
+        Counter { digits, len }
+    }
+
+    /// Moves on to the next value: past `u64::MAX` too, in text, up to twenty nines, where it
+    /// stays (no line count gets near).
+    #[inline(always)]
+    fn bump(&mut self) {
+        for i in (0..self.len).rev() {
+            if self.digits[i] < b'9' {
+                self.digits[i] += 1;
+                return;
+            }
+            self.digits[i] = b'0';
+        }
+        // All nines: one digit more, a 1 and zeros.
+        if self.len < INTEGER_BYTES {
+            self.digits[0] = b'1';
+            self.len += 1;
+        } else {
+            self.digits = [b'9'; INTEGER_BYTES];
+        }
+    }
+}
+
 /// A byte buffer in front of a writer (see the module doc). Call [`TextOut::finish`] at the end:
 /// bytes still buffered when it is dropped are lost.
 pub(crate) struct TextOut<'a, W: Write + ?Sized> {
@@ -205,6 +245,16 @@ impl<'a, W: Write + ?Sized> TextOut<'a, W> {
     pub fn u(&mut self, v: u64) -> &mut Self {
         self.room(INTEGER_BYTES);
         self.pos += put_u64(&mut self.buf[self.pos..], v);
+        self
+    }
+
+    /// Appends the counter's value in decimal, then moves it on to the next.
+    #[inline(always)]
+    pub fn count(&mut self, counter: &mut Counter) -> &mut Self {
+        self.room(INTEGER_BYTES);
+        self.buf[self.pos..self.pos + INTEGER_BYTES].copy_from_slice(&counter.digits);
+        self.pos += counter.len;
+        counter.bump();
         self
     }
 
