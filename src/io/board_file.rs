@@ -55,23 +55,97 @@ impl BoardFormat {
         }
     }
 
-    /// Reads a board in this format from `reader` to its end (memory bounded by the bytes read),
-    /// as [`BoardFormat::read_bytes`].
+    /// Reads a board in this format from `reader` to its end, as [`BoardFormat::read_bytes`],
+    /// reading at most [`MAX_BOARD_FILE_BYTES`] (see [`BoardFormat::read_with_limit`]).
     ///
     /// # Errors
     ///
-    /// [`BoardReadError::Io`] when reading fails, [`BoardReadError::Board`] for a board that is
+    /// [`BoardReadError::Io`] when reading fails, [`BoardReadError::TooLarge`] when the reader
+    /// yields more than [`MAX_BOARD_FILE_BYTES`], [`BoardReadError::Board`] for a board that is
     /// refused.
+    ///
+    /// # Complexity
+    ///
+    /// As [`BoardFormat::read_bytes`]; at most [`MAX_BOARD_FILE_BYTES`] bytes of text held
+    /// besides the board.
     ///
     /// ```
     /// use orthtree::io::BoardFormat;
     /// let board = BoardFormat::Text.read(&b"size 16\n4 4  8 4  8 8\n"[..], None).unwrap();
     /// assert_eq!(board.components().len(), 1);
     /// ```
-    pub fn read(self, mut reader: impl Read, size: Option<i64>) -> Result<Board, BoardReadError> {
-        let mut bytes = Vec::new();
-        reader.read_to_end(&mut bytes).map_err(BoardReadError::Io)?;
+    pub fn read(self, reader: impl Read, size: Option<i64>) -> Result<Board, BoardReadError> {
+        self.read_with_limit(reader, size, MAX_BOARD_FILE_BYTES)
+    }
+
+    /// [`BoardFormat::read`] reading at most `max_bytes + 1` bytes, the last one only to tell
+    /// that the reader goes on: memory stays within `max_bytes` bytes of text even for a reader
+    /// that never ends.
+    ///
+    /// # Errors
+    ///
+    /// As [`BoardFormat::read`], with [`BoardReadError::TooLarge`] naming `max_bytes` when the
+    /// reader yields more.
+    ///
+    /// ```
+    /// use orthtree::io::{BoardFormat, BoardReadError};
+    /// let text = b"size 16\n4 4  8 4  8 8\n"; // 22 bytes
+    /// assert!(BoardFormat::Text.read_with_limit(&text[..], None, 22).is_ok());
+    /// let err = BoardFormat::Text.read_with_limit(&text[..], None, 21).unwrap_err();
+    /// assert!(matches!(err, BoardReadError::TooLarge { limit: 21 }));
+    /// // An endless reader is stopped at the limit.
+    /// let endless = std::io::repeat(b' ');
+    /// let err = BoardFormat::Poly.read_with_limit(endless, None, 1000).unwrap_err();
+    /// assert_eq!(err.to_string(), "the board holds more than 1000 bytes; the limit is 1000 bytes");
+    /// ```
+    pub fn read_with_limit(
+        self,
+        reader: impl Read,
+        size: Option<i64>,
+        max_bytes: u64,
+    ) -> Result<Board, BoardReadError> {
+        let bytes = read_bounded(reader, max_bytes)
+            .map_err(BoardReadError::Io)?
+            .ok_or(BoardReadError::TooLarge { limit: max_bytes })?;
         self.read_bytes(&bytes, size).map_err(BoardReadError::Board)
+    }
+}
+
+/// The bytes of `reader` to its end, or `None` if it yields more than `max_bytes`. The buffer
+/// grows by doubling but never past `max_bytes`, and the one byte that tells a reader longer than
+/// the limit is read onto the stack, so at most `max_bytes` bytes are held (and `max_bytes + 1`
+/// read) whatever the reader.
+fn read_bounded(mut reader: impl Read, max_bytes: u64) -> std::io::Result<Option<Vec<u8>>> {
+    // On a 32-bit target a limit past the address space is no limit.
+    let limit = usize::try_from(max_bytes).unwrap_or(usize::MAX);
+    let mut bytes = Vec::new();
+    let mut len = 0;
+    while len < limit {
+        if len == bytes.len() {
+            let grown = bytes.len().saturating_mul(2).max(1 << 13).min(limit);
+            // Exactly: `resize` alone may round the capacity up past the limit.
+            bytes.reserve_exact(grown - bytes.len());
+            bytes.resize(grown, 0);
+        }
+        match reader.read(&mut bytes[len..]) {
+            Ok(0) => {
+                bytes.truncate(len);
+                return Ok(Some(bytes));
+            }
+            Ok(n) => len += n,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(e),
+        }
+    }
+    bytes.truncate(len);
+    let mut probe = [0u8; 1];
+    loop {
+        match reader.read(&mut probe) {
+            Ok(0) => return Ok(Some(bytes)),
+            Ok(_) => return Ok(None),
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(e),
+        }
     }
 }
 
@@ -80,6 +154,12 @@ impl BoardFormat {
 pub enum BoardReadError {
     /// Reading failed.
     Io(std::io::Error),
+    /// The reader yields more bytes than the limit ([`MAX_BOARD_FILE_BYTES`] unless
+    /// [`BoardFormat::read_with_limit`] sets another).
+    TooLarge {
+        /// The limit, in bytes.
+        limit: u64,
+    },
     /// The bytes are not a valid board.
     Board(BoardError),
 }
@@ -88,6 +168,10 @@ impl core::fmt::Display for BoardReadError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
             BoardReadError::Io(error) => write!(f, "reading the board: {error}"),
+            BoardReadError::TooLarge { limit } => write!(
+                f,
+                "the board holds more than {limit} bytes; the limit is {limit} bytes"
+            ),
             BoardReadError::Board(error) => write!(f, "{error}"),
         }
     }
@@ -98,6 +182,7 @@ impl std::error::Error for BoardReadError {
         match self {
             BoardReadError::Io(error) => Some(error),
             BoardReadError::Board(error) => Some(error),
+            BoardReadError::TooLarge { .. } => None,
         }
     }
 }
@@ -204,9 +289,9 @@ pub fn read_board_file(path: impl AsRef<Path>, size: Option<i64>) -> Result<Boar
     read_board_file_with_limit(path, size, MAX_BOARD_FILE_BYTES)
 }
 
-/// [`read_board_file`] reading at most `max_bytes` bytes: the file is read through a reader
-/// that stops one byte past the limit, so memory stays within `max_bytes + 1` bytes of text
-/// even for a file that never ends.
+/// [`read_board_file`] reading at most `max_bytes + 1` bytes, the last one only to tell that
+/// the file goes on, so memory stays within `max_bytes` bytes of text even for a file that
+/// never ends.
 ///
 /// ```
 /// use orthtree::io::{read_board_file_with_limit, BoardFileError};
@@ -236,16 +321,12 @@ pub fn read_board_file_with_limit(
         error,
     };
     let file = std::fs::File::open(path).map_err(io_error)?;
-    let mut bytes = Vec::new();
-    file.take(max_bytes.saturating_add(1))
-        .read_to_end(&mut bytes)
-        .map_err(io_error)?;
-    if bytes.len() as u64 > max_bytes {
-        return Err(BoardFileError::TooLarge {
+    let bytes = read_bounded(file, max_bytes)
+        .map_err(io_error)?
+        .ok_or_else(|| BoardFileError::TooLarge {
             path: path.to_path_buf(),
             limit: max_bytes,
-        });
-    }
+        })?;
     format
         .read_bytes(&bytes, size)
         .map_err(|error| BoardFileError::Board {

@@ -21,7 +21,7 @@
 //! [`std::io::ErrorKind::InvalidInput`] error, writing nothing, if an index is out of range.
 //! Checked by loading written files with the gmsh 4.15 Python API and with meshio 5.3.
 
-use super::text_out::TextOut;
+use super::text_out::{Counter, TextOut};
 use crate::hash::FastMap;
 use crate::mesh::{Mesh, SegmentKind};
 use std::io::{self, BufWriter, Write};
@@ -235,8 +235,9 @@ fn write_nodes<W: Write>(o: &mut TextOut<'_, W>, mesh: &Mesh, entity: u64) -> io
     let n = mesh.vertices.len() as u64;
     o.s("$Nodes\n1 ").u(n).s(" 1 ").u(n).nl()?;
     o.s("2 ").u(entity).s(" 0 ").u(n).nl()?;
-    for i in 1..=n {
-        o.u(i).nl()?;
+    let mut tag = Counter::new(1);
+    for _ in 0..n {
+        o.count(&mut tag).nl()?;
     }
     for p in &mesh.vertices {
         o.i(p[0]).sp().i(p[1]).s(" 0").nl()?;
@@ -258,13 +259,12 @@ fn write_elements<W: Write>(o: &mut TextOut<'_, W>, mesh: &Mesh, e: &Entities) -
             o.u(t as u64 + 1).sp().u(a).sp().u(b).sp().u(c).nl()?;
         }
     }
-    let mut tag = mesh.triangles.len() as u64;
+    let mut tag = Counter::new(mesh.triangles.len() as u64 + 1);
     for g in &e.curves {
         o.s("1 ").u(g.tag).s(" 1 ").u(g.members.len() as u64).nl()?;
         for &k in &g.members {
-            tag += 1;
             let [a, b] = mesh.segments[k].vertices.map(|v| u64::from(v) + 1);
-            o.u(tag).sp().u(a).sp().u(b).nl()?;
+            o.count(&mut tag).sp().u(a).sp().u(b).nl()?;
         }
     }
     o.s("$EndElements").nl()

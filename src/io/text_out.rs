@@ -13,67 +13,65 @@ const BLOCK: usize = 1 << 16;
 /// The most bytes one integer takes: `i64::MIN` and `u64::MAX` have 20.
 const INTEGER_BYTES: usize = 20;
 
-/// "00" to "99", two bytes each.
-const PAIRS: &[u8; 200] = b"0001020304050607080910111213141516171819\
-                            2021222324252627282930313233343536373839\
-                            4041424344454647484950515253545556575859\
-                            6061626364656667686970717273747576777879\
-                            8081828384858687888990919293949596979899";
+/// `'0'` in every byte of a `u64`.
+const ZEROS: u64 = 0x3030_3030_3030_3030;
 
-/// 10^k for k = 0 to 19.
-const POWERS_OF_TEN: [u64; 20] = {
-    let mut p = [1u64; 20];
-    let mut k = 1;
-    while k < 20 {
-        p[k] = p[k - 1] * 10;
-        k += 1;
-    }
-    p
-};
-
-/// The number of decimal digits of `v` (1 for 0), from its bit length: `bits * 1233 / 4096`
-/// is `floor(bits * log10(2))`, one more than or equal to the digit count less one.
+/// The eight decimal digits of `v` (below 10^8, leading zeros included), one per byte, the most
+/// significant in the lowest byte (so that [`u64::to_le_bytes`] gives them in writing order).
+///
+/// All eight digits come out of a few multiplications on lanes of one `u64` (SIMD within a
+/// register): `v` is split into two halves of four digits (32-bit lanes), each half into two
+/// pairs (16-bit lanes), each pair into two digits (8-bit lanes). The divisions by 100 and 10
+/// are multiplications by reciprocals, exact for the ranges they get: `n * 10486 >> 20 = n / 100`
+/// for `n < 10^4` and `n * 103 >> 10 = n / 10` for `n < 100`, and no lane's product overflows
+/// into the next.
 #[inline(always)]
-fn digit_count(v: u64) -> usize {
-    // 0 has as many digits as 1; setting the low bit changes no other digit count.
-    let v = v | 1;
-    let bits = 64 - v.leading_zeros() as usize;
-    let t = (bits * 1233) >> 12;
-    t + 1 - usize::from(v < POWERS_OF_TEN[t])
+fn digits8(v: u32) -> u64 {
+    debug_assert!(v < 100_000_000);
+    let x = u64::from(v / 10_000) | u64::from(v % 10_000) << 32;
+    let hundreds = ((x * 10_486) >> 20) & 0x0000_007f_0000_007f;
+    let x = hundreds | (x - hundreds * 100) << 16;
+    let tens = ((x * 103) >> 10) & 0x000f_000f_000f_000f;
+    tens | (x - tens * 10) << 8
 }
 
-/// Writes the digits of `v` ending at `digits[end]` (exclusive), two per division, in `T`
-/// arithmetic (`u32` is faster than `u64` for the common small values).
-macro_rules! put_digits {
-    ($digits:expr, $v:expr, $t:ty) => {{
-        let digits: &mut [u8] = $digits;
-        let mut i = digits.len();
-        let mut v: $t = $v;
-        while v >= 100 {
-            let pair = (v % 100) as usize * 2;
-            v /= 100;
-            i -= 2;
-            digits[i..i + 2].copy_from_slice(&PAIRS[pair..pair + 2]);
-        }
-        if v >= 10 {
-            let pair = v as usize * 2;
-            digits[..2].copy_from_slice(&PAIRS[pair..pair + 2]);
-        } else {
-            digits[0] = b'0' + v as u8;
-        }
-    }};
+/// Writes `v` (below 10^8) without leading zeros at the start of `dst` (at least 8 long: all 8
+/// bytes are written, the ones past the digits being junk); returns the digit count.
+#[inline(always)]
+fn put_below_1e8(dst: &mut [u8], v: u32) -> usize {
+    let d = digits8(v);
+    // Leading zero digits are the low zero bytes; 0 keeps one digit.
+    let zeros = ((d | 1 << 56).trailing_zeros() / 8) as usize;
+    let ascii = (d >> (8 * zeros)) + ZEROS;
+    dst[..8].copy_from_slice(&ascii.to_le_bytes());
+    8 - zeros
 }
 
-/// Writes `v` in decimal at the start of `dst` (at least [`INTEGER_BYTES`] long); returns the
-/// number of bytes written.
+/// Writes the eight digits of `v` (below 10^8), leading zeros included, at the start of `dst`.
+#[inline(always)]
+fn put_8_digits(dst: &mut [u8], v: u32) {
+    dst[..8].copy_from_slice(&(digits8(v) + ZEROS).to_le_bytes());
+}
+
+/// Writes `v` in decimal at the start of `dst` (at least [`INTEGER_BYTES`] long; bytes past the
+/// digits may be overwritten); returns the number of bytes written: eight digits at a time with
+/// [`digits8`].
 #[inline(always)]
 fn put_u64(dst: &mut [u8], v: u64) -> usize {
-    let n = digit_count(v);
-    match u32::try_from(v) {
-        Ok(small) => put_digits!(&mut dst[..n], small, u32),
-        Err(_) => put_digits!(&mut dst[..n], v, u64),
+    const E8: u64 = 100_000_000;
+    if v < E8 {
+        return put_below_1e8(dst, v as u32);
     }
-    n
+    if v < E8 * E8 {
+        let n = put_below_1e8(dst, (v / E8) as u32);
+        put_8_digits(&mut dst[n..], (v % E8) as u32);
+        return n + 8;
+    }
+    // Below 1845 * 10^16: four digits at most in front.
+    let n = put_below_1e8(dst, (v / (E8 * E8)) as u32);
+    put_8_digits(&mut dst[n..], (v / E8 % E8) as u32);
+    put_8_digits(&mut dst[n + 8..], (v % E8) as u32);
+    n + 16
 }
 
 /// `|x|` rounded to the nearest multiple of 1/1000, in thousandths, exactly as `{:.3}` rounds
@@ -167,6 +165,46 @@ fn f3_slow(x: f64) -> String {
     if trimmed == "-0" { "0" } else { trimmed }.to_string()
 }
 
+/// Consecutive integers, as line numbers are: the digits of the current value kept as text, so
+/// that the next one costs an increment of the last digit (a carry now and then) instead of a
+/// conversion. Written with [`TextOut::count`].
+pub(crate) struct Counter {
+    /// The digits, `digits[..len]`; the bytes past them are `'0'`.
+    digits: [u8; INTEGER_BYTES],
+    len: usize,
+}
+
+impl Counter {
+    /// A counter whose first value is `first`.
+    pub fn new(first: u64) -> Self {
+        let mut digits = [b'0'; INTEGER_BYTES];
+        let mut scratch = [0u8; INTEGER_BYTES];
+        let len = put_u64(&mut scratch, first);
+        digits[..len].copy_from_slice(&scratch[..len]);
+        Counter { digits, len }
+    }
+
+    /// Moves on to the next value: past `u64::MAX` too, in text, up to twenty nines, where it
+    /// stays (no line count gets near).
+    #[inline(always)]
+    fn bump(&mut self) {
+        for i in (0..self.len).rev() {
+            if self.digits[i] < b'9' {
+                self.digits[i] += 1;
+                return;
+            }
+            self.digits[i] = b'0';
+        }
+        // All nines: one digit more, a 1 and zeros.
+        if self.len < INTEGER_BYTES {
+            self.digits[0] = b'1';
+            self.len += 1;
+        } else {
+            self.digits = [b'9'; INTEGER_BYTES];
+        }
+    }
+}
+
 /// A byte buffer in front of a writer (see the module doc). Call [`TextOut::finish`] at the end:
 /// bytes still buffered when it is dropped are lost.
 pub(crate) struct TextOut<'a, W: Write + ?Sized> {
@@ -207,6 +245,16 @@ impl<'a, W: Write + ?Sized> TextOut<'a, W> {
     pub fn u(&mut self, v: u64) -> &mut Self {
         self.room(INTEGER_BYTES);
         self.pos += put_u64(&mut self.buf[self.pos..], v);
+        self
+    }
+
+    /// Appends the counter's value in decimal, then moves it on to the next.
+    #[inline(always)]
+    pub fn count(&mut self, counter: &mut Counter) -> &mut Self {
+        self.room(INTEGER_BYTES);
+        self.buf[self.pos..self.pos + INTEGER_BYTES].copy_from_slice(&counter.digits);
+        self.pos += counter.len;
+        counter.bump();
         self
     }
 

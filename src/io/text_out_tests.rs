@@ -183,3 +183,42 @@ fn a_line_longer_than_the_buffer_arrives_whole() {
         .collect();
     assert_eq!(v, expected.into_bytes());
 }
+
+#[test]
+fn counters_count_as_std_formats() {
+    let starts = [
+        0,
+        1,
+        8,
+        9,
+        98,
+        99,
+        999_999,
+        99_999_999,
+        123_456_789_999,
+        u64::MAX - 2,
+    ];
+    for first in starts {
+        let mut v = Vec::new();
+        let mut out = TextOut::new(&mut v);
+        let mut counter = Counter::new(first);
+        for _ in 0..1500 {
+            out.count(&mut counter).sp();
+            out.nl().unwrap();
+        }
+        out.finish().unwrap();
+        let expected: String = (0..1500u128)
+            .map(|k| format!("{} \n", u128::from(first) + k))
+            .collect();
+        assert_eq!(String::from_utf8(v).unwrap(), expected, "from {first}");
+    }
+    // At twenty nines it stays.
+    let mut nines = Counter::new(0);
+    nines.digits = [b'9'; INTEGER_BYTES];
+    nines.len = INTEGER_BYTES;
+    nines.bump();
+    assert_eq!(
+        (nines.digits, nines.len),
+        ([b'9'; INTEGER_BYTES], INTEGER_BYTES)
+    );
+}

@@ -14,7 +14,7 @@
 //! Every writer first runs [`Mesh::check_indices`] and returns an
 //! [`std::io::ErrorKind::InvalidInput`] error, writing nothing, if an index is out of range.
 
-use super::text_out::TextOut;
+use super::text_out::{Counter, TextOut};
 use crate::hash::FastMap;
 use crate::mesh::{Mesh, SegmentKind};
 use std::io::{self, BufWriter, Write};
@@ -175,8 +175,9 @@ fn node_unchecked(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
     }
     let mut o = TextOut::new(out);
     o.u(mesh.vertices.len() as u64).s(" 2 0 1").nl()?;
-    for (i, (p, &b)) in mesh.vertices.iter().zip(&on_boundary).enumerate() {
-        o.u(i as u64 + 1)
+    let mut line = Counter::new(1);
+    for (p, &b) in mesh.vertices.iter().zip(&on_boundary) {
+        o.count(&mut line)
             .sp()
             .i(p[0])
             .sp()
@@ -203,9 +204,10 @@ pub fn write_ele(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
 fn ele_unchecked(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
     let mut o = TextOut::new(out);
     o.u(mesh.triangles.len() as u64).s(" 3 1").nl()?;
-    for (i, (t, &r)) in mesh.triangles.iter().zip(&mesh.regions).enumerate() {
+    let mut line = Counter::new(1);
+    for (t, &r) in mesh.triangles.iter().zip(&mesh.regions) {
         let [a, b, c] = t.map(|v| u64::from(v) + 1);
-        o.u(i as u64 + 1)
+        o.count(&mut line)
             .sp()
             .u(a)
             .sp()
@@ -235,9 +237,10 @@ fn edge_unchecked(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
     let edges = edges_with_markers(mesh);
     let mut o = TextOut::new(out);
     o.u(edges.len() as u64).s(" 1").nl()?;
-    for (i, &([a, b], m)) in edges.iter().enumerate() {
+    let mut line = Counter::new(1);
+    for &([a, b], m) in &edges {
         let (a, b) = (u64::from(a) + 1, u64::from(b) + 1);
-        o.u(i as u64 + 1).sp().u(a).sp().u(b).sp().u(m);
+        o.count(&mut line).sp().u(a).sp().u(b).sp().u(m);
         o.nl()?;
     }
     o.finish()

@@ -11,3 +11,4 @@ mod mesh_io;
 mod mesh_modes;
 mod mesh_writers;
 mod mesher;
+mod writer_checksums;
