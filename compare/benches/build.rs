@@ -19,8 +19,7 @@ use criterion::measurement::WallTime;
 use criterion::{
     criterion_group, criterion_main, BatchSize, BenchmarkGroup, Criterion, SamplingMode, Throughput,
 };
-use kiddo::float_leaf_slice::leaf_slice::{LeafSliceFloat, LeafSliceFloatChunk};
-use kiddo::immutable::float::kdtree::ImmutableKdTree;
+use kiddo::ImmutableKdTree;
 use orthtree::prelude::*;
 use orthtree::{PointTree, PointTreeBuilder};
 use orthtree_compare::points::Distribution;
@@ -88,17 +87,16 @@ impl<const D: usize> Adapter<D> for OrthtreeVec {
     }
 }
 
-/// kiddo 5, `ImmutableKdTree<f64, u32, D, 32>::new_from_slice` (items are the indices).
+/// kiddo 6, `ImmutableKdTree<f64, D>::new_from_slice` (its alias for static sets: Eytzinger
+/// stems, arena leaves of 32, `u32` items that are the indices), single-threaded.
 struct Kiddo;
 
-impl<const D: usize> Adapter<D> for Kiddo
-where
-    f64: LeafSliceFloat<u32> + LeafSliceFloatChunk<u32, D>,
-{
+impl<const D: usize> Adapter<D> for Kiddo {
     const NAME: &'static str = "kiddo";
     type Input = Vec<[f64; D]>;
-    type Tree = ImmutableKdTree<f64, u32, D, 32>;
-    const BUILD: Build<Self::Input, Self::Tree> = Build::Borrow(|p| Self::Tree::new_from_slice(p));
+    type Tree = ImmutableKdTree<f64, D>;
+    const BUILD: Build<Self::Input, Self::Tree> =
+        Build::Borrow(|p| Self::Tree::new_from_slice(p).expect("fewer than 2^32 points"));
     fn prepare(points: &[[f64; D]]) -> Self::Input {
         points.to_vec()
     }
