@@ -1,12 +1,8 @@
 //! Bulk build of `PointTreeBuilder` on seeded points (uniform in the unit cube, and 64 Gaussian
 //! clusters of sigma 0.01, unclamped), in 2D and 3D, `f64`, single-threaded. The same groups with
 //! kiddo and rstar beside it are the comparison crate's `build` bench
-//! (`cargo bench -p orthtree-compare --bench build`).
-//!
-//! Each way of building sits behind one small [`Adapter`]: it turns the shared points into the
-//! input once, outside the timing, and then only the build is timed. Where the API takes
-//! ownership the input is cloned outside the timing (`iter_batched`); the built trees are dropped
-//! outside the timing.
+//! (`cargo bench -p orthtree-compare --bench build`); both share their adapters and groups
+//! (`workloads/build.rs`).
 //!
 //! Groups are named `build/{2d,3d}/{uniform,clustered}/{n}` with functions `orthtree` (default
 //! bucket size, `build(&entries)`) and `orthtree_vec` (`build_from_vec(entries)`).
@@ -14,140 +10,17 @@
 //! Run with `cargo bench --bench build` (about a minute on two cores).
 
 mod common;
-
-use orthtree::prelude::*;
-use std::time::Duration;
+#[path = "workloads/build.rs"]
+mod workloads;
 
 use common::Distribution;
-use criterion::measurement::WallTime;
-use criterion::{
-    criterion_group, criterion_main, BatchSize, BenchmarkGroup, Criterion, SamplingMode, Throughput,
-};
-use orthtree::{points::PointTreeBuilder, PointTree};
-
-/// The sizes of every group: a small one to show scaling, and 10^6.
-const SIZES: [usize; 2] = [10_000, 1_000_000];
-/// The seed of every point set.
-const SEED: u64 = 0x5EED_0F7E_E5ED;
-
-/// How an adapter's build receives its input.
-enum Build<I, T> {
-    /// Borrows the prepared input: nothing is copied per iteration.
-    Borrow(fn(&I) -> T),
-    /// Consumes the input: a fresh clone is made per iteration, outside the timing.
-    Own(fn(I) -> T),
-}
-
-/// One crate's bulk build of a `D`-dimensional point set.
-trait Adapter<const D: usize> {
-    /// The benchmark function's name within a group.
-    const NAME: &'static str;
-    /// What the build takes, prepared from the shared points outside the timing.
-    type Input: Clone;
-    /// What the build returns.
-    type Tree;
-    /// The timed call.
-    const BUILD: Build<Self::Input, Self::Tree>;
-    /// Makes the crate's input from the shared points.
-    fn prepare(points: &[[f64; D]]) -> Self::Input;
-    /// The number of points in a built tree, to check that every crate got them all.
-    fn len(tree: &Self::Tree) -> usize;
-}
-
-/// orthtree, default bucket size, `build(&entries)` (items cloned from the slice).
-struct Orthtree;
-
-impl<const D: usize> Adapter<D> for Orthtree {
-    const NAME: &'static str = "orthtree";
-    type Input = Vec<([f64; D], u32)>;
-    type Tree = PointTree<f64, u32, D>;
-    const BUILD: Build<Self::Input, Self::Tree> =
-        Build::Borrow(|entries| PointTreeBuilder::new().build(entries).unwrap());
-    fn prepare(points: &[[f64; D]]) -> Self::Input {
-        entries(points)
-    }
-    fn len(tree: &Self::Tree) -> usize {
-        tree.len()
-    }
-}
-
-/// orthtree, default bucket size, `build_from_vec(entries)` (items moved).
-struct OrthtreeVec;
-
-impl<const D: usize> Adapter<D> for OrthtreeVec {
-    const NAME: &'static str = "orthtree_vec";
-    type Input = Vec<([f64; D], u32)>;
-    type Tree = PointTree<f64, u32, D>;
-    const BUILD: Build<Self::Input, Self::Tree> =
-        Build::Own(|entries| PointTreeBuilder::new().build_from_vec(entries).unwrap());
-    fn prepare(points: &[[f64; D]]) -> Self::Input {
-        entries(points)
-    }
-    fn len(tree: &Self::Tree) -> usize {
-        tree.len()
-    }
-}
-
-/// orthtree's input: each point with its index as item.
-fn entries<const D: usize>(points: &[[f64; D]]) -> Vec<([f64; D], u32)> {
-    points
-        .iter()
-        .enumerate()
-        .map(|(i, &p)| (p, i as u32))
-        .collect()
-}
-
-/// Times `A`'s build of `points` in `group`, after one untimed build that checks the size.
-fn run<A: Adapter<D>, const D: usize>(
-    group: &mut BenchmarkGroup<'_, WallTime>,
-    points: &[[f64; D]],
-) {
-    let input = A::prepare(points);
-    let check = match A::BUILD {
-        Build::Borrow(build) => build(&input),
-        Build::Own(build) => build(input.clone()),
-    };
-    assert_eq!(A::len(&check), points.len(), "{} lost points", A::NAME);
-    drop(check);
-    group.bench_function(A::NAME, |b| match A::BUILD {
-        Build::Borrow(build) => b.iter_batched(
-            || (),
-            |()| build(std::hint::black_box(&input)),
-            BatchSize::LargeInput,
-        ),
-        Build::Own(build) => b.iter_batched(|| input.clone(), build, BatchSize::LargeInput),
-    });
-}
+use criterion::{criterion_group, criterion_main, Criterion};
+use workloads::SEED;
 
 /// Every group of dimension `D`.
-fn bench_dim<const D: usize>(c: &mut Criterion)
-where
-    Orthtree: Adapter<D>,
-    OrthtreeVec: Adapter<D>,
-{
+fn bench_dim<const D: usize>(c: &mut Criterion) {
     for dist in Distribution::ALL {
-        for n in SIZES {
-            let points = dist.points::<D>(n, SEED);
-            let mut group = c.benchmark_group(format!("build/{D}d/{}/{n}", dist.name()));
-            group.throughput(Throughput::Elements(n as u64));
-            if n >= 100_000 {
-                // One build takes tens to hundreds of milliseconds: ten samples of equal
-                // iteration counts instead of criterion's linear ramp.
-                group
-                    .sampling_mode(SamplingMode::Flat)
-                    .sample_size(10)
-                    .warm_up_time(Duration::from_millis(1000))
-                    .measurement_time(Duration::from_secs(3));
-            } else {
-                group
-                    .sample_size(20)
-                    .warm_up_time(Duration::from_millis(500))
-                    .measurement_time(Duration::from_millis(1500));
-            }
-            run::<Orthtree, D>(&mut group, &points);
-            run::<OrthtreeVec, D>(&mut group, &points);
-            group.finish();
-        }
+        workloads::groups::<D>(c, dist.name(), |n| dist.points(n, SEED), |_, _| {});
     }
 }
 

@@ -10,9 +10,9 @@
 //! --examples` of the same profile.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::process::Command;
 use std::sync::OnceLock;
-use std::time::{Duration, Instant, SystemTime};
+use std::time::{Duration, SystemTime};
 
 /// The examples covered here.
 const EXAMPLES: [&str; 2] = ["point_location", "quadtree_points"];
@@ -77,95 +77,32 @@ fn binaries() -> &'static Path {
     })
 }
 
-/// What one run gave.
-struct Run {
-    code: i32,
-    stdout: String,
-    stderr: String,
-    took: Duration,
-}
+#[path = "programs/mod.rs"]
+mod programs;
+
+use programs::{scratch_dir, Run};
 
 /// Runs example `name` with `args` in `cwd` (a fresh folder when `None`), killing it after
 /// `limit`.
 fn run_in(name: &str, args: &[&str], cwd: Option<&Path>, limit: Duration) -> Run {
     let exe = binaries().join(format!("{name}{}", std::env::consts::EXE_SUFFIX));
-    let scratch = scratch_dir(name);
-    let mut child = Command::new(&exe)
-        .args(args)
-        .current_dir(cwd.unwrap_or(&scratch))
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap_or_else(|e| panic!("start {}: {e}", exe.display()));
-    let start = Instant::now();
-    while child.try_wait().expect("wait for the example").is_none() {
-        if start.elapsed() > limit {
-            let _ = child.kill();
-            panic!("{name} {args:?}: still running after {limit:?}");
-        }
-        std::thread::sleep(Duration::from_millis(10));
-    }
-    let took = start.elapsed();
-    let out = child.wait_with_output().expect("the example's output");
-    let _ = std::fs::remove_dir_all(&scratch);
-    let run = Run {
-        code: out
-            .status
-            .code()
-            .unwrap_or_else(|| panic!("{name} {args:?}: killed by a signal: {:?}", out.status)),
-        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
-        took,
-    };
-    assert!(
-        !run.stderr.contains("panicked") && !run.stdout.contains("panicked"),
-        "{name} {args:?} panicked:\n{}",
-        run.stderr
-    );
-    run
+    programs::run(&exe, name, args, cwd, limit)
 }
 
 fn run(name: &str, args: &[&str]) -> Run {
     run_in(name, args, None, Duration::from_secs(120))
 }
 
-/// A fresh empty folder for one run.
-fn scratch_dir(name: &str) -> PathBuf {
-    static NEXT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-    let k = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let dir = std::env::temp_dir().join(format!(
-        "orthtree-examples-{}-{name}-{k}",
-        std::process::id()
-    ));
-    std::fs::create_dir_all(&dir).expect("a scratch folder");
-    dir
-}
-
-/// `name args` is refused at once: exit 2, one error line naming every string in `named`.
+/// `name args` is refused at once: exit 2, one error line naming every string in `named`, the
+/// usage line after it.
 fn refused(name: &str, args: &[&str], named: &[&str]) -> String {
-    let r = run(name, args);
-    assert_eq!(
-        r.code, 2,
-        "{name} {args:?}: exit code; stderr:\n{}",
-        r.stderr
-    );
-    let first = r.stderr.lines().next().unwrap_or_default().to_string();
-    assert!(first.starts_with("error: "), "{name} {args:?}: {first}");
-    for n in named {
-        assert!(first.contains(n), "{name} {args:?}: {first:?} names {n:?}");
-    }
-    assert!(
-        r.stderr.contains(&format!("usage: {name}")),
-        "{name} {args:?}: the usage line follows:\n{}",
-        r.stderr
-    );
-    assert!(
-        r.took < Duration::from_secs(20),
-        "{name} {args:?}: refused only after {:?}",
-        r.took
-    );
-    first
+    programs::refusal(
+        &run(name, args),
+        name,
+        args,
+        named,
+        &format!("usage: {name}"),
+    )
 }
 
 #[test]

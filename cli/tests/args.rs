@@ -3,99 +3,33 @@
 //! `error:` line naming the argument and exit 2, at once and never with a panic; small valid
 //! runs succeed.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// The commands covered here.
 const COMMANDS: [&str; 4] = ["balance", "heat", "image", "mesh"];
 
-/// What one run gave.
-struct Run {
-    code: i32,
-    stdout: String,
-    stderr: String,
-    took: Duration,
-}
+#[path = "../../tests/programs/mod.rs"]
+mod programs;
+
+use programs::{scratch_dir, Run};
 
 /// Runs `orthtree name args` in `cwd` (a fresh folder when `None`), killing it after `limit`.
 fn run_in(name: &str, args: &[&str], cwd: Option<&Path>, limit: Duration) -> Run {
-    let exe = env!("CARGO_BIN_EXE_orthtree");
-    let scratch = scratch_dir(name);
-    let mut child = Command::new(exe)
-        .arg(name)
-        .args(args)
-        .current_dir(cwd.unwrap_or(&scratch))
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap_or_else(|e| panic!("start {exe}: {e}"));
-    let start = Instant::now();
-    while child.try_wait().expect("wait for the example").is_none() {
-        if start.elapsed() > limit {
-            let _ = child.kill();
-            panic!("{name} {args:?}: still running after {limit:?}");
-        }
-        std::thread::sleep(Duration::from_millis(10));
-    }
-    let took = start.elapsed();
-    let out = child.wait_with_output().expect("the example's output");
-    let _ = std::fs::remove_dir_all(&scratch);
-    let run = Run {
-        code: out
-            .status
-            .code()
-            .unwrap_or_else(|| panic!("{name} {args:?}: killed by a signal: {:?}", out.status)),
-        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
-        took,
-    };
-    assert!(
-        !run.stderr.contains("panicked") && !run.stdout.contains("panicked"),
-        "{name} {args:?} panicked:\n{}",
-        run.stderr
-    );
-    run
+    let exe = Path::new(env!("CARGO_BIN_EXE_orthtree"));
+    let all: Vec<&str> = std::iter::once(name).chain(args.iter().copied()).collect();
+    programs::run(exe, name, &all, cwd, limit)
 }
 
 fn run(name: &str, args: &[&str]) -> Run {
     run_in(name, args, None, Duration::from_secs(120))
 }
 
-/// A fresh empty folder for one run.
-fn scratch_dir(name: &str) -> PathBuf {
-    static NEXT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-    let k = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let dir = std::env::temp_dir().join(format!("orthtree-cli-{}-{name}-{k}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("a scratch folder");
-    dir
-}
-
-/// `name args` is refused at once: exit 2, one error line naming every string in `named`.
+/// `name args` is refused at once: exit 2, one error line naming every string in `named`, the
+/// pointer to `--help` after it.
 fn refused(name: &str, args: &[&str], named: &[&str]) -> String {
-    let r = run(name, args);
-    assert_eq!(
-        r.code, 2,
-        "{name} {args:?}: exit code; stderr:\n{}",
-        r.stderr
-    );
-    let first = r.stderr.lines().next().unwrap_or_default().to_string();
-    assert!(first.starts_with("error: "), "{name} {args:?}: {first}");
-    for n in named {
-        assert!(first.contains(n), "{name} {args:?}: {first:?} names {n:?}");
-    }
-    assert!(
-        r.stderr.contains("--help"),
-        "{name} {args:?}: the pointer to --help follows:\n{}",
-        r.stderr
-    );
-    assert!(
-        r.took < Duration::from_secs(20),
-        "{name} {args:?}: refused only after {:?}",
-        r.took
-    );
-    first
+    programs::refusal(&run(name, args), name, args, named, "--help")
 }
 
 #[test]

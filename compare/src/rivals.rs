@@ -2,8 +2,8 @@
 //! answers a batch of box, radius and k-nearest queries, consuming every answer as a caller
 //! would. The item of point `i` is `i`.
 
-use kiddo::immutable::float::kdtree::ImmutableKdTree;
-use kiddo::SquaredEuclidean;
+use kiddo::dist::SquaredEuclidean;
+use kiddo::ImmutableKdTree;
 use orthtree::prelude::*;
 use orthtree::{Aabb, Ball, PointTree};
 use rstar::{RTree, AABB};
@@ -138,11 +138,15 @@ impl<const D: usize> Rival<D> for Orthtree<D> {
     }
 }
 
-/// kiddo's leaf bucket size.
+/// kiddo's leaf bucket size (that of its `ImmutableKdTree` alias).
 pub const KIDDO_BUCKET: usize = 32;
 
-/// kiddo 5's `ImmutableKdTree` (bucket [`KIDDO_BUCKET`]); it has no box query.
-pub struct Kiddo<const D: usize>(pub ImmutableKdTree<f64, u64, D, KIDDO_BUCKET>);
+/// kiddo 6's `ImmutableKdTree` alias, the structure kiddo recommends for points known up front
+/// (build once, then query): Eytzinger-ordered stems, leaves of [`KIDDO_BUCKET`] points in one
+/// arena, `u32` items (the point's index), built single-threaded by `new_from_slice` (the crate's
+/// `multi-threaded` feature is off). It has no box query; its radius query is the unsorted one,
+/// visiting each answer without collecting them.
+pub struct Kiddo<const D: usize>(pub ImmutableKdTree<f64, D>);
 
 impl<const D: usize> Rival<D> for Kiddo<D> {
     const NAME: &'static str = "kiddo";
@@ -151,7 +155,7 @@ impl<const D: usize> Rival<D> for Kiddo<D> {
         points.to_vec()
     }
     fn build(input: &Self::Input) -> Self {
-        Kiddo(ImmutableKdTree::new_from_slice(input))
+        Kiddo(ImmutableKdTree::new_from_slice(input).expect("fewer than 2^32 finite points"))
     }
     fn size(&self) -> usize {
         self.0.size()
@@ -162,13 +166,14 @@ impl<const D: usize> Rival<D> for Kiddo<D> {
     fn balls(&self, queries: &[[f64; D]], radius: f64) -> Answers {
         let (mut count, mut items) = (0u64, 0u64);
         for q in queries {
-            for nn in self
-                .0
-                .within_unsorted::<SquaredEuclidean>(q, radius * radius)
-            {
-                count += 1;
-                items = items.wrapping_add(nn.item);
-            }
+            self.0
+                .query(q)
+                .within::<SquaredEuclidean<f64>>(radius * radius)
+                .unsorted()
+                .visit(|nn| {
+                    count += 1;
+                    items = items.wrapping_add(u64::from(nn.item));
+                });
         }
         Answers {
             count,
@@ -181,15 +186,24 @@ impl<const D: usize> Rival<D> for Kiddo<D> {
         let nz = NonZeroUsize::new(k).expect("k >= 1");
         for q in queries {
             if k == 1 {
-                let nn = self.0.nearest_one::<SquaredEuclidean>(q);
+                let nn = self
+                    .0
+                    .query(q)
+                    .nearest_one::<SquaredEuclidean<f64>>()
+                    .execute();
                 count += 1;
                 distance += nn.distance;
-                items = items.wrapping_add(nn.item);
+                items = items.wrapping_add(u64::from(nn.item));
             } else {
-                for nn in self.0.nearest_n::<SquaredEuclidean>(q, nz) {
+                for nn in self
+                    .0
+                    .query(q)
+                    .nearest_n::<SquaredEuclidean<f64>>(nz)
+                    .execute()
+                {
                     count += 1;
                     distance += nn.distance;
-                    items = items.wrapping_add(nn.item);
+                    items = items.wrapping_add(u64::from(nn.item));
                 }
             }
         }

@@ -1,5 +1,5 @@
-//! `DynamicPointTree` (single updates in amortised O(depth)): after every
-//! update the tree validates and has exactly the leaves (cells) and the points per leaf of a
+//! `DynamicPointTree` (single updates in amortised O(depth)), through the random update
+//! sequences that every updatable tree runs (`common::updates::run`): after every update the tree validates and has exactly the leaves (cells) and the points per leaf of a
 //! `PointTree` freshly built from the same pairs with the same root box, bucket size and maximum
 //! depth; every query kind (box, ball, half-space, count, visitor, nearest, k-nearest under three
 //! metrics, the nearest iterator) agrees with a brute-force scan of the stored pairs; and the
@@ -8,17 +8,17 @@
 use crate::common;
 
 use common::points::unit_builder as builder;
-use common::updates::{apply, coords, initial, op, sorted_pairs, Op, Pairs};
+use common::updates::{check_queries, coords, initial, op, point_leaves, sorted_pairs, Op};
+use common::updates::{Leaves, Updatable};
 use orthtree::prelude::*;
-use orthtree::query::{Chebyshev, Manhattan, Metric, SquaredEuclidean};
-use orthtree::{query::HalfSpace, Aabb, Ball, Cell, DynamicPointTree, Error, PointTree};
+use orthtree::{Aabb, DynamicPointTree, Error, PointTree};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 
 type Tree<const D: usize> = DynamicPointTree<f64, u8, D>;
 
 /// Every leaf's cell and its sorted (point bits, item) pairs, of a dynamic tree.
-fn dynamic_leaves<const D: usize>(t: &Tree<D>) -> Vec<(Cell<D>, Pairs<D>)> {
+fn dynamic_leaves<const D: usize>(t: &Tree<D>) -> Leaves<D> {
     t.leaves()
         .map(|(cell, slots)| {
             let pairs = slots
@@ -29,90 +29,26 @@ fn dynamic_leaves<const D: usize>(t: &Tree<D>) -> Vec<(Cell<D>, Pairs<D>)> {
         .collect()
 }
 
-/// The same, of a point tree.
-fn point_leaves<const D: usize>(t: &PointTree<f64, u8, D>) -> Vec<(Cell<D>, Pairs<D>)> {
-    t.leaves()
-        .map(|l| (l.cell, sorted_pairs(l.points.iter().zip(l.items))))
-        .collect()
-}
-
-/// The k-nearest answer under `metric` against a scan: the distances in order, each neighbour's
-/// point, item and slot consistent, the slots distinct.
-fn check_nearest<M: Metric<D> + Copy, const D: usize>(
-    t: &Tree<D>,
-    model: &[([f64; D], u8)],
-    q: &[f64; D],
-    k: usize,
-    metric: &M,
-) -> Result<(), TestCaseError> {
-    let got = t.k_nearest_by(q, k, f64::INFINITY, metric).unwrap();
-    let mut want: Vec<f64> = model.iter().map(|(p, _)| metric.distance(q, p)).collect();
-    want.sort_by(f64::total_cmp);
-    want.truncate(k);
-    let dists: Vec<f64> = got.iter().map(|n| n.distance).collect();
-    prop_assert_eq!(&dists, &want);
-    let mut slots: Vec<usize> = got.iter().map(|n| n.index).collect();
-    for n in &got {
-        prop_assert_eq!(n.point, t.point(n.index));
-        prop_assert_eq!(n.item, &t.items()[n.index]);
-        prop_assert_eq!(n.distance, metric.distance(q, n.point));
+impl<const D: usize> Updatable<D> for Tree<D> {
+    fn leaf_pairs(&self) -> Leaves<D> {
+        dynamic_leaves(self)
     }
-    slots.sort_unstable();
-    slots.dedup();
-    prop_assert_eq!(slots.len(), got.len());
-    let iter: Vec<f64> = t
-        .nearest_iter_by(q, f64::INFINITY, *metric)
-        .unwrap()
-        .take(k)
-        .map(|n| n.distance)
-        .collect();
-    prop_assert_eq!(iter, want.clone());
-    let first = t.k_nearest_by(q, 1, f64::INFINITY, metric).unwrap();
-    prop_assert_eq!(first.first().map(|n| n.distance), want.first().copied());
-    Ok(())
-}
 
-/// Box, ball and half-space queries whose boundaries pass through grid points (iterator, count
-/// and visitor), and nearest neighbours, against a scan of `model`.
-fn check_queries<const D: usize>(
-    t: &Tree<D>,
-    model: &[([f64; D], u8)],
-) -> Result<(), TestCaseError> {
-    let all = || model.iter().map(|(p, i)| (p, i));
-    let (lo, hi) = ([0.25; D], [0.625; D]);
-    let b = Aabb::new(lo, hi).unwrap();
-    let want = sorted_pairs(all().filter(|(p, _)| b.contains(p)));
-    prop_assert_eq!(sorted_pairs(t.in_box(&b).unwrap()), want.clone());
-    prop_assert_eq!(t.query_count(b).unwrap(), want.len());
-    let mut seen = Vec::new();
-    t.query_with(b, |p, &i| seen.push((p.map(f64::to_bits), i)))
-        .unwrap();
-    seen.sort_unstable();
-    prop_assert_eq!(seen, want);
-    let ball = Ball::new([0.5; D], 0.375).unwrap();
-    prop_assert_eq!(
-        sorted_pairs(t.query(ball).unwrap()),
-        sorted_pairs(all().filter(|(p, _)| orthtree::Region::contains(&ball, p)))
-    );
-    let mut normal = [0.0; D];
-    normal[0] = 1.0;
-    normal[D - 1] += 1.0;
-    let plane = HalfSpace::new(normal, 0.75).unwrap();
-    prop_assert_eq!(
-        sorted_pairs(t.query(plane).unwrap()),
-        sorted_pairs(all().filter(|(p, _)| orthtree::Region::contains(&plane, p)))
-    );
-    prop_assert_eq!(
-        t.query_count(Aabb::new([0.0; D], [1.0; D]).unwrap())
-            .unwrap(),
-        model.len()
-    );
-    for q in [[0.5; D], [0.0; D], [0.9; D], [1.7; D]] {
-        check_nearest(t, model, &q, 5, &SquaredEuclidean)?;
-        check_nearest(t, model, &q, 3, &Manhattan)?;
-        check_nearest(t, model, &q, model.len() + 2, &Chebyshev)?;
+    /// Every 16 steps: compaction keeps the tree valid and every answer.
+    fn after_step(
+        &mut self,
+        step: usize,
+        _fresh: &PointTree<f64, u8, D>,
+        model: &[([f64; D], u8)],
+    ) -> Result<(), TestCaseError> {
+        if step % 16 == 15 {
+            self.compact();
+            self.validate()
+                .map_err(|e| TestCaseError::fail(format!("after compact: {e}")))?;
+            check_queries(self, model)?;
+        }
+        Ok(())
     }
-    Ok(())
 }
 
 fn run<const D: usize>(
@@ -122,26 +58,9 @@ fn run<const D: usize>(
     max_depth: Option<u8>,
 ) -> Result<(), TestCaseError> {
     let b = builder::<D>(bucket, max_depth);
-    let mut model: Vec<([f64; D], u8)> = initial.iter().map(|&(g, i)| (coords(g), i)).collect();
-    let mut t = DynamicPointTree::from(b.build(&model).unwrap());
-    for (step, op) in ops.into_iter().enumerate() {
-        apply(&mut t, &mut model, op)?;
-        if let Err(e) = t.validate() {
-            return Err(TestCaseError::fail(format!("validate: {e}")));
-        }
-        prop_assert_eq!(t.len(), model.len());
-        let fresh = b.build(&model).unwrap();
-        prop_assert_eq!(dynamic_leaves(&t), point_leaves(&fresh));
-        prop_assert_eq!(sorted_pairs(t.iter()), sorted_pairs(fresh.iter()));
-        check_queries(&t, &model)?;
-        if step % 16 == 15 {
-            t.compact();
-            t.validate()
-                .map_err(|e| TestCaseError::fail(format!("after compact: {e}")))?;
-            check_queries(&t, &model)?;
-        }
-    }
-    Ok(())
+    let model: Vec<([f64; D], u8)> = initial.iter().map(|&(g, i)| (coords(g), i)).collect();
+    let t = DynamicPointTree::from(b.build(&model).unwrap());
+    common::updates::run(t, &b, model, ops)
 }
 
 proptest! {

@@ -1,79 +1,37 @@
-//! Insert and remove on `PointTree`: after every update the tree validates, and
-//! it has exactly the leaves (cells) and the points per leaf (as multisets) of a tree freshly built
-//! from the same (point, item) pairs with the same root box, bucket size and maximum depth; and
-//! every query kind (box, ball, half-space, k-nearest) agrees with a brute-force scan of the
+//! Insert and remove on `PointTree`, through the random update sequences that every updatable
+//! tree runs (`common::updates::run`): after every update the tree validates, and it has exactly
+//! the leaves (cells), the points per leaf (as multisets), the leaf count and the depth of a tree
+//! freshly built from the same (point, item) pairs with the same root box, bucket size and
+//! maximum depth; and every query kind (box, ball, half-space, count, visitor, nearest,
+//! k-nearest under three metrics, the nearest iterator) agrees with a brute-force scan of the
 //! stored pairs.
 
 use crate::common;
 
-use common::updates::{apply, coords, initial, op, sorted_pairs, Op};
+use common::points::unit_builder as builder;
+use common::updates::{coords, initial, op, point_leaves, Op, Updatable};
 use orthtree::prelude::*;
-use orthtree::{query::HalfSpace, Aabb, Ball, Cell, Error, PointTree};
+use orthtree::{Error, PointTree};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 
-type Leaves<const D: usize> = Vec<(Cell<D>, Vec<([u64; D], u8)>)>;
-
-/// Every leaf's cell and its sorted multiset of (point bits, item).
-fn leaf_structure<const D: usize>(t: &PointTree<f64, u8, D>) -> Leaves<D> {
-    t.leaves()
-        .map(|l| {
-            let mut pts: Vec<([u64; D], u8)> = l
-                .points
-                .iter()
-                .zip(l.items)
-                .map(|(p, &i)| (p.map(f64::to_bits), i))
-                .collect();
-            pts.sort_unstable();
-            (l.cell, pts)
-        })
-        .collect()
-}
-
-/// Box, ball and half-space queries whose boundaries pass through grid points, and k-nearest
-/// distances, against a scan of `model`.
-fn check_queries<const D: usize>(
-    t: &PointTree<f64, u8, D>,
-    model: &[([f64; D], u8)],
-) -> Result<(), TestCaseError> {
-    let all = || model.iter().map(|(p, i)| (p, i));
-    let (lo, hi) = ([0.25; D], [0.625; D]);
-    let in_box = |p: &[f64; D]| (0..D).all(|a| lo[a] <= p[a] && p[a] <= hi[a]);
-    prop_assert_eq!(
-        sorted_pairs(t.in_box(&Aabb::new(lo, hi).unwrap()).unwrap()),
-        sorted_pairs(all().filter(|(p, _)| in_box(p)))
-    );
-    let (c, r) = ([0.5; D], 0.375);
-    let d2 = |p: &[f64; D], q: &[f64; D]| (0..D).map(|a| (p[a] - q[a]).powi(2)).sum::<f64>();
-    prop_assert_eq!(
-        sorted_pairs(t.query(Ball::new(c, r).unwrap()).unwrap()),
-        sorted_pairs(all().filter(|(p, _)| d2(p, &c) <= r * r))
-    );
-    let mut normal = [0.0; D];
-    normal[0] = 1.0;
-    normal[D - 1] += 1.0;
-    let plane = HalfSpace::new(normal, 0.75).unwrap();
-    let below = |p: &[f64; D]| (0..D).map(|a| normal[a] * p[a]).sum::<f64>() <= 0.75;
-    prop_assert_eq!(
-        sorted_pairs(t.query(plane).unwrap()),
-        sorted_pairs(all().filter(|(p, _)| below(p)))
-    );
-    for q in [[0.5; D], [0.0; D], [0.9; D]] {
-        let got: Vec<f64> = t
-            .k_nearest(&q, 5)
-            .unwrap()
-            .iter()
-            .map(|n| n.distance)
-            .collect();
-        let mut want: Vec<f64> = model.iter().map(|(p, _)| d2(p, &q)).collect();
-        want.sort_by(f64::total_cmp);
-        want.truncate(5);
-        prop_assert_eq!(got, want);
+impl<const D: usize> Updatable<D> for PointTree<f64, u8, D> {
+    fn leaf_pairs(&self) -> common::updates::Leaves<D> {
+        point_leaves(self)
     }
-    Ok(())
-}
 
-use common::points::unit_builder as builder;
+    /// The same number of leaves and the same depth as the fresh build.
+    fn after_step(
+        &mut self,
+        _step: usize,
+        fresh: &PointTree<f64, u8, D>,
+        _model: &[([f64; D], u8)],
+    ) -> Result<(), TestCaseError> {
+        prop_assert_eq!(self.leaf_count(), fresh.leaf_count());
+        prop_assert_eq!(self.depth(), fresh.depth());
+        Ok(())
+    }
+}
 
 fn run<const D: usize>(
     initial: Vec<([u8; D], u8)>,
@@ -82,21 +40,9 @@ fn run<const D: usize>(
     max_depth: Option<u8>,
 ) -> Result<(), TestCaseError> {
     let b = builder::<D>(bucket, max_depth);
-    let mut model: Vec<([f64; D], u8)> = initial.iter().map(|&(g, i)| (coords(g), i)).collect();
-    let mut t = b.build(&model).unwrap();
-    for op in ops {
-        apply(&mut t, &mut model, op)?;
-        if let Err(e) = t.validate() {
-            return Err(TestCaseError::fail(format!("validate: {e}")));
-        }
-        prop_assert_eq!(t.len(), model.len());
-        let fresh = b.build(&model).unwrap();
-        prop_assert_eq!(leaf_structure(&t), leaf_structure(&fresh));
-        prop_assert_eq!(t.leaf_count(), fresh.leaf_count());
-        prop_assert_eq!(t.depth(), fresh.depth());
-        check_queries(&t, &model)?;
-    }
-    Ok(())
+    let model: Vec<([f64; D], u8)> = initial.iter().map(|&(g, i)| (coords(g), i)).collect();
+    let t = b.build(&model).unwrap();
+    common::updates::run(t, &b, model, ops)
 }
 
 proptest! {
@@ -143,7 +89,7 @@ fn insert_everything_then_remove_everything_returns_to_one_leaf() {
         t.insert(p, i).unwrap();
     }
     t.validate().unwrap();
-    assert_eq!(leaf_structure(&t), leaf_structure(&b.build(&pts).unwrap()));
+    assert_eq!(point_leaves(&t), point_leaves(&b.build(&pts).unwrap()));
     let slots = t.node_count();
     for &(p, i) in pts.iter().rev() {
         assert!(t.remove(&p, &i));
@@ -156,7 +102,7 @@ fn insert_everything_then_remove_everything_returns_to_one_leaf() {
         t.insert(p, i).unwrap();
     }
     assert_eq!(t.node_count(), slots);
-    assert_eq!(leaf_structure(&t), leaf_structure(&b.build(&pts).unwrap()));
+    assert_eq!(point_leaves(&t), point_leaves(&b.build(&pts).unwrap()));
 }
 
 #[test]

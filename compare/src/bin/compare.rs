@@ -1,4 +1,4 @@
-//! orthtree beside kiddo 5 (`ImmutableKdTree`) and rstar 0.12 (`RTree::bulk_load`) on the
+//! orthtree beside kiddo 6 (`ImmutableKdTree`) and rstar 0.12 (`RTree::bulk_load`) on the
 //! standard workloads, in one process, single-threaded, each crate through its adapter
 //! (`orthtree_compare::rivals`): prints a markdown table of median times and the ratio
 //! orthtree / best rival per row (below 1: orthtree is faster).
@@ -13,7 +13,7 @@
 //! Then single updates, uniform points: `--queries` inserts of new points into a tree of N, then
 //! their removals, in microseconds per insert + remove, for orthtree's `PointTree` (dense runs:
 //! each update moves the points after it, so 1000 updates only), its `DynamicPointTree` (leaves
-//! in chunks with slack, amortised O(depth)), kiddo's mutable `KdTree` and rstar's `RTree`; and
+//! in chunks with slack, amortised O(depth)), kiddo's `MutableKdTree` and rstar's `RTree`; and
 //! what the dynamic layout costs the queries (10-nearest and box, as above, against the
 //! `PointTree` holding the same points).
 //!
@@ -450,18 +450,22 @@ fn updates<const D: usize>(a: &Args) {
             .filter(|&(i, p)| dynamic.remove(p, &(i as u64)))
             .count()
     });
-    let mut kiddo: kiddo::KdTree<f64, D> = kiddo::KdTree::with_capacity(a.n + new.len());
+    // Grown by single adds, as a tree that takes updates is in use.
+    let mut kiddo = kiddo::MutableKdTree::<f64, D>::default();
     for (p, i) in &entries {
-        kiddo.add(p, *i);
+        kiddo.add(p, *i as u32).expect("fewer than 2^32 points");
     }
     let (t_kiddo, _) = time(a.reps, || {
         for (i, p) in new.iter().enumerate() {
-            kiddo.add(p, (a.n + i) as u64);
+            kiddo
+                .add(p, (a.n + i) as u32)
+                .expect("fewer than 2^32 points");
         }
-        new.iter()
-            .enumerate()
-            .map(|(i, p)| kiddo.remove(p, (a.n + i) as u64))
-            .sum::<usize>()
+        let before = kiddo.size();
+        for (i, p) in new.iter().enumerate() {
+            kiddo.remove(p, (a.n + i) as u32);
+        }
+        before - kiddo.size()
     });
     type Entry<const D: usize> = rstar::primitives::GeomWithData<[f64; D], u64>;
     let mut rtree: RTree<Entry<D>> =
