@@ -65,8 +65,10 @@ pub use tree::{
 /// ```
 pub mod prelude {
     #[cfg(feature = "rayon")]
+    pub use crate::query::ParallelJoins;
+    #[cfg(feature = "rayon")]
     pub use crate::query::ParallelQueries;
-    pub use crate::query::{PointSet, PointSetMut};
+    pub use crate::query::{Joins, PointSet, PointSetMut};
 }
 
 /// The README's examples, compiled and run as doctests.

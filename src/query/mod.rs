@@ -26,6 +26,7 @@
 #[cfg(feature = "rayon")]
 mod batch;
 mod index;
+mod join;
 mod knn;
 mod metric;
 mod nearest_iter;
@@ -38,6 +39,9 @@ pub use crate::geom::FloatBits;
 pub use batch::{BatchError, ParallelQueries};
 pub(crate) use index::nearest_child_by_boxes;
 pub use index::SpatialIndex;
+#[cfg(feature = "rayon")]
+pub use join::ParallelJoins;
+pub use join::{Boundary, CsrDistances, Joins, KnnTable, SparseDistances};
 pub use knn::Neighbor;
 pub use metric::{Chebyshev, Manhattan, Metric, SquaredEuclidean};
 pub use point_set::{NearestIter, Payload, PointSet, PointSetMut, RegionIter};
@@ -102,6 +106,11 @@ pub enum QueryError {
         /// The `eps` given.
         value: FloatBits,
     },
+    /// A list of radii that must be in non-decreasing order has `radii[index] < radii[index - 1]`.
+    UnsortedRadii {
+        /// The first position where the order breaks.
+        index: usize,
+    },
 }
 
 impl core::fmt::Display for QueryError {
@@ -130,6 +139,9 @@ impl core::fmt::Display for QueryError {
             QueryError::NanOffset => f.write_str("half-space offset is NaN"),
             QueryError::InvalidEpsilon { value } => {
                 write!(f, "approximation eps {} is negative or NaN", value.get())
+            }
+            QueryError::UnsortedRadii { index } => {
+                write!(f, "radius {index} is smaller than the radius before it")
             }
         }
     }

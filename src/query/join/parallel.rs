@@ -1,0 +1,158 @@
+//! The joins on rayon's threads (feature `rayon`): the same answers as [`Joins`]' serial forms,
+//! the work split into independent parts. The k-nearest joins hand the querying tree's groups
+//! (see [`knn`](super::knn)) to the threads; the sparse distance matrix splits the top of the
+//! dual-tree traversal into independent node pairs ([`split_top`]) and traverses each on a
+//! thread. Results are put in the serial forms' order, so they are equal to them.
+
+use super::bounds::Euclid;
+use super::knn::{group_knn, groups, table, width, write_rows, KnnTable};
+use super::pairs::PairsWithin;
+use super::radius::{squared_radius, Boundary};
+use super::sparse::SparseDistances;
+use super::traverse::{roots, run, split_top};
+use super::Joins;
+use crate::query::{PointSet, QueryError, SpatialIndex};
+use core::convert::Infallible;
+use core::ops::ControlFlow;
+use rayon::prelude::*;
+
+/// Node pairs per thread that the top of a parallel traversal is split into: enough for the
+/// threads to even out the uneven parts.
+const PAIRS_PER_THREAD: usize = 16;
+
+/// The parallel forms of [`Joins`], for every point set that can be shared between threads
+/// (implemented for all of them; in the prelude under the `rayon` feature).
+pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
+    /// [`Joins::k_nearest_join`] on rayon's threads; the same table.
+    ///
+    /// ```
+    /// use orthtree::prelude::*;
+    /// use orthtree::Quadtree;
+    /// let pts: Vec<([f64; 2], ())> = (0..500).map(|i| ([(i % 25) as f64, (i / 25) as f64], ())).collect();
+    /// let (a, b) = (Quadtree::new(&pts[..200]).unwrap(), Quadtree::new(&pts[100..]).unwrap());
+    /// assert_eq!(a.par_k_nearest_join(&b, 3), a.k_nearest_join(&b, 3));
+    /// ```
+    fn par_k_nearest_join<B: PointSet<D> + Sync>(&self, other: &B, k: usize) -> KnnTable
+    where
+        Self: Sized,
+    {
+        par_knn(self, other, k, false)
+    }
+
+    /// [`Joins::k_nearest_self`] on rayon's threads; the same table.
+    ///
+    /// ```
+    /// use orthtree::prelude::*;
+    /// use orthtree::Quadtree;
+    /// let pts: Vec<([f64; 2], ())> = (0..500).map(|i| ([(i % 25) as f64, (i / 25) as f64], ())).collect();
+    /// let t = Quadtree::new(&pts).unwrap();
+    /// assert_eq!(t.par_k_nearest_self(4), t.k_nearest_self(4));
+    /// ```
+    fn par_k_nearest_self(&self, k: usize) -> KnnTable
+    where
+        Self: Sized,
+    {
+        par_knn(self, self, k, true)
+    }
+
+    /// [`Joins::sparse_distance_matrix`] on rayon's threads; the same matrix.
+    ///
+    /// # Errors
+    /// A negative or NaN `r` ([`QueryError::InvalidRadius`]).
+    ///
+    /// ```
+    /// use orthtree::prelude::*;
+    /// use orthtree::{query::Boundary, Quadtree};
+    /// let pts: Vec<([f64; 2], ())> = (0..500).map(|i| ([(i % 25) as f64, (i / 25) as f64], ())).collect();
+    /// let t = Quadtree::new(&pts).unwrap();
+    /// let m = t.par_sparse_distance_matrix(&t, 1.5, Boundary::Inclusive).unwrap();
+    /// assert_eq!(m, t.sparse_distance_matrix(&t, 1.5, Boundary::Inclusive).unwrap());
+    /// ```
+    fn par_sparse_distance_matrix<B: PointSet<D> + Sync>(
+        &self,
+        other: &B,
+        r: f64,
+        boundary: Boundary,
+    ) -> Result<SparseDistances, QueryError>
+    where
+        Self: Sized,
+        <Self::Index as SpatialIndex<D>>::Node: Send + Sync,
+        <B::Index as SpatialIndex<D>>::Node: Send + Sync,
+    {
+        let r2 = squared_radius(r)?;
+        let (a, b) = (self, other);
+        let collect = |triples: &mut Vec<(usize, usize, f64)>, start| {
+            let mut v = PairsWithin {
+                metric: &Euclid,
+                a,
+                b,
+                r2,
+                boundary,
+                visit: |s, t, d| {
+                    triples.push((s, t, d));
+                    ControlFlow::<Infallible>::Continue(())
+                },
+            };
+            let _ = run(a.index(), b.index(), &Euclid, start, &mut v);
+        };
+        let mut top = Vec::new();
+        let frontier = {
+            let mut v = PairsWithin {
+                metric: &Euclid,
+                a,
+                b,
+                r2,
+                boundary,
+                visit: |s, t, d| {
+                    top.push((s, t, d));
+                    ControlFlow::<Infallible>::Continue(())
+                },
+            };
+            let want = rayon::current_num_threads() * PAIRS_PER_THREAD;
+            let start = roots(a.index(), b.index(), false, ());
+            split_top(a.index(), b.index(), &Euclid, start, want, &mut v)
+        };
+        let parts: Vec<Vec<(usize, usize, f64)>> = frontier
+            .into_par_iter()
+            .map(|pair| {
+                let mut triples = Vec::new();
+                collect(&mut triples, vec![pair]);
+                triples
+            })
+            .collect();
+        for p in parts {
+            top.extend(p);
+        }
+        Ok(SparseDistances::new((a.len(), b.len()), top))
+    }
+}
+
+impl<P: Joins<D> + Sync, const D: usize> ParallelJoins<D> for P {}
+
+/// The k-nearest join of `a` in `b` (`same`: the self-join), the groups of `a` on rayon's
+/// threads.
+fn par_knn<A: PointSet<D> + Sync, B: PointSet<D> + Sync, const D: usize>(
+    a: &A,
+    b: &B,
+    k: usize,
+    same: bool,
+) -> KnnTable {
+    let w = width(k, b.len(), same);
+    let mut t = table(a.len(), w);
+    if w == 0 {
+        return t;
+    }
+    let gs = groups(a.index());
+    let lists: Vec<Vec<(f64, usize)>> = gs
+        .par_iter()
+        .map(|g| {
+            let mut l = Vec::new();
+            group_knn(a.index(), b.index(), &Euclid, g, w, same, &mut l);
+            l
+        })
+        .collect();
+    for (g, l) in gs.into_iter().zip(lists) {
+        write_rows(a, b, g.0, &l, &mut t);
+    }
+    t
+}
