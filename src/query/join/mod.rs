@@ -257,6 +257,7 @@ fn pairs_of<A: PointSet<D>, B: PointSet<D>, Br, const D: usize>(
     let r2 = radius::squared_radius(r)?;
     let mut v = PairsWithin {
         metric: &Euclid,
+        unordered: same,
         a,
         b,
         r2,

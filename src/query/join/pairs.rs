@@ -48,9 +48,11 @@ fn scan_pairs<SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D: usize>(
 }
 
 /// Every pair within `r2` between sets `a` and `b` (each unordered pair once, the smaller slot
-/// first, when `same`), handed to `visit(slot in a, slot in b, squared distance)`.
+/// first, when `b` is `a` and `unordered`), handed to `visit(slot in a, slot in b, squared
+/// distance)`.
 pub(crate) struct PairsWithin<'s, A, B, P, F> {
     pub(crate) metric: &'s P,
+    pub(crate) unordered: bool,
     pub(crate) a: &'s A,
     pub(crate) b: &'s B,
     pub(crate) r2: f64,
@@ -89,7 +91,7 @@ where
         let (ia, ib) = (this.a.index(), this.b.index());
         let (qa, qb) = (ia.payloads(), ib.payloads());
         let (r2, boundary) = (this.r2, this.boundary);
-        let (a, b, visit) = (this.a, this.b, &mut this.visit);
+        let (a, b, visit, unordered) = (this.a, this.b, &mut this.visit, this.unordered);
         scan_pairs(
             (ia.points(), ra),
             (ib.points(), rb),
@@ -98,7 +100,7 @@ where
             |d| boundary.admits(d, r2),
             |i, j, d| {
                 let (s, t) = (a.slot_of(i, &qa[i]), b.slot_of(j, &qb[j]));
-                if same && t < s {
+                if unordered && t < s {
                     visit(t, s, d)
                 } else {
                     visit(s, t, d)

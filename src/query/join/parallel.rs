@@ -11,7 +11,7 @@ use super::radius::{squared_radius, Boundary};
 use super::sparse::SparseDistances;
 use super::traverse::{roots, run, split_top};
 use super::Joins;
-use crate::query::{PointSet, QueryError, SpatialIndex};
+use crate::query::{PointSet, QueryError};
 use core::convert::Infallible;
 use core::ops::ControlFlow;
 use rayon::prelude::*;
@@ -76,14 +76,13 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     ) -> Result<SparseDistances, QueryError>
     where
         Self: Sized,
-        <Self::Index as SpatialIndex<D>>::Node: Send + Sync,
-        <B::Index as SpatialIndex<D>>::Node: Send + Sync,
     {
         let r2 = squared_radius(r)?;
         let (a, b) = (self, other);
         let collect = |triples: &mut Vec<(usize, usize, f64)>, start| {
             let mut v = PairsWithin {
                 metric: &Euclid,
+                unordered: false,
                 a,
                 b,
                 r2,
@@ -99,6 +98,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
         let frontier = {
             let mut v = PairsWithin {
                 metric: &Euclid,
+                unordered: false,
                 a,
                 b,
                 r2,
