@@ -8,6 +8,8 @@
 //!
 //! Run with `cargo bench --bench joins` (about a minute).
 
+// Only the uniform points of the shared generators are used here.
+#[allow(dead_code)]
 mod common;
 
 use core::ops::ControlFlow;
