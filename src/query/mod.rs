@@ -1,6 +1,7 @@
 //! Queries on point trees: range queries over any [`Region`] (boxes, balls, half-spaces, your own
 //! shapes), nearest and k-nearest neighbours under any [`Metric`], and a lazy best-first nearest
-//! iterator.
+//! iterator; and the joins of two trees or of one with itself ([`Joins`]: all k-nearest
+//! neighbours, pairs within a radius, counts over radii, sparse distance matrices).
 //!
 //! Algorithms: the range query of exercise 14.13 of de Berg, Cheong, van Kreveld and Overmars,
 //! *Computational Geometry* (chapter 14): descend into the children of every node whose cell

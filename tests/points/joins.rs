@@ -192,6 +192,15 @@ fn check_counts<A: Set<D>, B: Set<D>, const D: usize>(
         })
         .collect();
     assert_eq!(got, want, "radii {radii:?}");
+    #[cfg(feature = "rayon")]
+    {
+        let par = if same {
+            a.par_count_pairs_within(radii, boundary)
+        } else {
+            a.par_count_neighbors(b, radii, boundary)
+        };
+        assert_eq!(par.unwrap(), got, "the parallel counts are the serial ones");
+    }
 }
 
 /// The sparse matrix between `a` and `b` against nested loops, and its CSR form.
