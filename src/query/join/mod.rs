@@ -41,7 +41,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     /// k)`). Fewer than `k` per row when `other` holds fewer points.
     ///
     /// # Complexity
-    /// About `O(n log m + n k log k)` on well-spread points: each leaf of this set searches
+    /// About `O(n (log m + k))` on well-spread points: each leaf of this set searches
     /// `other` once for all its points.
     ///
     /// ```
