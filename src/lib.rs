@@ -89,8 +89,10 @@ pub mod iter {
 /// ```
 pub mod prelude {
     #[cfg(feature = "rayon")]
+    pub use crate::query::ParallelJoins;
+    #[cfg(feature = "rayon")]
     pub use crate::query::ParallelQueries;
-    pub use crate::query::{PointSet, PointSetMut};
+    pub use crate::query::{Joins, PointSet, PointSetMut};
 }
 
 /// The README's examples, compiled and run as doctests.

@@ -36,8 +36,9 @@ pub trait SpatialIndex<const D: usize> {
     type Scalar: Scalar;
     /// What the index stores with each point (see [`SpatialIndex::payloads`]).
     type Payload;
-    /// A handle on a node, small and cheap to copy.
-    type Node: Copy + PartialEq;
+    /// A handle on a node, small and cheap to copy (and to hand to another thread: the
+    /// parallel joins split a traversal into node pairs).
+    type Node: Copy + PartialEq + Send + Sync;
 
     /// `true` when every node owns one contiguous run, the union of its children's (the
     /// engines then scan a small inner node's run without descending, and report an inside

@@ -1,6 +1,7 @@
 //! Queries on point trees: range queries over any [`Region`] (boxes, balls, half-spaces, your own
 //! shapes), nearest and k-nearest neighbours under any [`Metric`], and a lazy best-first nearest
-//! iterator.
+//! iterator; and the joins of two trees or of one with itself ([`Joins`]: all k-nearest
+//! neighbours, pairs within a radius, counts over radii, sparse distance matrices).
 //!
 //! Algorithms: the range query of exercise 14.13 of de Berg, Cheong, van Kreveld and Overmars,
 //! *Computational Geometry* (chapter 14): descend into the children of every node whose cell
@@ -26,6 +27,7 @@
 #[cfg(feature = "rayon")]
 mod batch;
 mod index;
+mod join;
 mod knn;
 mod location;
 mod metric;
@@ -39,6 +41,9 @@ use crate::geom::FloatBits;
 pub use batch::{BatchError, ParallelQueries};
 pub(crate) use index::nearest_child_by_boxes;
 pub use index::SpatialIndex;
+#[cfg(feature = "rayon")]
+pub use join::ParallelJoins;
+pub use join::{Boundary, CsrDistances, Joins, KnnTable, SparseDistances};
 pub use knn::Neighbor;
 pub use location::Location;
 pub use metric::{Chebyshev, Manhattan, Metric, SquaredEuclidean};
@@ -104,6 +109,11 @@ pub enum QueryError {
         /// The `eps` given.
         value: FloatBits,
     },
+    /// A list of radii that must be in non-decreasing order has `radii[index] < radii[index - 1]`.
+    UnsortedRadii {
+        /// The first position where the order breaks.
+        index: usize,
+    },
 }
 
 impl core::fmt::Display for QueryError {
@@ -132,6 +142,9 @@ impl core::fmt::Display for QueryError {
             QueryError::NanOffset => f.write_str("half-space offset is NaN"),
             QueryError::InvalidEpsilon { value } => {
                 write!(f, "approximation eps {} is negative or NaN", value.get())
+            }
+            QueryError::UnsortedRadii { index } => {
+                write!(f, "radius {index} is smaller than the radius before it")
             }
         }
     }

@@ -12,6 +12,7 @@ mod build_order;
 mod duplicates;
 mod dynamic;
 mod every_dimension_points;
+mod joins;
 mod parallel;
 mod point_bounds;
 mod point_sets;

@@ -1,0 +1,79 @@
+//! The one seam between the joins and the geometry of their domain: the distance between two
+//! points and the range of distances between the points of two closed boxes.
+//!
+//! Every join engine of this folder reads distances through [`PairDistance`] only, so that a
+//! domain with another distance (a periodic box, whose minimum-image distance wraps each axis)
+//! plugs in by one more implementation. [`Euclid`] is the squared Euclidean distance of the
+//! rest of the query layer ([`SquaredEuclidean`](crate::query::SquaredEuclidean)).
+//!
+//! Exactness: each bound is computed with the operations of the point distance, in the same axis
+//! order, on the nearest (farthest) pair of coordinates the two boxes allow. Rounding is
+//! monotone, so for `p` in box `a` and `q` in box `b` (as `f64`), `min <= distance(p, q) <=
+//! max` holds for the computed values, even at ties: pruning a node pair whose minimum exceeds a
+//! bound never loses a pair, and counting a node pair whose maximum is within a radius never
+//! counts a pair outside it.
+
+// Loops over axes index both boxes together, in the fixed order the exactness argument needs.
+#![allow(clippy::needless_range_loop)]
+
+use crate::geom::Aabb;
+
+/// The distance between points and its range over pairs of closed boxes (see the module doc).
+pub(crate) trait PairDistance<const D: usize>: Sync {
+    /// The distance between `a` and `b`.
+    fn distance(&self, a: &[f64; D], b: &[f64; D]) -> f64;
+    /// A lower bound of `distance(q, p)` over the points `p` of the closed box `b`.
+    fn point_box(&self, q: &[f64; D], b: &Aabb<f64, D>) -> f64;
+    /// A lower and an upper bound of `distance(p, q)` over `p` in `a` and `q` in `b`.
+    fn box_box(&self, a: &Aabb<f64, D>, b: &Aabb<f64, D>) -> (f64, f64);
+}
+
+/// The squared Euclidean distance, sum of `(a_i - b_i)^2`.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Euclid;
+
+impl<const D: usize> PairDistance<D> for Euclid {
+    #[inline(always)]
+    fn distance(&self, a: &[f64; D], b: &[f64; D]) -> f64 {
+        let mut s = 0.0;
+        for i in 0..D {
+            let d = a[i] - b[i];
+            s += d * d;
+        }
+        s
+    }
+
+    #[inline(always)]
+    fn point_box(&self, q: &[f64; D], b: &Aabb<f64, D>) -> f64 {
+        let mut s = 0.0;
+        for i in 0..D {
+            let d = if q[i] < b.min[i] {
+                b.min[i] - q[i]
+            } else if q[i] > b.max[i] {
+                q[i] - b.max[i]
+            } else {
+                0.0
+            };
+            s += d * d;
+        }
+        s
+    }
+
+    #[inline(always)]
+    fn box_box(&self, a: &Aabb<f64, D>, b: &Aabb<f64, D>) -> (f64, f64) {
+        let (mut near, mut far) = (0.0, 0.0);
+        for i in 0..D {
+            let gap = if a.max[i] < b.min[i] {
+                b.min[i] - a.max[i]
+            } else if b.max[i] < a.min[i] {
+                a.min[i] - b.max[i]
+            } else {
+                0.0
+            };
+            let span = (b.max[i] - a.min[i]).max(a.max[i] - b.min[i]);
+            near += gap * gap;
+            far += span * span;
+        }
+        (near, far)
+    }
+}

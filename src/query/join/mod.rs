@@ -1,0 +1,294 @@
+//! Tree-against-tree queries (joins), written once for every [`PointSet`]: all k-nearest
+//! neighbours between two sets or within one, all pairs within a radius, the number of pairs
+//! within each of a list of radii, and the sparse distance matrix ([`Joins`]; their parallel
+//! forms in [`ParallelJoins`] under the `rayon` feature).
+//!
+//! Algorithm: the dual-tree traversal of Gray and Moore ("N-body problems in statistical
+//! learning", NIPS 2001) over the cells of both trees: node pairs are pruned, or counted whole,
+//! by the minimum and maximum distance between their boxes, on an explicit stack. Distances are
+//! squared Euclidean in `f64`, as [`PointSet::k_nearest`] computes them (exact for integer
+//! coordinates whose squares `f64` holds); the only geometry the engines see is the small seam
+//! of [`bounds`], so another distance (a periodic domain's) plugs in there.
+
+mod bounds;
+mod knn;
+mod pairs;
+#[cfg(feature = "rayon")]
+mod parallel;
+mod radius;
+mod sparse;
+mod traverse;
+
+pub use knn::KnnTable;
+#[cfg(feature = "rayon")]
+pub use parallel::ParallelJoins;
+pub use radius::Boundary;
+pub use sparse::{CsrDistances, SparseDistances};
+
+use super::{PointSet, QueryError};
+use bounds::Euclid;
+use core::ops::ControlFlow;
+use pairs::{CountWithin, PairsWithin};
+
+/// The joins of a [`PointSet`] with itself or with another one (implemented for every point
+/// set; in the prelude). Slots are the sets' [`PointSet::items`] positions; distances are
+/// squared Euclidean; radii are Euclidean, a pair within `r` when its squared distance is
+/// within `r * r` (see [`Boundary`]).
+pub trait Joins<const D: usize>: PointSet<D> {
+    /// The `k` nearest points of `other` to every point of this set: row `s` of the table holds
+    /// slot `s`'s neighbours (slots of `other`), sorted by distance, ties broken as
+    /// [`PointSet::k_nearest`] breaks them (row `s` is exactly `other.k_nearest(self.point(s),
+    /// k)`). Fewer than `k` per row when `other` holds fewer points.
+    ///
+    /// # Complexity
+    /// About `O(n (log m + k))` on well-spread points: each leaf of this set searches
+    /// `other` once for all its points.
+    ///
+    /// ```
+    /// use orthtree::prelude::*;
+    /// use orthtree::{CompressedTree, Quadtree};
+    /// let a = Quadtree::new(&[([0.0, 0.0], ()), ([9.0, 9.0], ())]).unwrap();
+    /// let b = CompressedTree::new(&[([8.0, 8.0], 'x'), ([1.0, 0.0], 'y'), ([0.0, 2.0], 'z')]).unwrap();
+    /// let t = a.k_nearest_join(&b, 2);
+    /// let row = |p: [f64; 2]| (0..2).find(|&s| *a.point(s) == p).unwrap();
+    /// let (slots, distances) = t.row(row([0.0, 0.0]));
+    /// let items: Vec<char> = slots.iter().map(|&s| b.items()[s]).collect();
+    /// assert_eq!((items, distances), (vec!['y', 'z'], &[1.0, 4.0][..]));
+    /// assert_eq!(b.items()[t.row(row([9.0, 9.0])).0[0]], 'x');
+    /// ```
+    fn k_nearest_join<B: PointSet<D>>(&self, other: &B, k: usize) -> KnnTable
+    where
+        Self: Sized,
+    {
+        knn::knn_join(self, other, &Euclid, k, false)
+    }
+
+    /// The `k` nearest other points to every point of this set: row `s` is
+    /// `self.k_nearest(self.point(s), k + 1)` without slot `s` itself (a duplicate of it is
+    /// another point, at distance 0). Fewer than `k` per row when the set holds `k` or fewer.
+    ///
+    /// # Complexity
+    /// That of [`Joins::k_nearest_join`].
+    ///
+    /// ```
+    /// use orthtree::prelude::*;
+    /// use orthtree::PointTree;
+    /// let t = PointTree::new(&[([0, 0], 'a'), ([0, 0], 'b'), ([5, 0], 'c')]).unwrap();
+    /// let table = t.k_nearest_self(1);
+    /// let near = |s: usize| t.items()[table.row(s).0[0]];
+    /// assert_eq!((near(0), near(1), near(2)), ('b', 'a', 'a'));
+    /// assert_eq!(table.row(0).1, [0.0]);
+    /// ```
+    fn k_nearest_self(&self, k: usize) -> KnnTable
+    where
+        Self: Sized,
+    {
+        knn::knn_join(self, self, &Euclid, k, true)
+    }
+
+    /// Calls `visit(s, t, d)` for every unordered pair of distinct slots `s < t` whose points
+    /// are within `r` (squared distance `d`), each once, in no particular order; stops at the
+    /// first [`ControlFlow::Break`] and returns it. Nothing is collected: memory stays that of
+    /// the traversal's stack, however many pairs there are.
+    ///
+    /// # Errors
+    /// A negative or NaN `r` ([`QueryError::InvalidRadius`]); then `visit` is not called.
+    ///
+    /// # Complexity
+    /// About `O(n + p)` for `p` pairs on well-spread points.
+    ///
+    /// ```
+    /// use core::ops::ControlFlow;
+    /// use orthtree::prelude::*;
+    /// use orthtree::{query::Boundary, Quadtree};
+    /// let pts: Vec<([f64; 2], ())> = (0..10).map(|i| ([i as f64, 0.0], ())).collect();
+    /// let t = Quadtree::new(&pts).unwrap();
+    /// let mut pairs = Vec::new();
+    /// let _ = t.pairs_within(1.0, Boundary::Inclusive, |s, u, _| {
+    ///     pairs.push((s, u));
+    ///     ControlFlow::<()>::Continue(())
+    /// });
+    /// assert_eq!(pairs.len(), 9);
+    /// assert!(pairs.iter().all(|&(s, u)| s < u));
+    /// // stop at the first pair
+    /// let first = t.pairs_within(1.0, Boundary::Inclusive, |s, u, _| ControlFlow::Break((s, u)));
+    /// assert!(matches!(first, Ok(ControlFlow::Break(_))));
+    /// ```
+    fn pairs_within<Br>(
+        &self,
+        r: f64,
+        boundary: Boundary,
+        visit: impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
+    ) -> Result<ControlFlow<Br>, QueryError>
+    where
+        Self: Sized,
+    {
+        pairs_of(self, self, true, r, boundary, visit)
+    }
+
+    /// Calls `visit(s, t, d)` for every slot `s` of this set and `t` of `other` whose points
+    /// are within `r` (squared distance `d`), in no particular order; stops at the first
+    /// [`ControlFlow::Break`] and returns it. Nothing is collected.
+    ///
+    /// # Errors
+    /// A negative or NaN `r` ([`QueryError::InvalidRadius`]); then `visit` is not called.
+    ///
+    /// ```
+    /// use core::ops::ControlFlow;
+    /// use orthtree::prelude::*;
+    /// use orthtree::{query::Boundary, DynamicPointTree, Quadtree};
+    /// let a = Quadtree::new(&[([0.0, 0.0], ()), ([5.0, 5.0], ())]).unwrap();
+    /// let b = DynamicPointTree::new(&[([0.5, 0.0], ()), ([5.0, 6.0], ())]).unwrap();
+    /// let mut n = 0;
+    /// let _ = a.pairs_within_other(&b, 1.0, Boundary::Exclusive, |_, _, _| {
+    ///     n += 1;
+    ///     ControlFlow::<()>::Continue(())
+    /// });
+    /// assert_eq!(n, 1); // (5, 5)-(5, 6) is at exactly 1: left out
+    /// ```
+    fn pairs_within_other<B: PointSet<D>, Br>(
+        &self,
+        other: &B,
+        r: f64,
+        boundary: Boundary,
+        visit: impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
+    ) -> Result<ControlFlow<Br>, QueryError>
+    where
+        Self: Sized,
+    {
+        pairs_of(self, other, false, r, boundary, visit)
+    }
+
+    /// For each radius of `radii` (non-decreasing), the number of unordered pairs of distinct
+    /// points of this set within it, in one traversal: a node pair whose whole distance range
+    /// falls between two radii is counted by multiplying its sizes, without visiting a point.
+    ///
+    /// # Errors
+    /// A negative or NaN radius ([`QueryError::InvalidRadius`]); a radius smaller than the one
+    /// before it ([`QueryError::UnsortedRadii`], naming its position).
+    ///
+    /// ```
+    /// use orthtree::prelude::*;
+    /// use orthtree::{query::{Boundary, QueryError}, Quadtree};
+    /// let pts: Vec<([f64; 2], ())> = (0..4).map(|i| ([i as f64, 0.0], ())).collect();
+    /// let t = Quadtree::new(&pts).unwrap();
+    /// assert_eq!(t.count_pairs_within(&[0.5, 1.0, 2.0, 9.0], Boundary::Inclusive).unwrap(), [0, 3, 5, 6]);
+    /// assert_eq!(
+    ///     t.count_pairs_within(&[2.0, 1.0], Boundary::Inclusive),
+    ///     Err(QueryError::UnsortedRadii { index: 1 })
+    /// );
+    /// ```
+    fn count_pairs_within(&self, radii: &[f64], boundary: Boundary) -> Result<Vec<u64>, QueryError>
+    where
+        Self: Sized,
+    {
+        count_of(self, self, true, radii, boundary)
+    }
+
+    /// For each radius of `radii` (non-decreasing), the number of pairs of a point of this set
+    /// and a point of `other` within it (scipy's `count_neighbors`), in one traversal.
+    ///
+    /// # Errors
+    /// Those of [`Joins::count_pairs_within`].
+    ///
+    /// ```
+    /// use orthtree::prelude::*;
+    /// use orthtree::{query::Boundary, Quadtree};
+    /// let a = Quadtree::new(&[([0.0, 0.0], ()), ([1.0, 0.0], ())]).unwrap();
+    /// let b = Quadtree::new(&[([0.0, 0.0], ()), ([3.0, 0.0], ())]).unwrap();
+    /// assert_eq!(a.count_neighbors(&b, &[0.0, 1.0, 3.0], Boundary::Inclusive).unwrap(), [1, 2, 4]);
+    /// ```
+    fn count_neighbors<B: PointSet<D>>(
+        &self,
+        other: &B,
+        radii: &[f64],
+        boundary: Boundary,
+    ) -> Result<Vec<u64>, QueryError>
+    where
+        Self: Sized,
+    {
+        count_of(self, other, false, radii, boundary)
+    }
+
+    /// Every pair of a point of this set (row) and a point of `other` (column) within `r`,
+    /// with its squared distance, as a sparse matrix sorted by row then column (pass the set
+    /// itself as `other` for the symmetric matrix with its diagonal, as scipy gives it).
+    ///
+    /// # Errors
+    /// A negative or NaN `r` ([`QueryError::InvalidRadius`]).
+    ///
+    /// ```
+    /// use orthtree::prelude::*;
+    /// use orthtree::{query::Boundary, Quadtree};
+    /// let t = Quadtree::new(&[([0.0, 0.0], ()), ([0.0, 2.0], ())]).unwrap();
+    /// let m = t.sparse_distance_matrix(&t, 2.0, Boundary::Inclusive).unwrap();
+    /// let all: Vec<_> = m.iter().collect();
+    /// assert_eq!(all, [(0, 0, 0.0), (0, 1, 4.0), (1, 0, 4.0), (1, 1, 0.0)]);
+    /// ```
+    fn sparse_distance_matrix<B: PointSet<D>>(
+        &self,
+        other: &B,
+        r: f64,
+        boundary: Boundary,
+    ) -> Result<SparseDistances, QueryError>
+    where
+        Self: Sized,
+    {
+        let mut triples = Vec::new();
+        let _ = self.pairs_within_other(other, r, boundary, |s, t, d| {
+            triples.push((s, t, d));
+            ControlFlow::<()>::Continue(())
+        })?;
+        Ok(SparseDistances::new((self.len(), other.len()), triples))
+    }
+}
+
+impl<P: PointSet<D>, const D: usize> Joins<D> for P {}
+
+/// The pairs within `r` between `a` and `b` (`same`: `b` is `a`, unordered pairs once).
+fn pairs_of<A: PointSet<D>, B: PointSet<D>, Br, const D: usize>(
+    a: &A,
+    b: &B,
+    same: bool,
+    r: f64,
+    boundary: Boundary,
+    visit: impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
+) -> Result<ControlFlow<Br>, QueryError> {
+    let r2 = radius::squared_radius(r)?;
+    let mut v = PairsWithin {
+        metric: &Euclid,
+        unordered: same,
+        a,
+        b,
+        r2,
+        boundary,
+        visit,
+    };
+    let start = traverse::roots(a.index(), b.index(), same, ());
+    Ok(traverse::run(a.index(), b.index(), &Euclid, start, &mut v))
+}
+
+/// The counts within each of `radii` between `a` and `b` (`same`: `b` is `a`).
+fn count_of<A: PointSet<D>, B: PointSet<D>, const D: usize>(
+    a: &A,
+    b: &B,
+    same: bool,
+    radii: &[f64],
+    boundary: Boundary,
+) -> Result<Vec<u64>, QueryError> {
+    let r2 = radius::squared_radii(radii)?;
+    if r2.is_empty() {
+        return Ok(Vec::new());
+    }
+    let mut v = CountWithin {
+        metric: &Euclid,
+        a,
+        b,
+        r2: &r2,
+        boundary,
+        diff: vec![0; r2.len() + 1],
+    };
+    let start = traverse::roots(a.index(), b.index(), same, (0, r2.len()));
+    let _ = traverse::run(a.index(), b.index(), &Euclid, start, &mut v);
+    Ok(v.counts())
+}

@@ -1,0 +1,209 @@
+//! The radius joins on the dual-tree traversal of [`traverse`](super::traverse): every pair of
+//! points within a radius, handed to a visitor as found ([`PairsWithin`]), and the number of
+//! pairs within each of a sorted list of radii in one traversal ([`CountWithin`], the two-point
+//! correlation count of Gray and Moore, 2001).
+//!
+//! The counts keep, per node pair, the range `lo..hi` of radii not yet decided for it (every
+//! radius below `lo` takes in none of its pairs, every radius from `hi` on all of them, already
+//! counted). A node pair narrows it by its boxes' distance range; the radii it newly takes in
+//! whole get its number of pairs at once, by multiplying the sizes of the two nodes, without
+//! visiting a point; only the radii still undecided go down to the points. The counts are kept
+//! as differences (`add c to radii lo..hi` is two updates) and summed at the end.
+
+use super::bounds::PairDistance;
+use super::radius::Boundary;
+use super::traverse::{PairVisitor, Step};
+use crate::geom::Scalar;
+use crate::query::{PointSet, SpatialIndex};
+use core::ops::{ControlFlow, Range};
+
+/// The points of a run as `f64`.
+#[inline(always)]
+fn point<S: Scalar, const D: usize>(points: &[[S; D]], i: usize) -> [f64; D] {
+    points[i].map(Scalar::to_f64)
+}
+
+/// Calls `each(i, j, d)` for every pair of positions of runs `a` and `b` (with `i < j` when
+/// `same`: one run with itself) whose distance `d` is within `r2`.
+#[inline(always)]
+fn scan_pairs<SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D: usize>(
+    (pa, a): (&[[SA; D]], Range<usize>),
+    (pb, b): (&[[SB; D]], Range<usize>),
+    same: bool,
+    metric: &P,
+    within: impl Fn(f64) -> bool,
+    mut each: impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
+) -> ControlFlow<Br> {
+    for i in a {
+        let p = point(pa, i);
+        let from = if same { i + 1 } else { b.start };
+        for j in from..b.end {
+            let d = metric.distance(&p, &point(pb, j));
+            if within(d) {
+                each(i, j, d)?;
+            }
+        }
+    }
+    ControlFlow::Continue(())
+}
+
+/// Every pair within `r2` between sets `a` and `b` (each unordered pair once, the smaller slot
+/// first, when `b` is `a` and `unordered`), handed to `visit(slot in a, slot in b, squared
+/// distance)`.
+pub(crate) struct PairsWithin<'s, A, B, P, F> {
+    pub(crate) metric: &'s P,
+    pub(crate) unordered: bool,
+    pub(crate) a: &'s A,
+    pub(crate) b: &'s B,
+    pub(crate) r2: f64,
+    pub(crate) boundary: Boundary,
+    pub(crate) visit: F,
+}
+
+impl<'s, A, B, P, F, Br, const D: usize> PairVisitor<A::Index, B::Index, (), D>
+    for PairsWithin<'s, A, B, P, F>
+where
+    A: PointSet<D>,
+    B: PointSet<D>,
+    P: PairDistance<D>,
+    F: FnMut(usize, usize, f64) -> ControlFlow<Br>,
+{
+    type Break = Br;
+
+    #[inline]
+    fn classify(&mut self, _: &(), near: f64, _far: f64, _pairs: u64) -> Step<()> {
+        if self.boundary.admits(near, self.r2) {
+            Step::Split(())
+        } else {
+            Step::Skip
+        }
+    }
+
+    fn leaves(
+        &mut self,
+        _: &(),
+        ra: Range<usize>,
+        rb: Range<usize>,
+        same: bool,
+    ) -> ControlFlow<Br> {
+        let this = self;
+        let metric = this.metric;
+        let (ia, ib) = (this.a.index(), this.b.index());
+        let (qa, qb) = (ia.payloads(), ib.payloads());
+        let (r2, boundary) = (this.r2, this.boundary);
+        let (a, b, visit, unordered) = (this.a, this.b, &mut this.visit, this.unordered);
+        scan_pairs(
+            (ia.points(), ra),
+            (ib.points(), rb),
+            same,
+            metric,
+            |d| boundary.admits(d, r2),
+            |i, j, d| {
+                let (s, t) = (a.slot_of(i, &qa[i]), b.slot_of(j, &qb[j]));
+                if unordered && t < s {
+                    visit(t, s, d)
+                } else {
+                    visit(s, t, d)
+                }
+            },
+        )
+    }
+}
+
+/// The number of pairs within each of the sorted squared radii `r2`, as differences: radius `i`
+/// counts `diff[0] + .. + diff[i]`.
+pub(crate) struct CountWithin<'s, A, B, P> {
+    pub(crate) metric: &'s P,
+    pub(crate) a: &'s A,
+    pub(crate) b: &'s B,
+    pub(crate) r2: &'s [f64],
+    pub(crate) boundary: Boundary,
+    pub(crate) diff: Vec<i128>,
+}
+
+impl<'s, A, B, P> CountWithin<'s, A, B, P> {
+    /// The first radius of `range` that takes in distance `d` (the end if none).
+    #[inline(always)]
+    fn first_admitting(&self, range: Range<usize>, d: f64) -> usize {
+        range.start + self.r2[range].partition_point(|&r2| !self.boundary.admits(d, r2))
+    }
+
+    /// The counts, summed from the differences.
+    pub(crate) fn counts(&self) -> Vec<u64> {
+        let mut sum = 0i128;
+        self.diff[..self.r2.len()]
+            .iter()
+            .map(|&c| {
+                sum += c;
+                sum as u64
+            })
+            .collect()
+    }
+}
+
+impl<'s, A, B, P, const D: usize> PairVisitor<A::Index, B::Index, (usize, usize), D>
+    for CountWithin<'s, A, B, P>
+where
+    A: PointSet<D>,
+    B: PointSet<D>,
+    P: PairDistance<D>,
+{
+    type Break = core::convert::Infallible;
+
+    #[inline]
+    fn classify(
+        &mut self,
+        &(lo, hi): &(usize, usize),
+        near: f64,
+        far: f64,
+        pairs: u64,
+    ) -> Step<(usize, usize)> {
+        let c = self;
+        let lo = c.first_admitting(lo..hi, near);
+        let all = c.first_admitting(lo..hi, far);
+        if all < hi {
+            c.diff[all] += i128::from(pairs);
+            c.diff[hi] -= i128::from(pairs);
+        }
+        if lo == all {
+            Step::Skip
+        } else {
+            Step::Split((lo, all))
+        }
+    }
+
+    fn leaves(
+        &mut self,
+        &(lo, hi): &(usize, usize),
+        ra: Range<usize>,
+        rb: Range<usize>,
+        same: bool,
+    ) -> ControlFlow<Self::Break> {
+        let c = self;
+        let metric = c.metric;
+        let (pa, pb) = (c.a.index().points(), c.b.index().points());
+        // Every pair beyond radius `hi - 1` is left out, and each one within it is counted
+        // from the first radius that takes it in up to `hi`, where the counts above already
+        // hold it.
+        let last = c.r2[hi - 1];
+        let boundary = c.boundary;
+        let mut within = 0i128;
+        let diff = &mut c.diff;
+        let r2 = c.r2;
+        let _ = scan_pairs(
+            (pa, ra),
+            (pb, rb),
+            same,
+            metric,
+            |d| boundary.admits(d, last),
+            |_, _, d| {
+                let at = lo + r2[lo..hi].partition_point(|&r| !boundary.admits(d, r));
+                diff[at] += 1;
+                within += 1;
+                ControlFlow::<core::convert::Infallible>::Continue(())
+            },
+        );
+        c.diff[hi] -= within;
+        ControlFlow::Continue(())
+    }
+}
