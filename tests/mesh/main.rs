@@ -11,4 +11,5 @@ mod mesh_io;
 mod mesh_modes;
 mod mesh_writers;
 mod mesher;
+mod svg_writer;
 mod writer_checksums;
