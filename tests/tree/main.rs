@@ -7,7 +7,9 @@
 mod common;
 
 mod balance;
+mod balance_levels;
 mod every_dimension_tree;
 mod module_graph;
 mod neighbors;
 mod public_surface;
+mod split_balanced;
