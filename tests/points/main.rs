@@ -18,3 +18,4 @@ mod point_sets;
 mod point_tree;
 mod queries;
 mod updates;
+mod updates_after_balance;

@@ -8,6 +8,7 @@ mod common;
 
 mod balance;
 mod balance_levels;
+mod cells;
 mod every_dimension_tree;
 mod module_graph;
 mod neighbors;
