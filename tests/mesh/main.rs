@@ -12,4 +12,5 @@ mod mesh_modes;
 mod mesh_writers;
 mod mesher;
 mod svg_writer;
+mod validate_errors;
 mod writer_checksums;
