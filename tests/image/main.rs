@@ -9,3 +9,4 @@ mod image_laws;
 mod image_ops;
 mod image_pbm;
 mod image_png;
+mod image_rows;

@@ -9,6 +9,7 @@ mod common;
 mod balance;
 mod balance_levels;
 mod cells;
+mod directions;
 mod every_dimension_tree;
 mod module_graph;
 mod neighbors;
