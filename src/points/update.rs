@@ -141,15 +141,9 @@ impl<S: Scalar, T, const D: usize> PointSetMut<D> for PointTree<S, T, D> {
         let (path, (s, e)) = self.path(key);
         let leaf = *path.last().expect("the path holds the root");
         // After every point of the leaf whose key is at most `key`.
-        let (mut a, mut b) = (s as usize, e as usize);
-        while a < b {
-            let mid = a + (b - a) / 2;
-            if self.key_of(mid) <= key {
-                a = mid + 1;
-            } else {
-                b = mid;
-            }
-        }
+        let a = s as usize
+            + self.points[s as usize..e as usize]
+                .partition_point(|p| self.geometry.scalar_key(p) <= key);
         self.points.insert(a, point);
         self.items.insert(a, item);
         self.runs.shift::<D>(&path, 1);
@@ -166,26 +160,12 @@ impl<S: Scalar, T, const D: usize> PointSetMut<D> for PointTree<S, T, D> {
         let key = self.geometry.key(&p);
         let (_, (s, e)) = self.path(key);
         // The first point of the leaf with this key, then scan the equal keys.
-        let (mut a, mut b) = (s as usize, e as usize);
-        while a < b {
-            let mid = a + (b - a) / 2;
-            if self.key_of(mid) < key {
-                a = mid + 1;
-            } else {
-                b = mid;
-            }
-        }
-        let mut found = None;
-        for i in a..e as usize {
-            if self.points[i] == *point && wanted(&self.items[i]) {
-                found = Some(i);
-                break;
-            }
-            if self.key_of(i) != key {
-                break;
-            }
-        }
-        let i = found?;
+        let a = s as usize
+            + self.points[s as usize..e as usize]
+                .partition_point(|p| self.geometry.scalar_key(p) < key);
+        let i = (a..e as usize)
+            .take_while(|&i| self.key_of(i) == key)
+            .find(|&i| self.points[i] == *point && wanted(&self.items[i]))?;
         if self.balanced.is_some() {
             // Rebuilding keeps the points' order, so `i` stays valid.
             self.rebuild_canonical();
