@@ -206,23 +206,6 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
         self.levels[i - 1].nodes[done.branch as usize].down = w;
     }
 
-    fn remove_where(&mut self, point: &[S; D], accept: impl Fn(&T) -> bool) -> Option<T> {
-        let key = self.base.query_key(point).ok()?.inside()?;
-        let path = self.search(&key, &mut 0);
-        let (item, removed) = self.base.remove_in_leaf(path[0], &key, point, accept)?;
-        if removed != NIL {
-            for (level, &v) in self.levels.iter_mut().zip(&path[1..]) {
-                if level.is_leaf(v) && level.node(v).cell.anchor() == key {
-                    level.remove_leaf(v);
-                }
-            }
-            while self.levels.last().is_some_and(Topology::is_empty) {
-                self.levels.pop();
-            }
-        }
-        Some(item)
-    }
-
     /// A point whose distance to `p` is at most `(1 + eps)` times the nearest's (Euclidean), and
     /// the number of nodes the search visited; `None` for an empty tree. `eps = 0` gives the
     /// exact nearest point (and so does `-0.0`); an infinite or huge `eps` (for which
@@ -421,17 +404,22 @@ impl<S: Scalar, T, const D: usize> PointSetMut<D> for SkipQuadtree<S, T, D> {
         Ok(())
     }
 
-    /// Removes one stored copy of (`point`, `item`); `false` if there is none.
-    fn remove(&mut self, point: &[S; D], item: &T) -> bool
-    where
-        T: PartialEq,
-    {
-        self.remove_where(point, |t| t == item).is_some()
-    }
-
-    /// Removes one item stored at `point` and returns it; `None` if there is none. Expected
-    /// O(log n).
-    fn remove_point(&mut self, point: &[S; D]) -> Option<T> {
-        self.remove_where(point, |_| true)
+    /// Removes the first item stored at `point` that `wanted` accepts and returns it; `None` if
+    /// there is none. Expected O(log n).
+    fn remove_where(&mut self, point: &[S; D], wanted: impl Fn(&T) -> bool) -> Option<T> {
+        let key = self.base.query_key(point).ok()?.inside()?;
+        let path = self.search(&key, &mut 0);
+        let (item, removed) = self.base.remove_in_leaf(path[0], &key, point, wanted)?;
+        if removed != NIL {
+            for (level, &v) in self.levels.iter_mut().zip(&path[1..]) {
+                if level.is_leaf(v) && level.node(v).cell.anchor() == key {
+                    level.remove_leaf(v);
+                }
+            }
+            while self.levels.last().is_some_and(Topology::is_empty) {
+                self.levels.pop();
+            }
+        }
+        Some(item)
     }
 }

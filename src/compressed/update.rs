@@ -48,19 +48,8 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
         done
     }
 
-    /// Removes the first item at `point` accepted by `accept`; returns it with the leaf removed
-    /// from the tree (NIL if the leaf stays).
-    pub(crate) fn remove_where(
-        &mut self,
-        point: &[S; D],
-        accept: impl Fn(&T) -> bool,
-    ) -> Option<(T, u32)> {
-        let key = self.query_key(point).ok()?.inside()?;
-        let leaf = self.index.topology.descend(0, &key, |_| {});
-        self.remove_in_leaf(leaf, &key, point, accept)
-    }
-
-    /// [`CompressedTree::remove_where`] once the deepest node holding `key` is known.
+    /// Removes the first item at `point` accepted by `accept` below `leaf`, the deepest node
+    /// holding `key`; returns it with the leaf removed from the tree (NIL if the leaf stays).
     pub(crate) fn remove_in_leaf(
         &mut self,
         leaf: u32,
@@ -111,16 +100,8 @@ impl<S: Scalar, T, const D: usize> PointSetMut<D> for CompressedTree<S, T, D> {
         Ok(())
     }
 
-    /// Removes one stored copy of (`point`, `item`); `false` if there is none. O(depth + copies
-    /// of the point).
-    fn remove(&mut self, point: &[S; D], item: &T) -> bool
-    where
-        T: PartialEq,
-    {
-        self.remove_where(point, |t| t == item).is_some()
-    }
-
-    /// Removes one item stored at `point` and returns it; `None` if there is none. O(depth).
+    /// Removes the first item stored at `point` that `wanted` accepts and returns it; `None` if
+    /// there is none. O(depth + copies of the point).
     ///
     /// ```
     /// use orthtree::prelude::*;
@@ -130,7 +111,10 @@ impl<S: Scalar, T, const D: usize> PointSetMut<D> for CompressedTree<S, T, D> {
     /// assert_eq!(t.remove_point(&[0.5, 0.5]), None);
     /// assert_eq!(t.len(), 2);
     /// ```
-    fn remove_point(&mut self, point: &[S; D]) -> Option<T> {
-        self.remove_where(point, |_| true).map(|(item, _)| item)
+    fn remove_where(&mut self, point: &[S; D], wanted: impl Fn(&T) -> bool) -> Option<T> {
+        let key = self.query_key(point).ok()?.inside()?;
+        let leaf = self.index.topology.descend(0, &key, |_| {});
+        self.remove_in_leaf(leaf, &key, point, wanted)
+            .map(|(item, _)| item)
     }
 }

@@ -55,8 +55,10 @@ pub trait Scalar:
     fn integer_value(self) -> Option<i128>;
 }
 
-macro_rules! float_scalar {
-    ($($t:ty),*) => {$(
+/// Implements [`Scalar`] for each type, with the bodies of the three methods that tell floats
+/// from integers (each a closure over the value).
+macro_rules! scalar {
+    ($finite:expr, $exact:expr, $integer:expr; $($t:ty),*) => {$(
         impl Scalar for $t {
             #[inline]
             fn to_f64(self) -> f64 {
@@ -64,49 +66,30 @@ macro_rules! float_scalar {
             }
             #[inline]
             fn is_finite_coordinate(self) -> bool {
-                <$t>::is_finite(self)
+                ($finite)(self)
             }
             #[inline]
             fn converts_exactly(self) -> bool {
-                // f32 -> f64 is exact for every finite value.
-                <$t>::is_finite(self)
+                ($exact)(self)
             }
             #[inline]
             fn integer_value(self) -> Option<i128> {
-                None
+                ($integer)(self)
             }
         }
     )*};
 }
 
-macro_rules! int_scalar {
-    ($($t:ty),*) => {$(
-        impl Scalar for $t {
-            #[inline]
-            fn to_f64(self) -> f64 {
-                self as f64
-            }
-            #[inline]
-            fn is_finite_coordinate(self) -> bool {
-                true
-            }
-            #[inline]
-            fn converts_exactly(self) -> bool {
-                // Back through i128, which holds every f64 these types round to (up to 2^64):
-                // a cast back to the type itself would saturate, taking i64::MAX (which
-                // rounds to 2^63) for exact.
-                (self as f64) as i128 == self as i128
-            }
-            #[inline]
-            fn integer_value(self) -> Option<i128> {
-                self.to_i128()
-            }
-        }
-    )*};
-}
-
-float_scalar!(f32, f64);
-int_scalar!(i8, i16, i32, i64, u8, u16, u32, u64);
+// f32 -> f64 is exact for every finite value.
+scalar!(|x: Self| x.is_finite(), |x: Self| x.is_finite(), |_| None; f32, f64);
+// Back through i128, which holds every f64 these types round to (up to 2^64): a cast back to the
+// type itself would saturate, taking i64::MAX (which rounds to 2^63) for exact.
+scalar!(
+    |_| true,
+    |x: Self| (x as f64) as i128 == x as i128,
+    |x: Self| x.to_i128();
+    i8, i16, i32, i64, u8, u16, u32, u64
+);
 
 /// Checks every coordinate of `point` with [`Scalar::converts_exactly`], and names the first bad
 /// axis: the one point check of the crate, behind every error for a point, a query point, a

@@ -25,313 +25,70 @@
 //! ```
 
 use super::{BoolOp, RegionTree};
+use core::borrow::Borrow;
 use core::ops::{
     BitAnd, BitAndAssign, BitOr, BitOrAssign, BitXor, BitXorAssign, Not, Sub, SubAssign,
 };
 
-/// The intersection (`&`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> BitAnd<RegionTree<D>> for RegionTree<D> {
-    type Output = RegionTree<D>;
+/// Implements `$op` for the four owned/borrowed operand pairs and `$assign` for an owned and a
+/// borrowed right-hand side, each one call of the simultaneous traversal with `BoolOp::$bool`;
+/// `$doc` and `$assign_doc` head their rustdoc.
+macro_rules! bool_operator {
+    (
+        $op:ident $method:ident, $assign:ident $assign_method:ident, $bool:ident,
+        $doc:literal, $assign_doc:literal
+    ) => {
+        bool_operator!(@binary $op $method, $bool, $doc, RegionTree<D>, RegionTree<D>);
+        bool_operator!(@binary $op $method, $bool, $doc, RegionTree<D>, &RegionTree<D>);
+        bool_operator!(@binary $op $method, $bool, $doc, &RegionTree<D>, RegionTree<D>);
+        bool_operator!(@binary $op $method, $bool, $doc, &RegionTree<D>, &RegionTree<D>);
+        bool_operator!(@assign $assign $assign_method, $bool, $assign_doc, RegionTree<D>);
+        bool_operator!(@assign $assign $assign_method, $bool, $assign_doc, &RegionTree<D>);
+    };
+    (@binary $op:ident $method:ident, $bool:ident, $doc:literal, $lhs:ty, $rhs:ty) => {
+        #[doc = $doc]
+        ///
+        /// # Panics
+        /// If the extents differ.
+        impl<const D: usize> $op<$rhs> for $lhs {
+            type Output = RegionTree<D>;
 
-    fn bitand(self, rhs: RegionTree<D>) -> RegionTree<D> {
-        let (a, b): (&RegionTree<D>, &RegionTree<D>) = (&self, &rhs);
-        a.try_combine(b, BoolOp::And)
-            .unwrap_or_else(|e| panic!("{e}"))
-    }
+            fn $method(self, rhs: $rhs) -> RegionTree<D> {
+                let a: &RegionTree<D> = Borrow::borrow(&self);
+                a.try_combine(Borrow::borrow(&rhs), BoolOp::$bool)
+                    .unwrap_or_else(|e| panic!("{e}"))
+            }
+        }
+    };
+    (@assign $assign:ident $assign_method:ident, $bool:ident, $doc:literal, $rhs:ty) => {
+        #[doc = $doc]
+        ///
+        /// # Panics
+        /// If the extents differ.
+        impl<const D: usize> $assign<$rhs> for RegionTree<D> {
+            fn $assign_method(&mut self, rhs: $rhs) {
+                self.assign(Borrow::borrow(&rhs), BoolOp::$bool);
+            }
+        }
+    };
 }
 
-/// The intersection (`&`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> BitAnd<&RegionTree<D>> for RegionTree<D> {
-    type Output = RegionTree<D>;
-
-    fn bitand(self, rhs: &RegionTree<D>) -> RegionTree<D> {
-        let (a, b): (&RegionTree<D>, &RegionTree<D>) = (&self, rhs);
-        a.try_combine(b, BoolOp::And)
-            .unwrap_or_else(|e| panic!("{e}"))
-    }
-}
-
-/// The intersection (`&`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> BitAnd<RegionTree<D>> for &RegionTree<D> {
-    type Output = RegionTree<D>;
-
-    fn bitand(self, rhs: RegionTree<D>) -> RegionTree<D> {
-        let (a, b): (&RegionTree<D>, &RegionTree<D>) = (self, &rhs);
-        a.try_combine(b, BoolOp::And)
-            .unwrap_or_else(|e| panic!("{e}"))
-    }
-}
-
-/// The intersection (`&`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> BitAnd<&RegionTree<D>> for &RegionTree<D> {
-    type Output = RegionTree<D>;
-
-    fn bitand(self, rhs: &RegionTree<D>) -> RegionTree<D> {
-        let (a, b): (&RegionTree<D>, &RegionTree<D>) = (self, rhs);
-        a.try_combine(b, BoolOp::And)
-            .unwrap_or_else(|e| panic!("{e}"))
-    }
-}
-
-/// In-place intersection (`&=`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> BitAndAssign<RegionTree<D>> for RegionTree<D> {
-    fn bitand_assign(&mut self, rhs: RegionTree<D>) {
-        self.assign(&rhs, BoolOp::And);
-    }
-}
-
-/// In-place intersection (`&=`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> BitAndAssign<&RegionTree<D>> for RegionTree<D> {
-    fn bitand_assign(&mut self, rhs: &RegionTree<D>) {
-        self.assign(rhs, BoolOp::And);
-    }
-}
-
-/// The union (`|`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> BitOr<RegionTree<D>> for RegionTree<D> {
-    type Output = RegionTree<D>;
-
-    fn bitor(self, rhs: RegionTree<D>) -> RegionTree<D> {
-        let (a, b): (&RegionTree<D>, &RegionTree<D>) = (&self, &rhs);
-        a.try_combine(b, BoolOp::Or)
-            .unwrap_or_else(|e| panic!("{e}"))
-    }
-}
-
-/// The union (`|`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> BitOr<&RegionTree<D>> for RegionTree<D> {
-    type Output = RegionTree<D>;
-
-    fn bitor(self, rhs: &RegionTree<D>) -> RegionTree<D> {
-        let (a, b): (&RegionTree<D>, &RegionTree<D>) = (&self, rhs);
-        a.try_combine(b, BoolOp::Or)
-            .unwrap_or_else(|e| panic!("{e}"))
-    }
-}
-
-/// The union (`|`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> BitOr<RegionTree<D>> for &RegionTree<D> {
-    type Output = RegionTree<D>;
-
-    fn bitor(self, rhs: RegionTree<D>) -> RegionTree<D> {
-        let (a, b): (&RegionTree<D>, &RegionTree<D>) = (self, &rhs);
-        a.try_combine(b, BoolOp::Or)
-            .unwrap_or_else(|e| panic!("{e}"))
-    }
-}
-
-/// The union (`|`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> BitOr<&RegionTree<D>> for &RegionTree<D> {
-    type Output = RegionTree<D>;
-
-    fn bitor(self, rhs: &RegionTree<D>) -> RegionTree<D> {
-        let (a, b): (&RegionTree<D>, &RegionTree<D>) = (self, rhs);
-        a.try_combine(b, BoolOp::Or)
-            .unwrap_or_else(|e| panic!("{e}"))
-    }
-}
-
-/// In-place union (`|=`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> BitOrAssign<RegionTree<D>> for RegionTree<D> {
-    fn bitor_assign(&mut self, rhs: RegionTree<D>) {
-        self.assign(&rhs, BoolOp::Or);
-    }
-}
-
-/// In-place union (`|=`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> BitOrAssign<&RegionTree<D>> for RegionTree<D> {
-    fn bitor_assign(&mut self, rhs: &RegionTree<D>) {
-        self.assign(rhs, BoolOp::Or);
-    }
-}
-
-/// The symmetric difference (`^`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> BitXor<RegionTree<D>> for RegionTree<D> {
-    type Output = RegionTree<D>;
-
-    fn bitxor(self, rhs: RegionTree<D>) -> RegionTree<D> {
-        let (a, b): (&RegionTree<D>, &RegionTree<D>) = (&self, &rhs);
-        a.try_combine(b, BoolOp::Xor)
-            .unwrap_or_else(|e| panic!("{e}"))
-    }
-}
-
-/// The symmetric difference (`^`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> BitXor<&RegionTree<D>> for RegionTree<D> {
-    type Output = RegionTree<D>;
-
-    fn bitxor(self, rhs: &RegionTree<D>) -> RegionTree<D> {
-        let (a, b): (&RegionTree<D>, &RegionTree<D>) = (&self, rhs);
-        a.try_combine(b, BoolOp::Xor)
-            .unwrap_or_else(|e| panic!("{e}"))
-    }
-}
-
-/// The symmetric difference (`^`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> BitXor<RegionTree<D>> for &RegionTree<D> {
-    type Output = RegionTree<D>;
-
-    fn bitxor(self, rhs: RegionTree<D>) -> RegionTree<D> {
-        let (a, b): (&RegionTree<D>, &RegionTree<D>) = (self, &rhs);
-        a.try_combine(b, BoolOp::Xor)
-            .unwrap_or_else(|e| panic!("{e}"))
-    }
-}
-
-/// The symmetric difference (`^`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> BitXor<&RegionTree<D>> for &RegionTree<D> {
-    type Output = RegionTree<D>;
-
-    fn bitxor(self, rhs: &RegionTree<D>) -> RegionTree<D> {
-        let (a, b): (&RegionTree<D>, &RegionTree<D>) = (self, rhs);
-        a.try_combine(b, BoolOp::Xor)
-            .unwrap_or_else(|e| panic!("{e}"))
-    }
-}
-
-/// In-place symmetric difference (`^=`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> BitXorAssign<RegionTree<D>> for RegionTree<D> {
-    fn bitxor_assign(&mut self, rhs: RegionTree<D>) {
-        self.assign(&rhs, BoolOp::Xor);
-    }
-}
-
-/// In-place symmetric difference (`^=`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> BitXorAssign<&RegionTree<D>> for RegionTree<D> {
-    fn bitxor_assign(&mut self, rhs: &RegionTree<D>) {
-        self.assign(rhs, BoolOp::Xor);
-    }
-}
-
-/// The difference (`-`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> Sub<RegionTree<D>> for RegionTree<D> {
-    type Output = RegionTree<D>;
-
-    fn sub(self, rhs: RegionTree<D>) -> RegionTree<D> {
-        let (a, b): (&RegionTree<D>, &RegionTree<D>) = (&self, &rhs);
-        a.try_combine(b, BoolOp::Sub)
-            .unwrap_or_else(|e| panic!("{e}"))
-    }
-}
-
-/// The difference (`-`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> Sub<&RegionTree<D>> for RegionTree<D> {
-    type Output = RegionTree<D>;
-
-    fn sub(self, rhs: &RegionTree<D>) -> RegionTree<D> {
-        let (a, b): (&RegionTree<D>, &RegionTree<D>) = (&self, rhs);
-        a.try_combine(b, BoolOp::Sub)
-            .unwrap_or_else(|e| panic!("{e}"))
-    }
-}
-
-/// The difference (`-`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> Sub<RegionTree<D>> for &RegionTree<D> {
-    type Output = RegionTree<D>;
-
-    fn sub(self, rhs: RegionTree<D>) -> RegionTree<D> {
-        let (a, b): (&RegionTree<D>, &RegionTree<D>) = (self, &rhs);
-        a.try_combine(b, BoolOp::Sub)
-            .unwrap_or_else(|e| panic!("{e}"))
-    }
-}
-
-/// The difference (`-`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> Sub<&RegionTree<D>> for &RegionTree<D> {
-    type Output = RegionTree<D>;
-
-    fn sub(self, rhs: &RegionTree<D>) -> RegionTree<D> {
-        let (a, b): (&RegionTree<D>, &RegionTree<D>) = (self, rhs);
-        a.try_combine(b, BoolOp::Sub)
-            .unwrap_or_else(|e| panic!("{e}"))
-    }
-}
-
-/// In-place difference (`-=`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> SubAssign<RegionTree<D>> for RegionTree<D> {
-    fn sub_assign(&mut self, rhs: RegionTree<D>) {
-        self.assign(&rhs, BoolOp::Sub);
-    }
-}
-
-/// In-place difference (`-=`).
-///
-/// # Panics
-/// If the extents differ.
-impl<const D: usize> SubAssign<&RegionTree<D>> for RegionTree<D> {
-    fn sub_assign(&mut self, rhs: &RegionTree<D>) {
-        self.assign(rhs, BoolOp::Sub);
-    }
-}
+bool_operator!(
+    BitAnd bitand, BitAndAssign bitand_assign, And,
+    "The intersection (`&`).", "In-place intersection (`&=`)."
+);
+bool_operator!(
+    BitOr bitor, BitOrAssign bitor_assign, Or,
+    "The union (`|`).", "In-place union (`|=`)."
+);
+bool_operator!(
+    BitXor bitxor, BitXorAssign bitxor_assign, Xor,
+    "The symmetric difference (`^`).", "In-place symmetric difference (`^=`)."
+);
+bool_operator!(
+    Sub sub, SubAssign sub_assign, Sub,
+    "The difference (`-`).", "In-place difference (`-=`)."
+);
 
 /// The complement within the extent (`!`), see [`RegionTree::complement`].
 impl<const D: usize> Not for RegionTree<D> {

@@ -201,33 +201,24 @@ fn write_entities<W: Write>(o: &mut TextOut<'_, W>, mesh: &Mesh, e: &Entities) -
         .s(" 0")
         .nl()?;
     for g in e.curves.iter().chain(&e.surfaces) {
-        let [x0, y0, x1, y1] = g.bbox;
-        o.u(g.tag)
-            .sp()
-            .i(x0)
-            .sp()
-            .i(y0)
-            .s(" 0 ")
-            .i(x1)
-            .sp()
-            .i(y1)
-            .s(" 0 1 ");
-        o.u(g.tag).s(" 0").nl()?;
-    }
-    if bare_surface {
-        let [x0, y0, x1, y1] = all_vertices_box(mesh);
-        o.s("1 ")
-            .i(x0)
-            .sp()
-            .i(y0)
-            .s(" 0 ")
-            .i(x1)
-            .sp()
-            .i(y1)
-            .s(" 0 0 0")
+        put_box(o.u(g.tag).sp(), g.bbox)
+            .s(" 1 ")
+            .u(g.tag)
+            .s(" 0")
             .nl()?;
     }
+    if bare_surface {
+        put_box(o.s("1 "), all_vertices_box(mesh)).s(" 0 0").nl()?;
+    }
     o.s("$EndEntities").nl()
+}
+
+/// Writes a bounding box `[x0, y0, x1, y1]` as Gmsh's `minX minY minZ maxX maxY maxZ`, z = 0.
+fn put_box<'o, 'a, W: Write>(
+    o: &'o mut TextOut<'a, W>,
+    [x0, y0, x1, y1]: [i64; 4],
+) -> &'o mut TextOut<'a, W> {
+    o.i(x0).sp().i(y0).s(" 0 ").i(x1).sp().i(y1).s(" 0")
 }
 
 /// The `$Nodes` section: one block of all vertices on `entity`, tags from 1, z = 0.

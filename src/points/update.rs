@@ -59,50 +59,6 @@ use smallvec::SmallVec;
 type Path = SmallVec<[NodeId; 40]>;
 
 impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
-    fn remove_where(&mut self, point: &[S; D], wanted: impl Fn(&T) -> bool) -> Option<T> {
-        let p = crate::query::place_point(point, &self.domain)
-            .ok()?
-            .inside()?;
-        let key = self.geometry.key(&p);
-        let (_, (s, e)) = self.path(key);
-        // The first point of the leaf with this key, then scan the equal keys.
-        let (mut a, mut b) = (s as usize, e as usize);
-        while a < b {
-            let mid = a + (b - a) / 2;
-            if self.key_of(mid) < key {
-                a = mid + 1;
-            } else {
-                b = mid;
-            }
-        }
-        let mut found = None;
-        for i in a..e as usize {
-            if self.points[i] == *point && wanted(&self.items[i]) {
-                found = Some(i);
-                break;
-            }
-            if self.key_of(i) != key {
-                break;
-            }
-        }
-        let i = found?;
-        if self.balanced.is_some() {
-            // Rebuilding keeps the points' order, so `i` stays valid.
-            self.rebuild_canonical();
-        }
-        let (path, _) = self.path(key);
-        self.points.remove(i);
-        let item = self.items.remove(i);
-        self.runs.shift::<D>(&path, -1);
-        // The shallowest node on the path now holding at most the bucket size becomes a leaf.
-        if let Some(&top) = path.iter().find(|&&v| {
-            !self.tree.is_leaf(v) && self.runs.count::<D>(v) as usize <= self.bucket_size
-        }) {
-            self.tree.merge_subtree(top);
-        }
-        Some(item)
-    }
-
     /// Refuses a point that is not finite or lies outside the domain; `index` names it in the
     /// error.
     pub(super) fn check_insertable(&self, point: &[S; D], index: usize) -> Result<(), Error> {
@@ -185,15 +141,9 @@ impl<S: Scalar, T, const D: usize> PointSetMut<D> for PointTree<S, T, D> {
         let (path, (s, e)) = self.path(key);
         let leaf = *path.last().expect("the path holds the root");
         // After every point of the leaf whose key is at most `key`.
-        let (mut a, mut b) = (s as usize, e as usize);
-        while a < b {
-            let mid = a + (b - a) / 2;
-            if self.key_of(mid) <= key {
-                a = mid + 1;
-            } else {
-                b = mid;
-            }
-        }
+        let a = s as usize
+            + self.points[s as usize..e as usize]
+                .partition_point(|p| self.geometry.scalar_key(p) <= key);
         self.points.insert(a, point);
         self.items.insert(a, item);
         self.runs.shift::<D>(&path, 1);
@@ -201,45 +151,35 @@ impl<S: Scalar, T, const D: usize> PointSetMut<D> for PointTree<S, T, D> {
         Ok(())
     }
 
-    /// Removes one stored copy of (`point`, `item`): the first in storage order. Returns `false`
-    /// (and changes nothing) when there is none.
-    fn remove(&mut self, point: &[S; D], item: &T) -> bool
-    where
-        T: PartialEq,
-    {
-        self.remove_where(point, |t| t == item).is_some()
-    }
-
-    /// Removes the first stored item at exactly `point` (any item) and returns it; `None` when no
-    /// item is stored there.
-    fn remove_point(&mut self, point: &[S; D]) -> Option<T> {
-        self.remove_where(point, |_| true)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use crate::query::{PointSet, PointSetMut};
-    use crate::{Aabb, Connectivity, Quadtree};
-
-    #[test]
-    fn updates_after_balance_drop_the_refinement() {
-        let pts: Vec<([f64; 2], u32)> = (0..40)
-            .map(|i| ([(i as f64 * 0.37) % 1.0, (i as f64 * 0.61) % 1.0], i))
-            .collect();
-        let root = Aabb::new([0.0, 0.0], [1.0, 1.0]).unwrap();
-        let b = Quadtree::builder().root_box(root).bucket_size(2);
-        let mut t = b.build(&pts).unwrap();
-        t.balance(Connectivity::Corner);
-        assert!(t.remove(&pts[3].0, &3));
-        t.validate().unwrap();
-        let fresh = b
-            .build(&pts.iter().filter(|p| p.1 != 3).copied().collect::<Vec<_>>())
-            .unwrap();
-        let cells = |t: &Quadtree<u32>| t.leaves().map(|l| l.cell).collect::<Vec<_>>();
-        assert_eq!(cells(&t), cells(&fresh));
-        assert!(!t.remove(&[0.5, 0.5], &99));
-        assert_eq!(t.remove_point(&[f64::NAN, 0.0]), None);
-        assert_eq!(t.remove_point(&[7.0, 0.0]), None);
+    /// Removes the first item (in storage order) stored at exactly `point` that `wanted`
+    /// accepts and returns it; `None` (and nothing changed) when there is none.
+    fn remove_where(&mut self, point: &[S; D], wanted: impl Fn(&T) -> bool) -> Option<T> {
+        let p = crate::query::place_point(point, &self.domain)
+            .ok()?
+            .inside()?;
+        let key = self.geometry.key(&p);
+        let (_, (s, e)) = self.path(key);
+        // The first point of the leaf with this key, then scan the equal keys.
+        let a = s as usize
+            + self.points[s as usize..e as usize]
+                .partition_point(|p| self.geometry.scalar_key(p) < key);
+        let i = (a..e as usize)
+            .take_while(|&i| self.key_of(i) == key)
+            .find(|&i| self.points[i] == *point && wanted(&self.items[i]))?;
+        if self.balanced.is_some() {
+            // Rebuilding keeps the points' order, so `i` stays valid.
+            self.rebuild_canonical();
+        }
+        let (path, _) = self.path(key);
+        self.points.remove(i);
+        let item = self.items.remove(i);
+        self.runs.shift::<D>(&path, -1);
+        // The shallowest node on the path now holding at most the bucket size becomes a leaf.
+        if let Some(&top) = path.iter().find(|&&v| {
+            !self.tree.is_leaf(v) && self.runs.count::<D>(v) as usize <= self.bucket_size
+        }) {
+            self.tree.merge_subtree(top);
+        }
+        Some(item)
     }
 }

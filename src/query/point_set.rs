@@ -549,13 +549,37 @@ pub trait PointSetMut<const D: usize>: PointSet<D> {
         item: Self::Item,
     ) -> Result<(), InsertError<Self::Item>>;
 
+    /// Removes one point at exactly `point` whose item `wanted` accepts and returns that item;
+    /// `None` (and the set unchanged) if there is none. [`remove`](Self::remove) and
+    /// [`remove_point`](Self::remove_point) are this with a fixed test; each tree's
+    /// implementation says which of several matches goes and what it costs.
+    ///
+    /// ```
+    /// use orthtree::prelude::*;
+    /// use orthtree::Quadtree;
+    /// let mut t = Quadtree::new(&[([0.0, 0.0], 1), ([0.0, 0.0], 2), ([0.0, 0.0], 3)]).unwrap();
+    /// assert_eq!(t.remove_where(&[0.0, 0.0], |&i| i % 2 == 0), Some(2));
+    /// assert_eq!(t.remove_where(&[0.0, 0.0], |&i| i > 5), None);
+    /// assert_eq!(t.len(), 2);
+    /// ```
+    fn remove_where(
+        &mut self,
+        point: &[Self::Scalar; D],
+        wanted: impl Fn(&Self::Item) -> bool,
+    ) -> Option<Self::Item>;
+
     /// Removes one stored pair equal to (`point`, `item`); `false` if there is none.
     fn remove(&mut self, point: &[Self::Scalar; D], item: &Self::Item) -> bool
     where
-        Self::Item: PartialEq;
+        Self::Item: PartialEq,
+    {
+        self.remove_where(point, |t| t == item).is_some()
+    }
 
     /// Removes one point at exactly `point` and returns its item; `None` if there is none.
-    fn remove_point(&mut self, point: &[Self::Scalar; D]) -> Option<Self::Item>;
+    fn remove_point(&mut self, point: &[Self::Scalar; D]) -> Option<Self::Item> {
+        self.remove_where(point, |_| true)
+    }
 }
 
 /// An insert [`PointSetMut::insert`] refused: why, and the item, handed back unchanged.

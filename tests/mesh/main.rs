@@ -11,4 +11,6 @@ mod mesh_io;
 mod mesh_modes;
 mod mesh_writers;
 mod mesher;
+mod svg_writer;
+mod validate_errors;
 mod writer_checksums;

@@ -19,3 +19,4 @@ mod point_sets;
 mod point_tree;
 mod queries;
 mod updates;
+mod updates_after_balance;

@@ -7,7 +7,11 @@
 mod common;
 
 mod balance;
+mod balance_levels;
+mod cells;
+mod directions;
 mod every_dimension_tree;
 mod module_graph;
 mod neighbors;
 mod public_surface;
+mod split_balanced;

@@ -47,47 +47,6 @@ impl<S: Scalar, T, const D: usize> DynamicPointTree<S, T, D> {
             .map(|_| *self.path(point).last().expect("the path holds the root")))
     }
 
-    fn remove_where(&mut self, point: &[S; D], wanted: impl Fn(&T) -> bool) -> Option<T> {
-        self.locate(point).ok()?.inside()?;
-        let path = self.path(point);
-        let v = *path.last().expect("the path holds the root");
-        let ix = &self.index;
-        let d = ix.nodes[v.index()];
-        let (points, slots) = (&ix.pool.points, &ix.pool.slots);
-        let at = (d.start..d.start + d.count).find(|&e| {
-            points[e as usize] == *point && wanted(&self.items[slots[e as usize] as usize])
-        })?;
-        // The chunk's last entry fills the hole.
-        let last = d.start + d.count - 1;
-        let slot = self.index.pool.slots[at as usize];
-        self.move_entry(last, at);
-        self.index.pool.slots[last as usize] = GAP;
-        for &u in &path {
-            self.index.nodes[u.index()].count -= 1;
-        }
-        // The last slot fills the item's.
-        let item = self.items.swap_remove(slot as usize);
-        self.pos.swap_remove(slot as usize);
-        if let Some(&e) = self.pos.get(slot as usize) {
-            self.index.pool.slots[e as usize] = slot;
-        }
-        let ix = &self.index;
-        if let Some(&top) = path.iter().find(|&&u| {
-            !ix.tree.is_leaf(u) && ix.nodes[u.index()].count as usize <= self.bucket_size
-        }) {
-            self.merge(top);
-        } else {
-            let d = self.index.nodes[v.index()];
-            if d.count == 0 {
-                self.relocate(v, 0, 0);
-            } else if d.cap > MIN_CAP && d.count * 4 < d.cap {
-                self.relocate(v, cap_for(d.count), d.count);
-            }
-        }
-        self.compact_if_sparse();
-        Some(item)
-    }
-
     /// The nodes from the root to the leaf whose cell holds `point`.
     fn path(&self, point: &[S; D]) -> Path {
         let ix = &self.index;
@@ -282,18 +241,47 @@ impl<S: Scalar, T, const D: usize> PointSetMut<D> for DynamicPointTree<S, T, D> 
         Ok(())
     }
 
-    /// Removes one stored copy of (`point`, `item`), in amortised O(depth); `false` (and nothing
-    /// changed) when there is none.
-    fn remove(&mut self, point: &[S; D], item: &T) -> bool
-    where
-        T: PartialEq,
-    {
-        self.remove_where(point, |t| t == item).is_some()
-    }
-
-    /// Removes an item stored at exactly `point` (the first in its leaf's chunk) and returns
-    /// it; `None` when no item is stored there.
-    fn remove_point(&mut self, point: &[S; D]) -> Option<T> {
-        self.remove_where(point, |_| true)
+    /// Removes an item stored at exactly `point` that `wanted` accepts (the first in its leaf's
+    /// chunk), in amortised O(depth), and returns it; `None` (and nothing changed) when there is
+    /// none.
+    fn remove_where(&mut self, point: &[S; D], wanted: impl Fn(&T) -> bool) -> Option<T> {
+        self.locate(point).ok()?.inside()?;
+        let path = self.path(point);
+        let v = *path.last().expect("the path holds the root");
+        let ix = &self.index;
+        let d = ix.nodes[v.index()];
+        let (points, slots) = (&ix.pool.points, &ix.pool.slots);
+        let at = (d.start..d.start + d.count).find(|&e| {
+            points[e as usize] == *point && wanted(&self.items[slots[e as usize] as usize])
+        })?;
+        // The chunk's last entry fills the hole.
+        let last = d.start + d.count - 1;
+        let slot = self.index.pool.slots[at as usize];
+        self.move_entry(last, at);
+        self.index.pool.slots[last as usize] = GAP;
+        for &u in &path {
+            self.index.nodes[u.index()].count -= 1;
+        }
+        // The last slot fills the item's.
+        let item = self.items.swap_remove(slot as usize);
+        self.pos.swap_remove(slot as usize);
+        if let Some(&e) = self.pos.get(slot as usize) {
+            self.index.pool.slots[e as usize] = slot;
+        }
+        let ix = &self.index;
+        if let Some(&top) = path.iter().find(|&&u| {
+            !ix.tree.is_leaf(u) && ix.nodes[u.index()].count as usize <= self.bucket_size
+        }) {
+            self.merge(top);
+        } else {
+            let d = self.index.nodes[v.index()];
+            if d.count == 0 {
+                self.relocate(v, 0, 0);
+            } else if d.cap > MIN_CAP && d.count * 4 < d.cap {
+                self.relocate(v, cap_for(d.count), d.count);
+            }
+        }
+        self.compact_if_sparse();
+        Some(item)
     }
 }
