@@ -90,7 +90,7 @@ pub mod iter {
 pub mod prelude {
     #[cfg(feature = "rayon")]
     pub use crate::query::ParallelQueries;
-    pub use crate::query::{PointSet, PointSetMut};
+    pub use crate::query::{PeriodicQueries, PointSet, PointSetMut};
 }
 
 /// The README's examples, compiled and run as doctests.
