@@ -13,6 +13,7 @@ mod duplicates;
 mod dynamic;
 mod every_dimension_points;
 mod parallel;
+mod periodic;
 mod point_bounds;
 mod point_sets;
 mod point_tree;
