@@ -45,7 +45,7 @@ pub use index::SpatialIndex;
 pub use knn::Neighbor;
 pub use location::Location;
 pub use metric::{Chebyshev, Manhattan, Metric, SquaredEuclidean};
-pub use periodic::{AxisMetric, MinImage, Outside, PeriodicError, Torus};
+pub use periodic::{AxisMetric, MinImage, OutsidePoints, PeriodicError, Torus};
 pub use periodic_queries::PeriodicQueries;
 pub use periodic_region::{PeriodicBall, PeriodicBox};
 pub use point_set::{InsertError, Payload, PointSet, PointSetMut};

@@ -28,11 +28,11 @@ use crate::geom::{Aabb, FloatBits};
 /// on the upper face is the point on the lower face.
 ///
 /// ```
-/// use orthtree::query::{Outside, Torus};
+/// use orthtree::query::{OutsidePoints, Torus};
 /// let torus = Torus::new([0.0, 0.0], [10.0, 10.0], [true, false]).unwrap();
 /// assert_eq!(torus.wrap(&[12.5, 12.5]).unwrap(), [2.5, 12.5]); // only axis 0 wraps
 /// assert_eq!(torus.wrap(&[10.0, 3.0]).unwrap(), [0.0, 3.0]); // upper face = lower face
-/// assert!(torus.prepare(&[[1.0, 1.0], [-1.0, 1.0]], Outside::Refuse).is_err());
+/// assert!(torus.prepare(&[[1.0, 1.0], [-1.0, 1.0]], OutsidePoints::Refuse).is_err());
 /// assert!(Torus::new([0.0], [0.0], [true]).is_err()); // zero period
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -45,7 +45,7 @@ pub struct Torus<const D: usize> {
 
 /// What [`Torus::prepare`] does with a point outside the period box on a wrapping axis.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Outside {
+pub enum OutsidePoints {
     /// Bring it into `[lo, hi)` by whole periods.
     Wrap,
     /// Refuse it with [`PeriodicError::Outside`].
@@ -76,7 +76,7 @@ pub enum PeriodicError {
         value: FloatBits,
     },
     /// Point `index` lies outside `[lo, hi]` on a wrapping `axis` and was refused
-    /// ([`Outside::Refuse`]).
+    /// ([`OutsidePoints::Refuse`]).
     Outside {
         /// The point's position in the input.
         index: usize,
@@ -209,14 +209,14 @@ impl<const D: usize> Torus<D> {
     /// # Errors
     /// [`PeriodicError::NotFinite`] (index 0) for NaN or an infinity on a wrapping axis.
     pub fn wrap(&self, p: &[f64; D]) -> Result<[f64; D], PeriodicError> {
-        self.wrap_one(0, p, Outside::Wrap)
+        self.wrap_one(0, p, OutsidePoints::Wrap)
     }
 
     fn wrap_one(
         &self,
         index: usize,
         p: &[f64; D],
-        how: Outside,
+        how: OutsidePoints,
     ) -> Result<[f64; D], PeriodicError> {
         let mut out = *p;
         for axis in (0..D).filter(|&a| self.wraps[a]) {
@@ -228,7 +228,7 @@ impl<const D: usize> Torus<D> {
                     value: x.into(),
                 });
             }
-            if how == Outside::Refuse && !(self.lo[axis] <= x && x <= self.hi[axis]) {
+            if how == OutsidePoints::Refuse && !(self.lo[axis] <= x && x <= self.hi[axis]) {
                 return Err(PeriodicError::Outside {
                     index,
                     axis,
@@ -252,19 +252,19 @@ impl<const D: usize> Torus<D> {
     /// `O(n D)`.
     ///
     /// ```
-    /// use orthtree::query::{Outside, PeriodicError, Torus};
+    /// use orthtree::query::{OutsidePoints, PeriodicError, Torus};
     /// let t = Torus::wrapping([0.0; 2], [4.0; 2]).unwrap();
     /// let pts = [[1.0, 4.0], [5.0, -1.0]];
-    /// assert_eq!(t.prepare(&pts, Outside::Wrap).unwrap(), [[1.0, 0.0], [1.0, 3.0]]);
+    /// assert_eq!(t.prepare(&pts, OutsidePoints::Wrap).unwrap(), [[1.0, 0.0], [1.0, 3.0]]);
     /// assert!(matches!(
-    ///     t.prepare(&pts, Outside::Refuse),
+    ///     t.prepare(&pts, OutsidePoints::Refuse),
     ///     Err(PeriodicError::Outside { index: 1, axis: 0, .. })
     /// ));
     /// ```
     pub fn prepare(
         &self,
         points: &[[f64; D]],
-        how: Outside,
+        how: OutsidePoints,
     ) -> Result<Vec<[f64; D]>, PeriodicError> {
         points
             .iter()

@@ -25,10 +25,10 @@ type NeighborIn<'a, P, const D: usize> =
 ///
 /// ```
 /// use orthtree::prelude::*;
-/// use orthtree::query::{Outside, Torus};
+/// use orthtree::query::{OutsidePoints, Torus};
 /// use orthtree::PointTree;
 /// let torus = Torus::wrapping([0.0; 2], [10.0; 2]).unwrap();
-/// let pts = torus.prepare(&[[0.5, 5.0], [5.0, 5.0], [10.0, 5.0]], Outside::Refuse).unwrap();
+/// let pts = torus.prepare(&[[0.5, 5.0], [5.0, 5.0], [10.0, 5.0]], OutsidePoints::Refuse).unwrap();
 /// let entries: Vec<([f64; 2], usize)> = pts.iter().enumerate().map(|(i, p)| (*p, i)).collect();
 /// let t = PointTree::new(&entries).unwrap();
 /// let near = t.periodic_k_nearest(&torus, &[9.5, 5.0], 2).unwrap();

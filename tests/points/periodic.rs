@@ -14,7 +14,8 @@ use crate::common;
 use common::points::config;
 use orthtree::prelude::*;
 use orthtree::query::{
-    AxisMetric, Metric, MinImage, Outside, PeriodicBall, PeriodicBox, PeriodicError, Region, Torus,
+    AxisMetric, Metric, MinImage, OutsidePoints, PeriodicBall, PeriodicBox, PeriodicError, Region,
+    Torus,
 };
 use orthtree::query::{Chebyshev, Manhattan, SquaredEuclidean};
 use orthtree::{Aabb, CompressedTree, DynamicPointTree, PointTree, SkipQuadtree};
@@ -216,7 +217,7 @@ fn all_trees<const D: usize>(
     boxes: &[([f64; D], [f64; D])],
 ) {
     let tor = torus(wraps);
-    let pts = tor.prepare(raw, Outside::Wrap).unwrap();
+    let pts = tor.prepare(raw, OutsidePoints::Wrap).unwrap();
     for (p, r) in pts.iter().zip(raw) {
         for a in 0..D {
             if wraps[a] {
@@ -293,7 +294,9 @@ periodic_proptest!(periodic_queries_match_all_images_3d, 3);
 #[test]
 fn upper_face_is_lower_face() {
     let tor = torus([true, true]);
-    let pts = tor.prepare(&[[HI, HI], [LO, LO]], Outside::Refuse).unwrap();
+    let pts = tor
+        .prepare(&[[HI, HI], [LO, LO]], OutsidePoints::Refuse)
+        .unwrap();
     assert_eq!(pts, [[LO, LO], [LO, LO]]);
     let e: Vec<([f64; 2], usize)> = pts.iter().enumerate().map(|(i, p)| (*p, i)).collect();
     let t = PointTree::new(&e).unwrap();
@@ -349,14 +352,17 @@ fn bad_periods_and_points_are_refused_by_name() {
     let tor = torus([true, false]);
     let pts = [[0.0, 9.0], [0.1, f64::NAN], [0.8, 0.0]];
     assert_eq!(
-        tor.prepare(&pts, Outside::Refuse),
+        tor.prepare(&pts, OutsidePoints::Refuse),
         Err(PeriodicError::Outside {
             index: 2,
             axis: 0,
             value: 0.8.into()
         })
     );
-    assert_eq!(tor.prepare(&pts, Outside::Wrap).unwrap()[2], [0.8 - L, 0.0]);
+    assert_eq!(
+        tor.prepare(&pts, OutsidePoints::Wrap).unwrap()[2],
+        [0.8 - L, 0.0]
+    );
     assert!(matches!(
         tor.wrap(&[f64::INFINITY, 0.0]),
         Err(PeriodicError::NotFinite {
@@ -397,7 +403,7 @@ fn random_points_agree_within_rounding() {
     let raw: Vec<[f64; 3]> = (0..2000)
         .map(|_| [next() * 2.0 - 0.5, next(), next()])
         .collect();
-    let pts = tor.prepare(&raw, Outside::Wrap).unwrap();
+    let pts = tor.prepare(&raw, OutsidePoints::Wrap).unwrap();
     let e: Vec<([f64; 3], usize)> = pts.iter().enumerate().map(|(i, p)| (*p, i)).collect();
     let t = CompressedTree::new(&e).unwrap();
     let brute = |q: &[f64; 3], p: &[f64; 3]| {
