@@ -307,13 +307,13 @@ impl<const D: usize> Torus<D> {
             return (0.0, l / 2.0 + slack);
         }
         // q sits at t past lo, modulo l; the cell spans [0, w] from lo.
-        let t = (q - lo).rem_euclid(l);
+        let t = reduce(q - lo, l);
         let near = if t <= w { 0.0 } else { (t - w).min(l - t) };
         // x - q runs over [u, u + w] modulo l; its image offset peaks at l / 2 if it is crossed.
         let u = if t > 0.0 { l - t } else { 0.0 };
         let half = l / 2.0;
         let image = |v: f64| {
-            let v = v % l;
+            let v = reduce(v, l);
             v.min(l - v)
         };
         let far = if (u <= half && half <= u + w) || (u <= half + l && half + l <= u + w) {
@@ -346,6 +346,22 @@ impl<const D: usize> Torus<D> {
             torus: *self,
             metric: Chebyshev,
         }
+    }
+}
+
+/// `x` modulo `l`, in `[0, l)` up to rounding: one subtraction or addition in the common case
+/// of `x` within a period of `[0, l)`, the exact remainder otherwise (the callers' margin covers
+/// the difference).
+#[inline(always)]
+fn reduce(x: f64, l: f64) -> f64 {
+    if (0.0..l).contains(&x) {
+        x
+    } else if x < 0.0 && x >= -l {
+        (x + l).min(l.next_down())
+    } else if x >= l && x < 2.0 * l {
+        x - l
+    } else {
+        x.rem_euclid(l)
     }
 }
 
