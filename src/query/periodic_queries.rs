@@ -6,7 +6,8 @@
 
 use super::knn::Neighbor;
 use super::metric::SquaredEuclidean;
-use super::periodic::{MinImage, Torus};
+use super::periodic::Torus;
+use super::periodic_metric::MinImage;
 use super::periodic_region::{PeriodicBall, PeriodicBox};
 use super::point_set::{NearestIter, PointSet, RegionIter};
 use super::{query_point, QueryError};
