@@ -14,6 +14,7 @@ mod dynamic;
 mod every_dimension_points;
 mod joins;
 mod parallel;
+mod periodic;
 mod point_bounds;
 mod point_sets;
 mod point_tree;

@@ -178,6 +178,7 @@ pub(crate) fn roots<A: SpatialIndex<D>, B: SpatialIndex<D>, T, const D: usize>(
 /// Splits the traversal's top into at least `want` independent node pairs (fewer when the trees
 /// are small), in traversal order: the pairs a parallel join hands to separate threads. Pairs
 /// the visitor skips, and leaf pairs met on the way, are given to `visitor`.
+#[cfg(feature = "rayon")]
 pub(crate) fn split_top<A, B, T, V, P, const D: usize>(
     a: &A,
     b: &B,
