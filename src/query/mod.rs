@@ -26,6 +26,7 @@
 
 #[cfg(feature = "rayon")]
 mod batch;
+mod best_within;
 mod index;
 mod join;
 mod knn;

@@ -25,7 +25,7 @@ use crate::geom::{Aabb, Scalar};
 pub type Payload<P, const D: usize> = <<P as PointSet<D>>::Index as SpatialIndex<D>>::Payload;
 
 /// A neighbour found in set `P`.
-type NeighborIn<'a, P, const D: usize> =
+pub(crate) type NeighborIn<'a, P, const D: usize> =
     Neighbor<'a, <P as PointSet<D>>::Scalar, <P as PointSet<D>>::Item, D>;
 
 /// A set of (point, item) pairs in a 2^D-tree, with every query.
@@ -291,6 +291,36 @@ pub trait PointSet<const D: usize> {
         p: &[Self::Scalar; D],
     ) -> Result<Option<NeighborIn<'_, Self, D>>, QueryError> {
         self.nearest_by(p, f64::INFINITY, &SquaredEuclidean)
+    }
+
+    /// Of the points within Euclidean distance `radius` of `center` (inclusive), the `n`
+    /// whose items have the smallest `key`, ties broken by slot, best first (kiddo's
+    /// `best_n_within`: e.g. the `n` lowest ids near a point). Each neighbour's `distance` is
+    /// squared. Memory is O(n) however many points the ball holds.
+    ///
+    /// # Errors
+    /// A non-finite or inexact `center`; a negative or NaN `radius`.
+    ///
+    /// # Complexity
+    /// One range query over the ball, plus O(log n) per point in it.
+    ///
+    /// ```
+    /// use orthtree::prelude::*;
+    /// use orthtree::Quadtree;
+    /// let t = Quadtree::new(&[([0.0, 0.0], 9), ([1.0, 0.0], 4), ([0.0, 1.0], 7), ([5.0, 5.0], 1)]).unwrap();
+    /// let best = t.best_n_within(&[0.0, 0.0], 1.0, 2, |&id| id).unwrap();
+    /// let ids: Vec<i32> = best.iter().map(|nb| *nb.item).collect();
+    /// assert_eq!(ids, [4, 7]); // 1 is out of reach, 9 ranks third
+    /// assert_eq!(best[0].distance, 1.0);
+    /// ```
+    fn best_n_within<K: Ord>(
+        &self,
+        center: &[Self::Scalar; D],
+        radius: f64,
+        n: usize,
+        key: impl FnMut(&Self::Item) -> K,
+    ) -> Result<Vec<NeighborIn<'_, Self, D>>, QueryError> {
+        super::best_within::best_n_within(self, center, radius, n, key)
     }
 
     /// The nearest point to `p` at squared distance at most `max`; `None` if there is none.

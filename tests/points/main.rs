@@ -8,6 +8,7 @@ mod common;
 
 mod bad_input;
 mod batch_updates;
+mod best_within;
 mod build_order;
 mod duplicates;
 mod dynamic;
