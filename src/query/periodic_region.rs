@@ -16,7 +16,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::periodic::Torus;
-use super::region::{Region, Relation};
+use super::region::{ball_relation, Region, Relation};
 use super::{query_point, QueryError};
 use crate::geom::Aabb;
 
@@ -91,13 +91,7 @@ impl<const D: usize> Region<D> for PeriodicBall<D> {
             near += n * n;
             far += f * f;
         }
-        if near > r2 {
-            Relation::Outside
-        } else if far <= r2 {
-            Relation::Inside
-        } else {
-            Relation::Crossing
-        }
+        ball_relation(near, far, r2)
     }
     #[inline]
     fn contains(&self, p: &[f64; D]) -> bool {

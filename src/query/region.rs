@@ -196,13 +196,7 @@ impl<const D: usize> Region<D> for Ball<D> {
             near += n * n;
             far += f * f;
         }
-        if near > r2 {
-            Relation::Outside
-        } else if far <= r2 {
-            Relation::Inside
-        } else {
-            Relation::Crossing
-        }
+        ball_relation(near, far, r2)
     }
     #[inline]
     fn contains(&self, p: &[f64; D]) -> bool {
@@ -333,5 +327,18 @@ impl<const D: usize> Region<D> for HalfSpace<D> {
             return Err(QueryError::NanOffset);
         }
         Ok(())
+    }
+}
+
+/// Where a box lies with respect to a ball of squared radius `r2`, given the least (`near`) and
+/// greatest (`far`) squared distance from the ball's centre to the box.
+#[inline]
+pub(crate) fn ball_relation(near: f64, far: f64, r2: f64) -> Relation {
+    if near > r2 {
+        Relation::Outside
+    } else if far <= r2 {
+        Relation::Inside
+    } else {
+        Relation::Crossing
     }
 }

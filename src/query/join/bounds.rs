@@ -17,6 +17,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use crate::geom::Aabb;
+use crate::query::metric::{Metric, SquaredEuclidean};
 
 /// The distance between points and its range over pairs of closed boxes (see the module doc).
 pub(crate) trait PairDistance<const D: usize>: Sync {
@@ -35,28 +36,12 @@ pub(crate) struct Euclid;
 impl<const D: usize> PairDistance<D> for Euclid {
     #[inline(always)]
     fn distance(&self, a: &[f64; D], b: &[f64; D]) -> f64 {
-        let mut s = 0.0;
-        for i in 0..D {
-            let d = a[i] - b[i];
-            s += d * d;
-        }
-        s
+        SquaredEuclidean.distance(a, b)
     }
 
     #[inline(always)]
     fn point_box(&self, q: &[f64; D], b: &Aabb<f64, D>) -> f64 {
-        let mut s = 0.0;
-        for i in 0..D {
-            let d = if q[i] < b.min[i] {
-                b.min[i] - q[i]
-            } else if q[i] > b.max[i] {
-                q[i] - b.max[i]
-            } else {
-                0.0
-            };
-            s += d * d;
-        }
-        s
+        SquaredEuclidean.box_distance(q, b)
     }
 
     #[inline(always)]
