@@ -96,6 +96,17 @@ impl Best {
         }
     }
 
+    /// The bound node boxes are pruned by: `cut` of the `k`-th distance once `k` candidates are
+    /// known, the maximum distance before.
+    #[inline(always)]
+    fn prune(&self, cut: impl Fn(f64) -> f64) -> f64 {
+        if self.list.len() == self.k {
+            cut(self.list[self.k - 1].0)
+        } else {
+            self.max
+        }
+    }
+
     #[inline(always)]
     fn offer(&mut self, d: f64, i: usize) {
         if self.list.len() == self.k {
@@ -125,12 +136,59 @@ type Pending<N, const D: usize> = SmallVec<[(f64, N, Aabb<f64, D>); 64]>;
 
 /// The `k` nearest points to `q` within distance `max` (inclusive) as (distance, index) pairs,
 /// sorted by distance then index. `q` finite, `max` not NaN.
+#[inline]
 pub(crate) fn k_nearest<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
     index: &I,
     q: &[f64; D],
     k: usize,
     max: f64,
     metric: &M,
+) -> Found {
+    search(index, q, k, max, metric, |kth| kth)
+}
+
+/// A (1 + eps)-approximate [`k_nearest`] (Arya, Mount, Netanyahu, Silverman and Wu, "An optimal
+/// algorithm for approximate nearest neighbor searching in fixed dimensions", J. ACM 1998): a
+/// node is pruned once its box is farther than the `k`-th distance shrunk by `1 + eps`
+/// ([`Metric::scale_distance`]), so the `i`-th answer is within `1 + eps` times the true
+/// `i`-th distance, for every `i`. `eps` finite and positive (0 is [`k_nearest`]), `q` finite,
+/// `max` not NaN.
+///
+/// Why: let the `i`-th answer be at `d_i` and suppose some true `j`-th neighbour (`j <= i`)
+/// at `t_j <= t_i` was never offered. It lay in a node pruned while the `k`-th distance was some
+/// `b >= d_k >= d_i`, with `t_j >= box distance > b / (1 + eps)`: so `d_i < (1 + eps) t_i`.
+/// If every one of the true first `i` was offered, `d_i <= t_i`.
+pub(crate) fn k_nearest_approx<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
+    index: &I,
+    q: &[f64; D],
+    k: usize,
+    max: f64,
+    metric: &M,
+    eps: f64,
+) -> Found {
+    let shrink = 1.0 / (1.0 + eps);
+    search(index, q, k, max, metric, |kth| {
+        // An infinite k-th distance (coordinates whose squares overflow) times a zero factor
+        // (an eps so large that 1 + eps overflows) is NaN: keep the plain bound then.
+        let cut = metric.scale_distance(kth, shrink);
+        if cut.is_nan() {
+            kth
+        } else {
+            cut
+        }
+    })
+}
+
+/// The branch and bound of the module doc; `cut(kth)` is the bound node boxes are pruned by
+/// once `k` candidates are known (the `k`-th distance itself for the exact search).
+#[inline(always)]
+fn search<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
+    index: &I,
+    q: &[f64; D],
+    k: usize,
+    max: f64,
+    metric: &M,
+    cut: impl Fn(f64) -> f64,
 ) -> Found {
     let mut best = Best {
         k,
@@ -192,35 +250,39 @@ pub(crate) fn k_nearest<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
     prefetch_run(points, seeded.clone());
     prefetch_run(index.payloads(), seeded.clone());
     let first = best.bound();
+    // `bound`: what a candidate must not exceed; `prune`: what a node's box must not exceed
+    // (the same for the exact search).
     let mut bound = scan_run(&mut best, seeded, first);
+    let mut prune = best.prune(&cut);
     let mut stack: Pending<I::Node, D> = SmallVec::new();
     // Deepest first: the children of each path node beside the path, each searched in full
     // before going up, until the ball of the bound lies inside the path node's box (no point
     // outside it can then be within the bound).
     for level in (0..path.len() - 1).rev() {
         let (inner, inner_box) = path[level + 1];
-        if ball_inside(metric, q, bound, &inner_box) {
+        if ball_inside(metric, q, prune, &inner_box) {
             break;
         }
         let (node, nb) = path[level];
         index.for_each_child_in(node, &nb, |child, cb| {
             if child != inner {
-                push_nearer(index, points, &mut stack, 0, q, metric, bound, child, cb);
+                push_nearer(index, points, &mut stack, 0, q, metric, prune, child, cb);
             }
         });
         while let Some((lower, node, b)) = stack.pop() {
-            if lower > bound {
+            if lower > prune {
                 continue;
             }
             let before = stack.len();
             let internal = !scans_whole(index, node, SCAN)
                 && index.for_each_child_in(node, &b, |child, cb| {
                     push_nearer(
-                        index, points, &mut stack, before, q, metric, bound, child, cb,
+                        index, points, &mut stack, before, q, metric, prune, child, cb,
                     );
                 });
             if !internal {
                 bound = scan_run(&mut best, index.run(node), bound);
+                prune = best.prune(&cut);
             }
         }
     }

@@ -33,6 +33,22 @@ pub trait Metric<const D: usize> {
     fn distance(&self, a: &[f64; D], b: &[f64; D]) -> f64;
     /// A lower bound of `distance(q, p)` over the points `p` of the closed box `b` (0 inside it).
     fn box_distance(&self, q: &[f64; D], b: &Aabb<f64, D>) -> f64;
+    /// The distance, in this metric's units, of two points `factor` times as far apart as two
+    /// at distance `d` (`factor >= 0`): `d * factor` for a norm (the default), `d * factor^2`
+    /// for [`SquaredEuclidean`]. The approximate searches
+    /// ([`PointSet::k_nearest_approx_by`](super::PointSet::k_nearest_approx_by)) scale their
+    /// pruning bound by it, so that `(1 + eps)` means the same for every metric. A metric that
+    /// is a power `p` of a norm overrides it with `d * factor^p`.
+    ///
+    /// ```
+    /// use orthtree::query::{Manhattan, Metric, SquaredEuclidean};
+    /// assert_eq!(Metric::<2>::scale_distance(&Manhattan, 4.0, 0.5), 2.0);
+    /// assert_eq!(Metric::<2>::scale_distance(&SquaredEuclidean, 4.0, 0.5), 1.0);
+    /// ```
+    #[inline(always)]
+    fn scale_distance(&self, d: f64, factor: f64) -> f64 {
+        d * factor
+    }
 }
 
 /// The offset from `q` to the nearest point of `[lo, hi]`, as `p - q` would round for that point
@@ -71,6 +87,10 @@ impl<const D: usize> Metric<D> for SquaredEuclidean {
             s += d * d;
         }
         s
+    }
+    #[inline(always)]
+    fn scale_distance(&self, d: f64, factor: f64) -> f64 {
+        d * (factor * factor)
     }
 }
 

@@ -85,7 +85,7 @@ pub struct MinImage<M, const D: usize> {
     pub metric: M,
 }
 
-impl<M: AxisMetric, const D: usize> Metric<D> for MinImage<M, D> {
+impl<M: AxisMetric + Metric<D>, const D: usize> Metric<D> for MinImage<M, D> {
     #[inline(always)]
     fn distance(&self, a: &[f64; D], b: &[f64; D]) -> f64 {
         let mut s = 0.0;
@@ -101,5 +101,9 @@ impl<M: AxisMetric, const D: usize> Metric<D> for MinImage<M, D> {
             s = M::combine(s, self.torus.offset_range(i, q[i], b.min[i], b.max[i]).0);
         }
         s
+    }
+    #[inline(always)]
+    fn scale_distance(&self, d: f64, factor: f64) -> f64 {
+        self.metric.scale_distance(d, factor)
     }
 }

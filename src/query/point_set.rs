@@ -12,7 +12,7 @@
 //! (Morton order, which for a [`PointTree`](crate::PointTree) is also slot order).
 
 use super::index::SpatialIndex;
-use super::knn::{k_nearest, Neighbor};
+use super::knn::{k_nearest, k_nearest_approx, Neighbor};
 use super::metric::{Metric, SquaredEuclidean};
 use super::nearest_iter::IndexNearestIter;
 use super::range::{for_each_in, scan_limit, IndexRegionIter, QueryStats};
@@ -446,6 +446,82 @@ pub trait PointSet<const D: usize> {
         check_max(max)?;
         let index = self.index();
         Ok(k_nearest(index, &q, k, max, metric)
+            .into_iter()
+            .map(|(d, i)| with_item(self, Neighbor::at(index, d, i)))
+            .collect())
+    }
+
+    /// `k` points near `p` (squared Euclidean), sorted by distance, found by a
+    /// (1 + eps)-approximate search: the `i`-th has a Euclidean distance at most `1 + eps`
+    /// times the true `i`-th nearest's, for every `i` (up to one rounding of the bound).
+    /// `min(k, len)` of them, distinct; `eps = 0` is [`PointSet::k_nearest`] exactly.
+    ///
+    /// # Errors
+    /// A non-finite or inexact `p`; `eps` negative or NaN ([`QueryError::InvalidEpsilon`]).
+    ///
+    /// # Complexity
+    /// At most that of [`PointSet::k_nearest`]; a larger `eps` prunes more nodes (Arya and
+    /// Mount's approximate search).
+    ///
+    /// ```
+    /// use orthtree::prelude::*;
+    /// use orthtree::{query::QueryError, Quadtree};
+    /// let pts: Vec<([f64; 2], usize)> = (0..100).map(|i| ([(i % 10) as f64, (i / 10) as f64], i)).collect();
+    /// let t = Quadtree::new(&pts).unwrap();
+    /// let exact = t.k_nearest(&[4.4, 4.4], 5).unwrap();
+    /// let near = t.k_nearest_approx(&[4.4, 4.4], 5, 0.5).unwrap();
+    /// assert_eq!(near.len(), 5);
+    /// for (a, e) in near.iter().zip(&exact) {
+    ///     assert!(a.distance <= 1.5 * 1.5 * e.distance); // squared distances
+    /// }
+    /// assert_eq!(t.k_nearest_approx(&[4.4, 4.4], 5, 0.0).unwrap(), exact);
+    /// assert!(matches!(t.k_nearest_approx(&[0.0, 0.0], 1, -0.1), Err(QueryError::InvalidEpsilon { .. })));
+    /// ```
+    #[inline]
+    fn k_nearest_approx(
+        &self,
+        p: &[Self::Scalar; D],
+        k: usize,
+        eps: f64,
+    ) -> Result<Vec<NeighborIn<'_, Self, D>>, QueryError> {
+        self.k_nearest_approx_by(p, k, f64::INFINITY, eps, &SquaredEuclidean)
+    }
+
+    /// [`PointSet::k_nearest_approx`] under `metric`, among the points at distance at most
+    /// `max`: the `i`-th answer is at most the true `i`-th distance scaled by `1 + eps`
+    /// ([`Metric::scale_distance`]); `min(k, n)` answers for `n` points within `max`.
+    ///
+    /// # Errors
+    /// A non-finite or inexact `p`; a negative or NaN `max` or `eps`.
+    ///
+    /// ```
+    /// use orthtree::prelude::*;
+    /// use orthtree::{query::Manhattan, PointTree};
+    /// let t = PointTree::new(&[([0, 0], 'a'), ([3, 0], 'b'), ([0, 4], 'c')]).unwrap();
+    /// let near = t.k_nearest_approx_by(&[0, 0], 3, 3.5, 1.0, &Manhattan).unwrap();
+    /// let items: Vec<char> = near.iter().map(|n| *n.item).collect();
+    /// assert_eq!(items, ['a', 'b']); // 'c' is beyond the maximum
+    /// ```
+    fn k_nearest_approx_by<M: Metric<D>>(
+        &self,
+        p: &[Self::Scalar; D],
+        k: usize,
+        max: f64,
+        eps: f64,
+        metric: &M,
+    ) -> Result<Vec<NeighborIn<'_, Self, D>>, QueryError> {
+        let q = query_point(p)?;
+        check_max(max)?;
+        if eps.is_nan() || eps < 0.0 {
+            return Err(QueryError::InvalidEpsilon { value: eps.into() });
+        }
+        let index = self.index();
+        let found = if eps == 0.0 {
+            k_nearest(index, &q, k, max, metric)
+        } else {
+            k_nearest_approx(index, &q, k, max, metric, eps)
+        };
+        Ok(found
             .into_iter()
             .map(|(d, i)| with_item(self, Neighbor::at(index, d, i)))
             .collect())

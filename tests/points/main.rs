@@ -6,6 +6,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod approx;
 mod bad_input;
 mod batch_updates;
 mod best_within;
