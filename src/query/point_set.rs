@@ -15,11 +15,12 @@ use super::index::SpatialIndex;
 use super::knn::{k_nearest, k_nearest_approx, Neighbor};
 use super::metric::{Metric, SquaredEuclidean};
 use super::nearest_iter::IndexNearestIter;
-use super::range::{for_each_in, scan_limit, IndexRegionIter, QueryStats};
+use super::range::{for_each_in, for_each_until, scan_limit, IndexRegionIter, QueryStats};
 use super::region::{Ball, HalfSpace, Region};
 use super::{check_max, query_box, query_point, QueryError};
 use crate::error::{Error, ValidationError};
 use crate::geom::{Aabb, Scalar};
+use core::ops::ControlFlow;
 
 /// What the index of set `P` stores with each point.
 pub type Payload<P, const D: usize> = <<P as PointSet<D>>::Index as SpatialIndex<D>>::Payload;
@@ -182,6 +183,49 @@ pub trait PointSet<const D: usize> {
             visit(&points[i], self.item_of(&payloads[i]))
         })
         .map(|_| ())
+    }
+
+    /// Calls `visit(point, item)` for the points in `region`, in [`PointSet::query_with`]'s
+    /// order, until it returns [`ControlFlow::Break`]: the traversal stops at once and the
+    /// break's value is returned; `None` when every point was visited. Streams a radius (or any
+    /// region) query's results without collecting them, and stops early: the first `m`, the
+    /// first point passing a test, a budget spent.
+    ///
+    /// # Errors
+    /// Those of [`PointSet::query`]; then `visit` is not called.
+    ///
+    /// # Complexity
+    /// That of [`PointSet::query_with`] up to the point that breaks.
+    ///
+    /// ```
+    /// use core::ops::ControlFlow;
+    /// use orthtree::prelude::*;
+    /// use orthtree::{query::Ball, Quadtree};
+    /// let pts: Vec<([f64; 2], u32)> = (0..100).map(|i| ([(i % 10) as f64, (i / 10) as f64], i)).collect();
+    /// let t = Quadtree::new(&pts).unwrap();
+    /// let ball = Ball::new([5.0, 5.0], 2.0).unwrap(); // 13 points
+    /// let mut seen = 0;
+    /// let stop = t.query_until(&ball, |_, &id| {
+    ///     seen += 1;
+    ///     if seen == 3 { ControlFlow::Break(id) } else { ControlFlow::Continue(()) }
+    /// });
+    /// assert!(matches!(stop, Ok(Some(_))));
+    /// assert_eq!(seen, 3);
+    /// let all = t.query_until(&ball, |_, _| ControlFlow::<()>::Continue(()));
+    /// assert_eq!(all, Ok(None));
+    /// ```
+    #[inline]
+    fn query_until<R: Region<D>, B>(
+        &self,
+        region: R,
+        mut visit: impl FnMut(&[Self::Scalar; D], &Self::Item) -> ControlFlow<B>,
+    ) -> Result<Option<B>, QueryError> {
+        let index = self.index();
+        let (points, payloads) = (index.points(), index.payloads());
+        for_each_until(index, &region, scan_limit(D), true, |i| {
+            visit(&points[i], self.item_of(&payloads[i]))
+        })
+        .map(|(_, stop)| stop)
     }
 
     /// Counts the points in `region` and the work it took (nodes visited, points tested),

@@ -38,7 +38,8 @@ use super::region::{Region, Relation};
 use super::QueryError;
 use crate::geom::{Aabb, Scalar};
 use crate::prefetch::prefetch_run;
-use core::ops::Range;
+use core::convert::Infallible;
+use core::ops::{ControlFlow, Range};
 use smallvec::SmallVec;
 
 /// Counts of the work a range query did, from [`PointSet::query_stats`](super::PointSet::query_stats).
@@ -227,6 +228,7 @@ fn descend_inside<I: SpatialIndex<D>, const D: usize>(
 /// `reads`: whether `report` reads the points and items it is given (see [`push_child`]).
 /// Allocates only when more than 48 nodes are pending (deeper than about 16 levels in 2D, 7 in
 /// 3D).
+#[inline]
 pub(crate) fn for_each_in<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
     index: &I,
     region: &R,
@@ -234,10 +236,28 @@ pub(crate) fn for_each_in<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
     reads: bool,
     mut report: impl FnMut(usize),
 ) -> Result<QueryStats, QueryError> {
+    let (stats, _) = for_each_until(index, region, scan, reads, |i| {
+        report(i);
+        ControlFlow::<Infallible>::Continue(())
+    })?;
+    Ok(stats)
+}
+
+/// [`for_each_in`] whose `report` may stop the traversal: the first [`ControlFlow::Break`] ends
+/// it at once and is returned with the work done so far (partial counts then: an inside run is
+/// counted whole before it is reported). With a `report` that cannot break (`ControlFlow<Infallible>`) the test of its answer
+/// compiles to nothing, so [`for_each_in`] costs what it did before early stop existed.
+pub(crate) fn for_each_until<I: SpatialIndex<D>, R: Region<D>, B, const D: usize>(
+    index: &I,
+    region: &R,
+    scan: usize,
+    reads: bool,
+    mut report: impl FnMut(usize) -> ControlFlow<B>,
+) -> Result<(QueryStats, Option<B>), QueryError> {
     region.validate()?;
     let mut stats = QueryStats::default();
     let Some((root, b)) = index.root() else {
-        return Ok(stats);
+        return Ok((stats, None));
     };
     let mut stack = Stack::new();
     stats.nodes_visited = 1;
@@ -250,7 +270,11 @@ pub(crate) fn for_each_in<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
             }
             let run = index.run(node);
             stats.count += run.len();
-            run.for_each(&mut report);
+            for i in run {
+                if let ControlFlow::Break(stop) = report(i) {
+                    return Ok((stats, Some(stop)));
+                }
+            }
             continue;
         }
         let mut visited = 0;
@@ -267,11 +291,14 @@ pub(crate) fn for_each_in<I: SpatialIndex<D>, R: Region<D>, const D: usize>(
                 let mut mask = contains_mask(region, chunk);
                 stats.count += mask.count_ones() as usize;
                 while mask != 0 {
-                    report(run.start + c * CHUNK + mask.trailing_zeros() as usize);
+                    let i = run.start + c * CHUNK + mask.trailing_zeros() as usize;
+                    if let ControlFlow::Break(stop) = report(i) {
+                        return Ok((stats, Some(stop)));
+                    }
                     mask &= mask - 1;
                 }
             }
         }
     }
-    Ok(stats)
+    Ok((stats, None))
 }

@@ -21,5 +21,6 @@ mod point_bounds;
 mod point_sets;
 mod point_tree;
 mod queries;
+mod streaming;
 mod updates;
 mod updates_after_balance;
