@@ -92,7 +92,7 @@ pub mod prelude {
     pub use crate::query::ParallelJoins;
     #[cfg(feature = "rayon")]
     pub use crate::query::ParallelQueries;
-    pub use crate::query::{Joins, PeriodicQueries, PointSet, PointSetMut};
+    pub use crate::query::{Joins, PeriodicJoins, PeriodicQueries, PointSet, PointSetMut};
 }
 
 /// The README's examples, compiled and run as doctests.

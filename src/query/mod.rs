@@ -48,7 +48,7 @@ pub(crate) use index::nearest_child_by_boxes;
 pub use index::SpatialIndex;
 #[cfg(feature = "rayon")]
 pub use join::ParallelJoins;
-pub use join::{Boundary, CsrDistances, Joins, KnnTable, SparseDistances};
+pub use join::{Boundary, CsrDistances, Joins, KnnTable, PeriodicJoins, SparseDistances};
 pub use knn::Neighbor;
 pub use location::Location;
 pub use metric::{Chebyshev, Manhattan, Metric, SquaredEuclidean};

@@ -21,9 +21,9 @@ use orthtree::query::{Chebyshev, Manhattan, SquaredEuclidean};
 use orthtree::{Aabb, CompressedTree, DynamicPointTree, PointTree, SkipQuadtree};
 use proptest::prelude::*;
 
-const LO: f64 = -0.5;
-const HI: f64 = 0.75;
-const L: f64 = HI - LO;
+pub(crate) const LO: f64 = -0.5;
+pub(crate) const HI: f64 = 0.75;
+pub(crate) const L: f64 = HI - LO;
 
 fn torus<const D: usize>(wraps: [bool; D]) -> Torus<D> {
     Torus::new([LO; D], [HI; D], wraps).unwrap()
@@ -31,7 +31,7 @@ fn torus<const D: usize>(wraps: [bool; D]) -> Torus<D> {
 
 /// The minimum over all images of `b` along the wrapping axes of `combine`d offsets: `3^k`
 /// shifted copies tried one by one.
-fn brute_distance<M: AxisMetric, const D: usize>(
+pub(crate) fn brute_distance<M: AxisMetric, const D: usize>(
     wraps: &[bool; D],
     a: &[f64; D],
     b: &[f64; D],

@@ -4,7 +4,9 @@
 //! Every join engine of this folder reads distances through [`PairDistance`] only, so that a
 //! domain with another distance (a periodic box, whose minimum-image distance wraps each axis)
 //! plugs in by one more implementation. [`Euclid`] is the squared Euclidean distance of the
-//! rest of the query layer ([`SquaredEuclidean`](crate::query::SquaredEuclidean)).
+//! rest of the query layer ([`SquaredEuclidean`](crate::query::SquaredEuclidean)); the
+//! minimum-image squared Euclidean distance of a [`Torus`](crate::query::Torus)
+//! ([`MinImage`]) is the periodic joins' one.
 //!
 //! Exactness: each bound is computed with the operations of the point distance, in the same axis
 //! order, on the nearest (farthest) pair of coordinates the two boxes allow. Rounding is
@@ -12,12 +14,19 @@
 //! max` holds for the computed values, even at ties: pruning a node pair whose minimum exceeds a
 //! bound never loses a pair, and counting a node pair whose maximum is within a radius never
 //! counts a pair outside it.
+//!
+//! On a torus, the offsets `p - q` of `p` in `[a.min, a.max]` and `q` in `[b.min, b.max]` along
+//! an axis lie in `[a.min - b.max, a.max - b.min]` as computed (rounding is monotone), and a
+//! point pair's minimum-image offset is the one of its computed difference: the bounds of the
+//! offset from 0 to that interval ([`Torus`](crate::query::Torus)'s own, with their rounding
+//! margin) bound every pair's offset, and combine as the distance does.
 
 // Loops over axes index both boxes together, in the fixed order the exactness argument needs.
 #![allow(clippy::needless_range_loop)]
 
 use crate::geom::Aabb;
 use crate::query::metric::{Metric, SquaredEuclidean};
+use crate::query::periodic_metric::MinImage;
 
 /// The distance between points and its range over pairs of closed boxes (see the module doc).
 pub(crate) trait PairDistance<const D: usize>: Sync {
@@ -58,6 +67,31 @@ impl<const D: usize> PairDistance<D> for Euclid {
             let span = (b.max[i] - a.min[i]).max(a.max[i] - b.min[i]);
             near += gap * gap;
             far += span * span;
+        }
+        (near, far)
+    }
+}
+
+impl<const D: usize> PairDistance<D> for MinImage<SquaredEuclidean, D> {
+    #[inline(always)]
+    fn distance(&self, a: &[f64; D], b: &[f64; D]) -> f64 {
+        Metric::distance(self, a, b)
+    }
+
+    #[inline(always)]
+    fn point_box(&self, q: &[f64; D], b: &Aabb<f64, D>) -> f64 {
+        self.box_distance(q, b)
+    }
+
+    #[inline(always)]
+    fn box_box(&self, a: &Aabb<f64, D>, b: &Aabb<f64, D>) -> (f64, f64) {
+        let (mut near, mut far) = (0.0, 0.0);
+        for i in 0..D {
+            let (lo, hi) =
+                self.torus
+                    .offset_range(i, 0.0, a.min[i] - b.max[i], a.max[i] - b.min[i]);
+            near += lo * lo;
+            far += hi * hi;
         }
         (near, far)
     }

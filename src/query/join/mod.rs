@@ -8,13 +8,15 @@
 //! by the minimum and maximum distance between their boxes, on an explicit stack. Distances are
 //! squared Euclidean in `f64`, as [`PointSet::k_nearest`] computes them (exact for integer
 //! coordinates whose squares `f64` holds); the only geometry the engines see is the small seam
-//! of [`bounds`], so another distance (a periodic domain's) plugs in there.
+//! of [`bounds`], so another distance plugs in there: a periodic domain's minimum-image
+//! distance gives the same joins on a torus ([`PeriodicJoins`]).
 
 mod bounds;
 mod knn;
 mod pairs;
 #[cfg(feature = "rayon")]
 mod parallel;
+mod periodic;
 mod radius;
 mod sparse;
 mod traverse;
@@ -22,11 +24,12 @@ mod traverse;
 pub use knn::KnnTable;
 #[cfg(feature = "rayon")]
 pub use parallel::ParallelJoins;
+pub use periodic::PeriodicJoins;
 pub use radius::Boundary;
 pub use sparse::{CsrDistances, SparseDistances};
 
 use super::{PointSet, QueryError};
-use bounds::Euclid;
+use bounds::{Euclid, PairDistance};
 use core::ops::ControlFlow;
 use pairs::{CountWithin, PairsWithin};
 
@@ -123,7 +126,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        pairs_of(self, self, true, r, boundary, visit)
+        pairs_of(self, self, &Euclid, true, r, boundary, visit)
     }
 
     /// Calls `visit(s, t, d)` for every slot `s` of this set and `t` of `other` whose points
@@ -156,7 +159,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        pairs_of(self, other, false, r, boundary, visit)
+        pairs_of(self, other, &Euclid, false, r, boundary, visit)
     }
 
     /// For each radius of `radii` (non-decreasing), the number of unordered pairs of distinct
@@ -182,7 +185,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        count_of(self, self, true, radii, boundary)
+        count_of(self, self, &Euclid, true, radii, boundary)
     }
 
     /// For each radius of `radii` (non-decreasing), the number of pairs of a point of this set
@@ -207,7 +210,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        count_of(self, other, false, radii, boundary)
+        count_of(self, other, &Euclid, false, radii, boundary)
     }
 
     /// Every pair of a point of this set (row) and a point of `other` (column) within `r`,
@@ -234,21 +237,18 @@ pub trait Joins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        let mut triples = Vec::new();
-        let _ = self.pairs_within_other(other, r, boundary, |s, t, d| {
-            triples.push((s, t, d));
-            ControlFlow::<()>::Continue(())
-        })?;
-        Ok(SparseDistances::new((self.len(), other.len()), triples))
+        sparse_of(self, other, &Euclid, r, boundary)
     }
 }
 
 impl<P: PointSet<D>, const D: usize> Joins<D> for P {}
 
-/// The pairs within `r` between `a` and `b` (`same`: `b` is `a`, unordered pairs once).
-fn pairs_of<A: PointSet<D>, B: PointSet<D>, Br, const D: usize>(
+/// The pairs within `r` between `a` and `b` under `metric` (`same`: `b` is `a`, unordered
+/// pairs once).
+fn pairs_of<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, Br, const D: usize>(
     a: &A,
     b: &B,
+    metric: &P,
     same: bool,
     r: f64,
     boundary: Boundary,
@@ -256,7 +256,7 @@ fn pairs_of<A: PointSet<D>, B: PointSet<D>, Br, const D: usize>(
 ) -> Result<ControlFlow<Br>, QueryError> {
     let r2 = radius::squared_radius(r)?;
     let mut v = PairsWithin {
-        metric: &Euclid,
+        metric,
         unordered: same,
         a,
         b,
@@ -265,13 +265,14 @@ fn pairs_of<A: PointSet<D>, B: PointSet<D>, Br, const D: usize>(
         visit,
     };
     let start = traverse::roots(a.index(), b.index(), same, ());
-    Ok(traverse::run(a.index(), b.index(), &Euclid, start, &mut v))
+    Ok(traverse::run(a.index(), b.index(), metric, start, &mut v))
 }
 
-/// The counts within each of `radii` between `a` and `b` (`same`: `b` is `a`).
-fn count_of<A: PointSet<D>, B: PointSet<D>, const D: usize>(
+/// The counts within each of `radii` between `a` and `b` under `metric` (`same`: `b` is `a`).
+fn count_of<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, const D: usize>(
     a: &A,
     b: &B,
+    metric: &P,
     same: bool,
     radii: &[f64],
     boundary: Boundary,
@@ -281,7 +282,7 @@ fn count_of<A: PointSet<D>, B: PointSet<D>, const D: usize>(
         return Ok(Vec::new());
     }
     let mut v = CountWithin {
-        metric: &Euclid,
+        metric,
         a,
         b,
         r2: &r2,
@@ -289,6 +290,22 @@ fn count_of<A: PointSet<D>, B: PointSet<D>, const D: usize>(
         diff: vec![0; r2.len() + 1],
     };
     let start = traverse::roots(a.index(), b.index(), same, (0, r2.len()));
-    let _ = traverse::run(a.index(), b.index(), &Euclid, start, &mut v);
+    let _ = traverse::run(a.index(), b.index(), metric, start, &mut v);
     Ok(v.counts())
+}
+
+/// The sparse distance matrix of the pairs within `r` between `a` and `b` under `metric`.
+fn sparse_of<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, const D: usize>(
+    a: &A,
+    b: &B,
+    metric: &P,
+    r: f64,
+    boundary: Boundary,
+) -> Result<SparseDistances, QueryError> {
+    let mut triples = Vec::new();
+    let _ = pairs_of(a, b, metric, false, r, boundary, |s, t, d| {
+        triples.push((s, t, d));
+        ControlFlow::<()>::Continue(())
+    })?;
+    Ok(SparseDistances::new((a.len(), b.len()), triples))
 }
