@@ -143,8 +143,8 @@ pub const KIDDO_BUCKET: usize = 32;
 
 /// kiddo 6's `ImmutableKdTree` alias, the structure kiddo recommends for points known up front
 /// (build once, then query): Eytzinger-ordered stems, leaves of [`KIDDO_BUCKET`] points in one
-/// arena, `u32` items (the point's index), built single-threaded by `new_from_slice` (the crate's
-/// `multi-threaded` feature is off). It has no box query; its radius query is the unsorted one,
+/// arena, `u32` items (the point's index), built single-threaded (its
+/// builder's serial construction). It has no box query; its radius query is the unsorted one,
 /// visiting each answer without collecting them.
 pub struct Kiddo<const D: usize>(pub ImmutableKdTree<f64, D>);
 
@@ -155,7 +155,13 @@ impl<const D: usize> Rival<D> for Kiddo<D> {
         points.to_vec()
     }
     fn build(input: &Self::Input) -> Self {
-        Kiddo(ImmutableKdTree::new_from_slice(input).expect("fewer than 2^32 finite points"))
+        // Serial even when kiddo's `multi-threaded` feature is on (the `rayon` feature).
+        Kiddo(
+            ImmutableKdTree::builder()
+                .with_serial_construction()
+                .build_from_slice(input)
+                .expect("fewer than 2^32 finite points"),
+        )
     }
     fn size(&self) -> usize {
         self.0.size()

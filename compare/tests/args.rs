@@ -7,7 +7,7 @@ use std::path::Path;
 
 use std::time::Duration;
 
-const PROGRAMS: [&str; 2] = ["compare", "mesh_compare"];
+const PROGRAMS: [&str; 3] = ["compare", "mesh_compare", "joins_compare"];
 
 #[path = "../../tests/programs/mod.rs"]
 mod programs;
@@ -18,6 +18,7 @@ use programs::Run;
 fn run(name: &str, args: &[&str]) -> Run {
     let exe = match name {
         "compare" => env!("CARGO_BIN_EXE_compare"),
+        "joins_compare" => env!("CARGO_BIN_EXE_joins_compare"),
         _ => env!("CARGO_BIN_EXE_mesh_compare"),
     };
     programs::run(Path::new(exe), name, args, None, Duration::from_secs(120))
@@ -63,13 +64,16 @@ fn unknown_options_and_stray_arguments_are_named() {
 
 #[test]
 fn missing_and_bad_values_are_named() {
-    let cases: [(&str, &str); 6] = [
+    let cases: [(&str, &str); 9] = [
         ("compare", "--n"),
         ("compare", "--queries"),
         ("compare", "--reps"),
         ("compare", "--dim"),
         ("mesh_compare", "--seeds"),
         ("mesh_compare", "--runs"),
+        ("joins_compare", "--n"),
+        ("joins_compare", "--queries"),
+        ("joins_compare", "--reps"),
     ];
     for (name, flag) in cases {
         let missing = refused(name, &[flag], &[flag]);
@@ -94,11 +98,19 @@ fn missing_and_bad_values_are_named() {
         &["--workload", "gaussian"],
         &["--workload", "gaussian"],
     );
+    refused(
+        "joins_compare",
+        &["--workload", "knn"],
+        &["--workload", "knn"],
+    );
+    refused("joins_compare", &["--n", "99"], &["--n", "99", "from 100"]);
     for (name, flag) in [
         ("compare", "--n"),
         ("compare", "--queries"),
         ("compare", "--reps"),
         ("mesh_compare", "--runs"),
+        ("joins_compare", "--queries"),
+        ("joins_compare", "--reps"),
     ] {
         refused(name, &[flag, "0"], &[flag, "0"]);
     }
@@ -117,6 +129,11 @@ fn work_too_large_for_memory_is_estimated_and_refused() {
         "compare",
         &["--queries", "100000000000"],
         &["--queries", "estimated"],
+    );
+    refused(
+        "joins_compare",
+        &["--n", "4000000000"],
+        &["--n", "4000000000", "estimated", "the limit is"],
     );
     refused(
         "mesh_compare",

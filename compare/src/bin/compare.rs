@@ -35,11 +35,10 @@ use orthtree::{Aabb, Ball, DynamicPointTree, PointTree};
 use orthtree_compare::limits;
 use orthtree_compare::points::{self as common, Distribution};
 use orthtree_compare::rivals::{Answers, Kiddo, Orthtree, Rival, Rstar, KIDDO_BUCKET};
+use orthtree_compare::timing::time;
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
 use rstar::RTree;
-use std::hint::black_box;
-use std::time::Instant;
 
 /// orthtree beside kiddo and rstar: build, box, radius and k-nearest queries, then single
 /// updates.
@@ -106,25 +105,6 @@ fn parse() -> Args {
         refuse(e);
     }
     a
-}
-
-/// The median time in milliseconds of `reps` runs of `f`, and its (checked equal) result,
-/// after one run that is not timed (a warm-up: the first run pays for fresh pages and cold
-/// caches).
-fn time<R: PartialEq + std::fmt::Debug>(reps: usize, mut f: impl FnMut() -> R) -> (f64, R) {
-    let mut times = Vec::with_capacity(reps);
-    let mut result = Some(black_box(f()));
-    for _ in 0..reps.max(1) {
-        let start = Instant::now();
-        let r = black_box(f());
-        times.push(start.elapsed().as_secs_f64() * 1e3);
-        if let Some(prev) = &result {
-            assert_eq!(prev, &r);
-        }
-        result = Some(r);
-    }
-    times.sort_by(f64::total_cmp);
-    (times[times.len() / 2], result.unwrap())
 }
 
 /// One table row: the median time of each crate, `None` where it has no such query.
