@@ -163,7 +163,7 @@ pub enum Invariant {
     Lengths,
     /// A node's count or run equals the sum of its children's; the root holds every point.
     Counts,
-    /// Every point lies in the tree's domain.
+    /// Every point lies in the tree's domain, with coordinates `f64` holds exactly.
     InDomain,
     /// Every point lies in its leaf's cell, in Morton order where the tree keeps one.
     InLeaf,
@@ -177,6 +177,10 @@ pub enum Invariant {
     Links,
     /// A skip quadtree's level holds the sample of the level below and links down to it.
     SkipLevels,
+    /// The settings a tree keeps are in range: bucket size at least 1, maximum depth at most
+    /// [`crate::Cell::MAX_LEVEL`], a finite root cube holding a finite domain (checked when a
+    /// tree is read back from bytes).
+    Settings,
 }
 
 impl Invariant {
@@ -192,6 +196,7 @@ impl Invariant {
             Invariant::Balanced => "the tree is not balanced after balance()",
             Invariant::Links => "links do not point back",
             Invariant::SkipLevels => "a skip level does not match the level below",
+            Invariant::Settings => "a setting is out of range",
         }
     }
 }

@@ -97,6 +97,32 @@ impl<const D: usize> RootGeometry<D> {
         Ok(Self::from_halves(min.map(half_down), half))
     }
 
+    /// The two numbers that fix the geometry: the root cube's lower corner halved (rounded
+    /// down) and half its side ([`RootGeometry::try_from_halves`] takes them back).
+    #[cfg(feature = "saved")]
+    pub(crate) fn halves(&self) -> ([f64; D], f64) {
+        (self.half_lo, self.half_side)
+    }
+
+    /// The geometry of [`RootGeometry::halves`], for a saved tree: the derived figures are
+    /// recomputed, so a geometry read back equals the one written.
+    ///
+    /// # Errors
+    /// [`AabbError::NonFinite`] naming the first non-finite axis of `half_lo`,
+    /// [`AabbError::InvalidSide`] for a half side that is NaN, infinite or negative.
+    #[cfg(feature = "saved")]
+    pub(crate) fn try_from_halves(half_lo: [f64; D], half_side: f64) -> Result<Self, AabbError> {
+        if let Some(axis) = half_lo.iter().position(|x| !x.is_finite()) {
+            return Err(AabbError::NonFinite { axis });
+        }
+        if !(half_side >= 0.0 && half_side.is_finite()) {
+            return Err(AabbError::InvalidSide {
+                side: half_side.into(),
+            });
+        }
+        Ok(Self::from_halves(half_lo, half_side))
+    }
+
     fn from_halves(half_lo: [f64; D], half_side: f64) -> Self {
         let finest = (1u64 << Self::FINEST) as f64;
         let scale = if half_side > 0.0 {

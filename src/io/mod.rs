@@ -11,6 +11,8 @@
 //! - [`board_text`]: a board for the mesher as plain text, one component per line (read and
 //!   write); [`read_board_file`] reads either format from a file, [`BoardFormat`] from bytes or
 //!   any reader.
+//! - `saved` (behind the `saved` feature): a point tree in a compact, versioned binary format,
+//!   read back without a rebuild.
 
 mod board_file;
 mod board_syntax;
@@ -21,6 +23,8 @@ pub mod pbm;
 #[cfg(feature = "png")]
 pub mod png;
 pub mod poly;
+#[cfg(feature = "saved")]
+pub mod saved;
 pub mod svg;
 mod text_out;
 pub mod triangle;

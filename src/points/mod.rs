@@ -14,6 +14,8 @@ mod network;
 #[cfg(feature = "rayon")]
 mod parallel;
 mod radix;
+#[cfg(feature = "saved")]
+mod raw;
 mod runs;
 mod update;
 
@@ -26,6 +28,8 @@ use crate::error::{Error, ValidationError};
 use crate::geom::{Aabb, Cell, Dim, RootGeometry, Scalar};
 use crate::query::{Location, PointSet, QueryError};
 use crate::tree::{BalanceOptions, NodeId, Tree};
+#[cfg(feature = "saved")]
+pub(crate) use raw::{PointTreeParts, PointTreeView};
 pub(crate) use runs::Runs;
 
 /// A point quadtree (D = 2), octree (D = 3) or 2^D-tree storing (point, item) pairs.
@@ -366,7 +370,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
                 }
                 for (i, p) in self.points[s as usize..e as usize].iter().enumerate() {
                     let q = p.map(Scalar::to_f64);
-                    if !self.domain.contains(&q) {
+                    if !self.domain.contains(&q) || !p.iter().all(|x| x.converts_exactly()) {
                         return fail(ValidationError::new(I::InDomain).point(s as usize + i));
                     }
                     let key = self.geometry.key(&q);

@@ -33,6 +33,19 @@ impl Runs {
         }
     }
 
+    /// The runs of the relative `ends` (one per node slot), unchecked: the tree's `validate`
+    /// checks them.
+    #[cfg(feature = "saved")]
+    pub(crate) fn from_ends(ends: Vec<u32>) -> Self {
+        Runs { ends }
+    }
+
+    /// The relative end of every node slot's run.
+    #[cfg(feature = "saved")]
+    pub(crate) fn ends(&self) -> &[u32] {
+        &self.ends
+    }
+
     /// The number of points (the root's run end).
     #[inline]
     pub(crate) fn total(&self) -> u32 {

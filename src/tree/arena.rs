@@ -217,6 +217,19 @@ impl<const D: usize> Tree<D> {
         Ok(NodeId(first as u32))
     }
 
+    /// A tree of the given arrays, unchecked: [`Tree::from_raw_parts`] (`raw.rs`) checks them.
+    #[cfg(feature = "saved")]
+    pub(super) fn from_arrays(raw: super::raw::OwnedRawTree) -> Self {
+        Tree {
+            first_child: raw.first_child,
+            level: raw.level,
+            block_parent: raw.block_parent,
+            depth: raw.depth,
+            free_blocks: raw.free_blocks,
+            live_blocks: raw.live_blocks,
+        }
+    }
+
     /// The length of the per-node level array (equal to [`Tree::node_count`] in a valid tree).
     #[inline]
     pub(super) fn level_slots(&self) -> usize {

@@ -2,7 +2,7 @@
 //! traversals, neighbour finding and 2:1 balance.
 //!
 //! Files by what they hold: `arena.rs` (the nodes), `traverse.rs`, `neighbors.rs`, `merge.rs`,
-//! `validate.rs` ([`Tree::validate`]); `balance_options.rs` ([`BalanceOptions`]), `balance.rs`
+//! `validate.rs` ([`Tree::validate`]), `raw.rs` (the arrays as stored, for saved trees); `balance_options.rs` ([`BalanceOptions`]), `balance.rs`
 //! ([`Tree::balance`]), `balance_check.rs` and `balance_check_dense.rs` ([`Tree::is_balanced`]),
 //! `balance_parallel.rs` (feature `rayon`), `balanced_split.rs` ([`Tree::split_balanced`]), and
 //! `balance_reference.rs`, the chapter's algorithm that the others are tested against
@@ -24,6 +24,8 @@ mod balanced_split;
 mod inner;
 mod merge;
 mod neighbors;
+#[cfg(feature = "saved")]
+pub(crate) mod raw;
 pub(crate) mod traverse;
 mod validate;
 

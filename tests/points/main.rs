@@ -1,5 +1,6 @@
 //! The point trees (`PointTree`, `DynamicPointTree`): build, bounds, duplicates, queries against
-//! brute force, single and batch updates, every dimension, bad input, and the rayon entry points.
+//! brute force, single and batch updates, every dimension, bad input, the rayon entry points, and
+//! the saved-tree format (feature `saved`).
 //!
 //! One test binary per area: each former test file is a module of it.
 
@@ -23,5 +24,9 @@ mod point_sets;
 mod point_tree;
 mod queries;
 mod streaming;
+#[cfg(feature = "saved")]
+mod saved;
+#[cfg(feature = "saved")]
+mod saved_fuzz;
 mod updates;
 mod updates_after_balance;

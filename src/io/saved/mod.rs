@@ -1,0 +1,339 @@
+//! A compact, versioned binary format for [`PointTree`]: the tree's own arrays (points, items,
+//! node runs, topology) written as they are, read back without a sort or a rebuild (feature
+//! `saved`).
+//!
+//! [`write_point_tree`] streams a tree to any [`Write`]; [`read_point_tree`] takes it back from
+//! a byte slice (a file read whole, or a memory map the caller holds), [`read_point_tree_file`]
+//! from a file, reading each array straight into its place. Points and items are plain data
+//! cast to and from bytes by `bytemuck` ([`SavedScalar`] for the coordinates, `bytemuck::Pod`
+//! for the items): a loaded tree costs one copy of its arrays and one linear check, where a build
+//! sorts.
+//!
+//! # The check on load
+//! Nothing in the input is trusted. The header's fields are checked first (magic, version, tree
+//! kind, dimension, scalar, item size and alignment, each count against its range) and the
+//! sections' lengths computed from the counts are compared with the bytes available before
+//! anything is allocated. The arrays then pass the tree's own `validate` (the topology's links,
+//! levels and free list; node runs that nest and partition their parents'; every point in its
+//! leaf's cell, in Morton order and inside a finite domain that lies in a finite root cube; leaf
+//! sizes; balance): linear time, no recursion. Corrupt or hostile bytes therefore give a
+//! [`SavedError`] naming the field and byte offset, or the broken invariant, never a panic, and a
+//! tree that loads answers every query as the brute force over its points would. Item bytes are
+//! not checked: any bytes are a valid `Pod` value.
+//!
+//! # Format, version 1 (little-endian)
+//! | bytes | field |
+//! | --- | --- |
+//! | 0..8 | magic `ORTHTREE` |
+//! | 8..10 | version (`u16`, 1) |
+//! | 10 | tree kind (1: `PointTree`) |
+//! | 11 | dimension D |
+//! | 12 | scalar ([`SavedScalar::KIND`]) |
+//! | 13, 14 | maximum depth, depth |
+//! | 15, 16 | balance kept (0 none, 1 face, 2 edge, 3 corner) and its level difference |
+//! | 17..20 | zero |
+//! | 20..24, 24..28 | item size and alignment (`u32`) |
+//! | 28..32 | zero |
+//! | 32..40, 40..48, 48..56 | points n, node slots m, freed blocks f (`u64`) |
+//! | 56..64 | bucket size (`u64`) |
+//! | 64..72 | half the root cube's side (`f64`) |
+//! | 72.. | the root cube's lower corner halved, the domain's minimum and maximum (`3 D f64`) |
+//! | then | live child blocks per level 0..=`Cell::MAX_LEVEL` (`u32`) |
+//!
+//! then, each starting at a multiple of 16 bytes with zero padding between: the points
+//! (`n [S; D]`), the items (`n T`), the node runs' relative ends (`m u32`), the first children
+//! (`m u32`), the levels (`m u8`), the block parents (`(m - 1) / 2^D u32`) and the freed blocks
+//! (`f u32`). The file ends with the last section's padding.
+//!
+//! ```
+//! use orthtree::io::saved::{read_point_tree, write_point_tree};
+//! use orthtree::prelude::*;
+//! use orthtree::Quadtree;
+//! let pts: Vec<([f64; 2], u32)> = (0..500).map(|i| ([(i % 37) as f64, (i / 37) as f64], i)).collect();
+//! let tree = Quadtree::new(&pts).unwrap();
+//! let mut bytes = Vec::new();
+//! write_point_tree(&tree, &mut bytes).unwrap();
+//! let back = read_point_tree::<f64, u32, 2>(&bytes).unwrap();
+//! assert_eq!((back.points(), back.items()), (tree.points(), tree.items()));
+//! assert_eq!(back.k_nearest(&[3.2, 4.9], 5).unwrap(), tree.k_nearest(&[3.2, 4.9], 5).unwrap());
+//! bytes[200] ^= 0xff; // a point moved out of its leaf, or out of Morton order
+//! assert!(read_point_tree::<f64, u32, 2>(&bytes).is_err());
+//! ```
+
+mod error;
+mod header;
+
+pub use error::SavedError;
+pub use header::{ALIGN, MAGIC, VERSION};
+
+use crate::points::{PointTreeParts, PointTreeView};
+use crate::tree::raw::OwnedRawTree;
+use crate::{PointTree, Scalar};
+use bytemuck::Pod;
+use header::{padded, Header};
+use std::io::{Read, Write};
+
+/// A coordinate type the format stores: a [`Scalar`] that is plain data, with its code in the
+/// header. Implemented for `f32`, `f64` and the primitive integers of 8 to 64 bits; sealed.
+pub trait SavedScalar: Scalar + Pod + sealed::Sealed {
+    /// The code written in the header (1 `f32`, 2 `f64`, 3-6 `i8`-`i64`, 7-10 `u8`-`u64`).
+    const KIND: u8;
+    /// The type's name, for error messages.
+    const NAME: &'static str;
+}
+
+mod sealed {
+    pub trait Sealed {}
+}
+
+macro_rules! saved_scalar {
+    ($($t:ty => $k:expr),*) => {$(
+        impl sealed::Sealed for $t {}
+        impl SavedScalar for $t {
+            const KIND: u8 = $k;
+            const NAME: &'static str = stringify!($t);
+        }
+    )*};
+}
+
+saved_scalar!(f32 => 1, f64 => 2, i8 => 3, i16 => 4, i32 => 5, i64 => 6, u8 => 7, u16 => 8,
+    u32 => 9, u64 => 10);
+
+/// The header of `tree`.
+fn header_of<S: SavedScalar, T: Pod, const D: usize>(v: &PointTreeView<'_, S, T, D>) -> Header<D> {
+    Header {
+        max_depth: v.max_depth,
+        depth: v.tree.depth,
+        balanced: v.balanced,
+        item_size: core::mem::size_of::<T>() as u32,
+        item_align: core::mem::align_of::<T>() as u32,
+        points: v.points.len() as u64,
+        slots: v.tree.first_child.len() as u64,
+        free_blocks: v.tree.free_blocks.len() as u64,
+        bucket_size: v.bucket_size as u64,
+        half_side: v.half_side,
+        half_lo: v.half_lo,
+        domain: v.domain,
+        live_blocks: v.tree.live_blocks.to_vec(),
+    }
+}
+
+/// The number of bytes [`write_point_tree`] writes for `tree`.
+///
+/// ```
+/// use orthtree::io::saved::{saved_len, write_point_tree};
+/// let tree = orthtree::Quadtree::new(&[([0.0, 0.0], 1u8), ([1.0, 1.0], 2)]).unwrap();
+/// let mut bytes = Vec::new();
+/// write_point_tree(&tree, &mut bytes).unwrap();
+/// assert_eq!(saved_len(&tree), bytes.len() as u64);
+/// ```
+pub fn saved_len<S: SavedScalar, T: Pod, const D: usize>(tree: &PointTree<S, T, D>) -> u64 {
+    let h = header_of(&tree.view());
+    let mut end = padded(header::header_len::<D>()).expect("a short header");
+    for (_, len) in h.sections::<S>() {
+        end = padded(end + len.expect("a tree in memory has a length")).expect("in range");
+    }
+    end
+}
+
+/// Writes `tree` in the saved format (see the module doc) to `out`, array by array.
+///
+/// # Errors
+/// What `out` returns; [`std::io::ErrorKind::Unsupported`] on a big-endian machine and for an
+/// item type aligned to more than [`ALIGN`] bytes.
+///
+/// # Complexity
+/// O(n + m) for n points and m node slots; no memory beyond the header.
+pub fn write_point_tree<S: SavedScalar, T: Pod, const D: usize>(
+    tree: &PointTree<S, T, D>,
+    mut out: impl Write,
+) -> std::io::Result<()> {
+    let unsupported = |what: String| std::io::Error::new(std::io::ErrorKind::Unsupported, what);
+    if cfg!(target_endian = "big") {
+        return Err(unsupported(SavedError::BigEndianHost.to_string()));
+    }
+    if core::mem::align_of::<T>() as u64 > ALIGN {
+        return Err(unsupported(format!(
+            "saved tree: items aligned to {} bytes, the format aligns to {ALIGN}",
+            core::mem::align_of::<T>()
+        )));
+    }
+    let v = tree.view();
+    let head = header_of(&v).encode::<S>();
+    out.write_all(&head)?;
+    let mut at = head.len() as u64;
+    let sections: [&[u8]; 7] = [
+        bytemuck::cast_slice(v.points),
+        bytes_of_items(v.items),
+        bytemuck::cast_slice(v.run_ends),
+        bytemuck::cast_slice(v.tree.first_child),
+        v.tree.level,
+        bytemuck::cast_slice(v.tree.block_parent),
+        bytemuck::cast_slice(v.tree.free_blocks),
+    ];
+    for s in sections {
+        out.write_all(s)?;
+        at += s.len() as u64;
+        let pad = padded(at).expect("in range") - at;
+        out.write_all(&[0u8; ALIGN as usize][..pad as usize])?;
+        at += pad;
+    }
+    Ok(())
+}
+
+/// The bytes of `items` (none for a zero-sized type, which `bytemuck` does not cast).
+fn bytes_of_items<T: Pod>(items: &[T]) -> &[u8] {
+    if core::mem::size_of::<T>() == 0 {
+        &[]
+    } else {
+        bytemuck::cast_slice(items)
+    }
+}
+
+/// Where the sections are read from, in order.
+trait Source {
+    /// Fills `dst` with the next bytes.
+    fn fill(&mut self, dst: &mut [u8]) -> Result<(), SavedError>;
+}
+
+/// A byte slice, read from its start.
+struct SliceSource<'a> {
+    bytes: &'a [u8],
+    at: usize,
+}
+
+impl Source for SliceSource<'_> {
+    fn fill(&mut self, dst: &mut [u8]) -> Result<(), SavedError> {
+        // The lengths were checked against the slice (`Header::check_length`).
+        dst.copy_from_slice(&self.bytes[self.at..self.at + dst.len()]);
+        self.at += dst.len();
+        Ok(())
+    }
+}
+
+/// A reader (a file whose length was checked).
+struct ReadSource<R>(R);
+
+impl<R: Read> Source for ReadSource<R> {
+    fn fill(&mut self, dst: &mut [u8]) -> Result<(), SavedError> {
+        self.0.read_exact(dst).map_err(SavedError::Io)
+    }
+}
+
+/// Reads a tree saved by [`write_point_tree`] from `bytes`, without a rebuild: the arrays are
+/// copied into place and checked (see the module doc).
+///
+/// # Errors
+/// [`SavedError::Truncated`], [`SavedError::Field`], [`SavedError::Padding`] and
+/// [`SavedError::Trailing`] naming the field and byte offset; [`SavedError::Invalid`] naming the
+/// broken invariant; [`SavedError::BigEndianHost`].
+///
+/// # Complexity
+/// O(n + m depth) for n points and m node slots; memory for the tree only (nothing is
+/// allocated before the header's counts are checked against `bytes.len()`).
+pub fn read_point_tree<S: SavedScalar, T: Pod, const D: usize>(
+    bytes: &[u8],
+) -> Result<PointTree<S, T, D>, SavedError> {
+    let header = read_header::<S, T, D>(bytes, bytes.len() as u64)?;
+    let at = padded(header::header_len::<D>()).expect("a short header") as usize;
+    read_sections(header, &mut SliceSource { bytes, at })
+}
+
+/// [`read_point_tree`] from the file at `path`, each array read straight into its place (no
+/// copy of the whole file in memory).
+///
+/// # Errors
+/// Those of [`read_point_tree`], with the file's length as the bytes available;
+/// [`SavedError::Io`] when opening or reading fails.
+///
+/// # Complexity
+/// That of [`read_point_tree`].
+pub fn read_point_tree_file<S: SavedScalar, T: Pod, const D: usize>(
+    path: impl AsRef<std::path::Path>,
+) -> Result<PointTree<S, T, D>, SavedError> {
+    let mut file = std::fs::File::open(path).map_err(SavedError::Io)?;
+    let available = file.metadata().map_err(SavedError::Io)?.len();
+    let want = padded(header::header_len::<D>()).expect("a short header");
+    let mut head = vec![0u8; want.min(available) as usize];
+    file.read_exact(&mut head).map_err(SavedError::Io)?;
+    let header = read_header::<S, T, D>(&head, available)?;
+    read_sections(header, &mut ReadSource(std::io::BufReader::new(file)))
+}
+
+/// The header, checked, and the file's length checked against `available`.
+fn read_header<S: SavedScalar, T: Pod, const D: usize>(
+    head: &[u8],
+    available: u64,
+) -> Result<Header<D>, SavedError> {
+    if cfg!(target_endian = "big") {
+        return Err(SavedError::BigEndianHost);
+    }
+    let size = core::mem::size_of::<T>();
+    let header = Header::<D>::decode::<S>(head, available, size, core::mem::align_of::<T>())?;
+    header.check_length::<S>(available)?;
+    Ok(header)
+}
+
+/// Reads the sections after `header` (their lengths checked) from `src`, then checks the tree.
+fn read_sections<S: SavedScalar, T: Pod, const D: usize>(
+    header: Header<D>,
+    src: &mut impl Source,
+) -> Result<PointTree<S, T, D>, SavedError> {
+    let n = header.points as usize;
+    let slots = header.slots as usize;
+    let mut at = padded(header::header_len::<D>()).expect("a short header");
+    let mut points: Vec<[S; D]> = bytemuck::zeroed_vec(n);
+    section(src, &mut at, bytemuck::cast_slice_mut(&mut points))?;
+    let mut items: Vec<T> = bytemuck::zeroed_vec(n);
+    if core::mem::size_of::<T>() != 0 {
+        section(src, &mut at, bytemuck::cast_slice_mut(&mut items))?;
+    } else {
+        section(src, &mut at, &mut [])?;
+    }
+    let mut run_ends: Vec<u32> = bytemuck::zeroed_vec(slots);
+    section(src, &mut at, bytemuck::cast_slice_mut(&mut run_ends))?;
+    let mut first_child: Vec<u32> = bytemuck::zeroed_vec(slots);
+    section(src, &mut at, bytemuck::cast_slice_mut(&mut first_child))?;
+    let mut level: Vec<u8> = vec![0; slots];
+    section(src, &mut at, &mut level)?;
+    let mut block_parent: Vec<u32> = bytemuck::zeroed_vec(header.blocks() as usize);
+    section(src, &mut at, bytemuck::cast_slice_mut(&mut block_parent))?;
+    let mut free_blocks: Vec<u32> = bytemuck::zeroed_vec(header.free_blocks as usize);
+    section(src, &mut at, bytemuck::cast_slice_mut(&mut free_blocks))?;
+    let parts = PointTreeParts {
+        tree: OwnedRawTree {
+            first_child,
+            level,
+            block_parent,
+            free_blocks,
+            live_blocks: header.live_blocks,
+            depth: header.depth,
+        },
+        half_lo: header.half_lo,
+        half_side: header.half_side,
+        domain: header.domain,
+        points,
+        items,
+        run_ends,
+        bucket_size: header.bucket_size as usize,
+        max_depth: header.max_depth,
+        balanced: header.balanced,
+    };
+    Ok(PointTree::from_parts(parts)?)
+}
+
+/// Reads one section into `dst` and its padding, which must be zero; `at` is its offset.
+fn section(src: &mut impl Source, at: &mut u64, dst: &mut [u8]) -> Result<(), SavedError> {
+    src.fill(dst)?;
+    *at += dst.len() as u64;
+    let pad = (padded(*at).expect("checked") - *at) as usize;
+    let mut zeros = [0u8; ALIGN as usize];
+    src.fill(&mut zeros[..pad])?;
+    if let Some(i) = zeros[..pad].iter().position(|&b| b != 0) {
+        return Err(SavedError::Padding {
+            offset: *at + i as u64,
+        });
+    }
+    *at += pad as u64;
+    Ok(())
+}

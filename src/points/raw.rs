@@ -1,0 +1,127 @@
+//! A [`PointTree`]'s stored arrays and settings, for the saved-tree format and serde: a borrowed
+//! view ([`PointTree::view`]) and the checked constructor that takes owned parts back
+//! ([`PointTree::from_parts`]) without sorting or subdividing anything.
+//!
+//! The check is the settings' ranges, [`Tree::from_raw_parts`] for the topology, then the tree's
+//! own `validate` (node runs nest and partition their parents', every point lies in its leaf's
+//! cell in Morton order and in the domain, leaf sizes, balance): linear in the points and nodes,
+//! so a tree read from untrusted bytes answers every query as the tree that was written would, or
+//! is refused.
+
+use super::{PointTree, Runs};
+use crate::error::{Invariant, ValidationError};
+use crate::geom::{Aabb, Cell, RootGeometry, Scalar};
+use crate::query::PointSet;
+use crate::tree::raw::{OwnedRawTree, RawTree};
+use crate::tree::{BalanceOptions, Tree};
+
+/// Everything a [`PointTree`] stores, by reference.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PointTreeView<'a, S, T, const D: usize> {
+    pub tree: RawTree<'a>,
+    /// The root cube's lower corner halved (rounded down) and half its side.
+    pub half_lo: [f64; D],
+    pub half_side: f64,
+    pub domain: Aabb<f64, D>,
+    pub points: &'a [[S; D]],
+    pub items: &'a [T],
+    /// Per node slot, the end of its run relative to its parent's start (`runs.rs`).
+    pub run_ends: &'a [u32],
+    pub bucket_size: usize,
+    pub max_depth: u8,
+    pub balanced: Option<BalanceOptions>,
+}
+
+/// The owned form of [`PointTreeView`], which [`PointTree::from_parts`] checks.
+#[derive(Clone, Debug)]
+pub(crate) struct PointTreeParts<S, T, const D: usize> {
+    pub tree: OwnedRawTree,
+    pub half_lo: [f64; D],
+    pub half_side: f64,
+    pub domain: Aabb<f64, D>,
+    pub points: Vec<[S; D]>,
+    pub items: Vec<T>,
+    pub run_ends: Vec<u32>,
+    pub bucket_size: usize,
+    pub max_depth: u8,
+    pub balanced: Option<BalanceOptions>,
+}
+
+impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
+    /// The stored arrays and settings.
+    pub(crate) fn view(&self) -> PointTreeView<'_, S, T, D> {
+        let (half_lo, half_side) = self.geometry.halves();
+        PointTreeView {
+            tree: self.tree.raw_parts(),
+            half_lo,
+            half_side,
+            domain: self.domain,
+            points: &self.points,
+            items: &self.items,
+            run_ends: self.runs.ends(),
+            bucket_size: self.bucket_size,
+            max_depth: self.max_depth,
+            balanced: self.balanced,
+        }
+    }
+
+    /// The tree of `parts`, checked (see the module doc); nothing is sorted or rebuilt.
+    ///
+    /// # Errors
+    /// The first broken invariant: [`Invariant::Settings`] for a bucket size of 0, a maximum
+    /// depth beyond [`Cell::MAX_LEVEL`], a root cube that is not finite or a domain that is not
+    /// a finite box inside it; [`Invariant::Lengths`] for points and items of different counts;
+    /// [`Invariant::Topology`] naming the [`crate::tree::TreeError`]; then whatever the tree's
+    /// `validate` finds.
+    ///
+    /// # Complexity
+    /// O(n + m depth) for n points and m node slots.
+    pub(crate) fn from_parts(parts: PointTreeParts<S, T, D>) -> Result<Self, ValidationError> {
+        let settings = |detail: String| ValidationError::new(Invariant::Settings).detail(detail);
+        if parts.bucket_size == 0 {
+            return Err(settings("the bucket size is 0".into()));
+        }
+        if parts.max_depth > Cell::<D>::MAX_LEVEL {
+            return Err(settings(format!(
+                "the maximum depth {} exceeds the limit {}",
+                parts.max_depth,
+                Cell::<D>::MAX_LEVEL
+            )));
+        }
+        let geometry = RootGeometry::try_from_halves(parts.half_lo, parts.half_side)
+            .map_err(|e| settings(format!("the root cube: {e}")))?;
+        let domain = parts.domain;
+        Aabb::new(domain.min, domain.max).map_err(|e| settings(format!("the domain: {e}")))?;
+        let root = geometry.root_box();
+        if let Some(axis) =
+            (0..D).find(|&a| domain.min[a] < root.min[a] || domain.max[a] > root.max[a])
+        {
+            return Err(settings(format!(
+                "the domain [{}, {}] on axis {axis} is not inside the root cube's [{}, {}]",
+                domain.min[axis], domain.max[axis], root.min[axis], root.max[axis]
+            )));
+        }
+        if parts.points.len() != parts.items.len() || parts.points.len() > u32::MAX as usize {
+            return Err(ValidationError::new(Invariant::Lengths).detail(format!(
+                "{} points, {} items (at most 2^32 - 1 of each)",
+                parts.points.len(),
+                parts.items.len()
+            )));
+        }
+        let tree = Tree::from_raw_parts(parts.tree)
+            .map_err(|e| ValidationError::new(Invariant::Topology).detail(e.to_string()))?;
+        let tree = PointTree {
+            tree,
+            geometry,
+            domain,
+            points: parts.points,
+            items: parts.items,
+            runs: Runs::from_ends(parts.run_ends),
+            bucket_size: parts.bucket_size,
+            max_depth: parts.max_depth,
+            balanced: parts.balanced,
+        };
+        tree.validate()?;
+        Ok(tree)
+    }
+}

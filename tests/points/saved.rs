@@ -1,0 +1,303 @@
+//! The saved-tree format (`io::saved`, feature `saved`): round trips for D = 1, 2, 3, 8 over
+//! f64, f32 and integer coordinates, zero-sized and array items, empty trees, duplicates, balanced
+//! trees and trees with freed blocks (after removals); the loaded tree validates, equals the one
+//! written array for array, answers every query as it did and as brute force does, and takes
+//! updates. Files read from disk equal slices. Wrong types are refused by name.
+
+use crate::common::points::config;
+use orthtree::io::saved::{
+    read_point_tree, read_point_tree_file, saved_len, write_point_tree, SavedError, SavedScalar,
+};
+use orthtree::prelude::*;
+use orthtree::query::SquaredEuclidean;
+use orthtree::{points::PointTreeBuilder, Aabb, Connectivity, Metric, PointTree, Scalar};
+use proptest::prelude::*;
+
+fn save<S: SavedScalar, T: bytemuck::Pod, const D: usize>(t: &PointTree<S, T, D>) -> Vec<u8> {
+    let mut bytes = Vec::new();
+    write_point_tree(t, &mut bytes).unwrap();
+    assert_eq!(bytes.len() as u64, saved_len(t));
+    assert_eq!(bytes.len() % 16, 0);
+    bytes
+}
+
+fn f<S: Scalar, const D: usize>(p: &[S; D]) -> [f64; D] {
+    p.map(Scalar::to_f64)
+}
+
+/// Checks `t`'s box and nearest queries against a scan of its own points and items, at the
+/// query points `qs`.
+pub fn check_against_brute<S: Scalar, T: Copy + Ord + core::fmt::Debug, const D: usize>(
+    t: &PointTree<S, T, D>,
+    qs: &[[S; D]],
+) {
+    for (j, q) in qs.iter().enumerate() {
+        let qf = f(q);
+        let r = (j % 4) as f64 * 0.75;
+        let b = Aabb::new(qf.map(|x| x - r), qf.map(|x| x + r)).unwrap();
+        let mut want: Vec<T> = t
+            .iter()
+            .filter(|(p, _)| b.contains(&f(p)))
+            .map(|(_, &i)| i)
+            .collect();
+        want.sort_unstable();
+        let mut got: Vec<T> = t.query(b).unwrap().map(|(_, &i)| i).collect();
+        got.sort_unstable();
+        assert_eq!(got, want, "box around {qf:?}");
+        let k = 1 + j % 7;
+        let mut all: Vec<f64> = t
+            .points()
+            .iter()
+            .map(|p| SquaredEuclidean.distance(&qf, &f(p)))
+            .collect();
+        all.sort_by(f64::total_cmp);
+        let near: Vec<f64> = t
+            .k_nearest(q, k)
+            .unwrap()
+            .iter()
+            .map(|n| n.distance)
+            .collect();
+        assert_eq!(near, all[..k.min(all.len())], "{k} nearest of {qf:?}");
+    }
+}
+
+/// Writes `t`, reads it back from the bytes and from a file, and checks that the copy is the
+/// same tree: arrays, topology, settings, and the answers to every query at `qs`.
+fn round_trip<S, T, const D: usize>(t: &PointTree<S, T, D>, qs: &[[S; D]]) -> PointTree<S, T, D>
+where
+    S: SavedScalar,
+    T: bytemuck::Pod + Ord + core::fmt::Debug,
+{
+    t.validate().unwrap();
+    let bytes = save(t);
+    let back = read_point_tree::<S, T, D>(&bytes).unwrap();
+    back.validate().unwrap();
+    assert_eq!(back.points(), t.points());
+    assert_eq!(back.items(), t.items());
+    assert_eq!(back.tree(), t.tree());
+    assert_eq!(back.geometry(), t.geometry());
+    assert_eq!(back.domain(), t.domain());
+    assert_eq!(
+        (back.bucket_size(), back.max_depth(), back.depth()),
+        (t.bucket_size(), t.max_depth(), t.depth())
+    );
+    for id in t.tree().pre_order().map(|(id, _)| id) {
+        assert_eq!(back.node_run(id), t.node_run(id));
+    }
+    for q in qs {
+        assert_eq!(back.locate(q).unwrap(), t.locate(q).unwrap());
+        assert_eq!(back.k_nearest(q, 5).unwrap(), t.k_nearest(q, 5).unwrap());
+    }
+    check_against_brute(&back, qs);
+    // The same from a file, read array by array.
+    let path = std::env::temp_dir().join(format!(
+        "orthtree-saved-{}-{}-{D}.bin",
+        std::process::id(),
+        bytes.len()
+    ));
+    std::fs::write(&path, &bytes).unwrap();
+    let from_file = read_point_tree_file::<S, T, D>(&path);
+    std::fs::remove_file(&path).unwrap();
+    let from_file = from_file.unwrap();
+    assert_eq!(from_file.points(), t.points());
+    assert_eq!(from_file.tree(), t.tree());
+    // And the copy saves to the same bytes.
+    assert_eq!(save(&back), bytes);
+    back
+}
+
+fn grid<const D: usize>(seed: u64, n: usize, side: u32) -> Vec<([f64; D], u32)> {
+    let mut x = seed | 1;
+    (0..n)
+        .map(|i| {
+            let p = core::array::from_fn(|_| {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                (x % side as u64) as f64 * 0.5
+            });
+            (p, i as u32)
+        })
+        .collect()
+}
+
+fn queries<const D: usize>(pts: &[([f64; D], u32)]) -> Vec<[f64; D]> {
+    let mut qs: Vec<[f64; D]> = pts.iter().step_by(7).map(|p| p.0).take(12).collect();
+    qs.push([0.3; D]);
+    qs.push([-1.0; D]);
+    qs
+}
+
+fn each_dimension<const D: usize>() {
+    for (n, side, bucket) in [
+        (0, 4, 4),
+        (1, 4, 4),
+        (300, 16, 4),
+        (400, 3, 2),
+        (200, 1000, 1),
+    ] {
+        let pts = grid::<D>(n as u64 + 7, n, side);
+        let t = PointTreeBuilder::new()
+            .bucket_size(bucket)
+            .build(&pts)
+            .unwrap();
+        round_trip(&t, &queries(&pts));
+    }
+}
+
+#[test]
+fn round_trips_in_dimensions_1_2_3_8() {
+    each_dimension::<1>();
+    each_dimension::<2>();
+    each_dimension::<3>();
+    each_dimension::<8>();
+}
+
+#[test]
+fn round_trips_over_f32_and_integer_coordinates() {
+    let pts = grid::<3>(5, 500, 20);
+    let p32: Vec<([f32; 3], u32)> = pts.iter().map(|(p, i)| (p.map(|x| x as f32), *i)).collect();
+    let t = PointTreeBuilder::new().bucket_size(3).build(&p32).unwrap();
+    let qs: Vec<[f32; 3]> = p32.iter().step_by(9).map(|p| p.0).collect();
+    round_trip(&t, &qs);
+    let pi: Vec<([i32; 2], u32)> = (0..400)
+        .map(|i: i32| ([(i * 7919) % 61 - 30, (i * 104_729) % 37], i as u32))
+        .collect();
+    let t = PointTreeBuilder::new().bucket_size(2).build(&pi).unwrap();
+    let qs: Vec<[i32; 2]> = pi.iter().step_by(11).map(|p| p.0).collect();
+    round_trip(&t, &qs);
+    // 64-bit integers far beyond 2^53 (multiples of the f64 spacing there).
+    let pu: Vec<([u64; 2], u32)> = (0..200u64)
+        .map(|i| ([(i % 13) << 60, (i % 7) << 58], i as u32))
+        .collect();
+    let t = PointTreeBuilder::new().bucket_size(4).build(&pu).unwrap();
+    round_trip(&t, &[[0, 0], [1 << 62, 1 << 60]]);
+}
+
+#[test]
+fn zero_sized_and_array_items_round_trip() {
+    let pts = grid::<2>(3, 300, 30);
+    let unit: Vec<([f64; 2], ())> = pts.iter().map(|(p, _)| (*p, ())).collect();
+    let t = PointTree::new(&unit).unwrap();
+    let back = round_trip(&t, &queries(&pts));
+    assert_eq!(back.len(), 300);
+    let arrays: Vec<([f64; 2], [u8; 3])> = pts
+        .iter()
+        .map(|(p, i)| (*p, [*i as u8, (*i >> 8) as u8, 7]))
+        .collect();
+    let t = PointTree::new(&arrays).unwrap();
+    round_trip(&t, &queries(&pts));
+}
+
+#[test]
+fn duplicates_and_a_root_box_round_trip() {
+    // 300 copies of one point and a few others: a leaf at the maximum depth holds them all.
+    let mut pts: Vec<([f64; 2], u32)> = (0..300).map(|i| ([0.25, 0.25], i)).collect();
+    pts.extend((300..310).map(|i| ([1.0, i as f64 / 400.0], i)));
+    let t = PointTreeBuilder::new()
+        .bucket_size(2)
+        .max_depth(6)
+        .root_box(Aabb::new([-1.0, -2.0], [3.0, 1.0]).unwrap())
+        .build(&pts)
+        .unwrap();
+    let back = round_trip(&t, &queries(&pts));
+    assert_eq!(
+        back.in_box(&Aabb::new([0.25; 2], [0.25; 2]).unwrap())
+            .unwrap()
+            .count(),
+        300
+    );
+}
+
+#[test]
+fn balanced_trees_and_freed_blocks_round_trip_and_take_updates() {
+    let pts = grid::<2>(11, 400, 64);
+    let mut t = PointTreeBuilder::new().bucket_size(2).build(&pts).unwrap();
+    t.balance(Connectivity::Corner);
+    round_trip(&t, &queries(&pts));
+    // Removals merge nodes and free their blocks: the free list is saved too.
+    let mut t = PointTreeBuilder::new().bucket_size(2).build(&pts).unwrap();
+    for (p, i) in pts.iter().skip(50) {
+        assert!(t.remove(p, i));
+    }
+    let mut back = round_trip(&t, &queries(&pts));
+    for (p, i) in pts.iter().skip(50).take(100) {
+        back.insert(*p, *i).unwrap();
+        t.insert(*p, *i).unwrap();
+    }
+    back.validate().unwrap();
+    assert_eq!(back.tree(), t.tree());
+    assert_eq!(back.items(), t.items());
+    check_against_brute(&back, &queries(&pts));
+}
+
+#[test]
+fn another_type_than_the_one_saved_is_refused_by_name() {
+    let pts = grid::<2>(1, 50, 9);
+    let bytes = save(&PointTree::new(&pts).unwrap());
+    let field = |e: SavedError| match e {
+        SavedError::Field { field, .. } => field,
+        e => panic!("{e}"),
+    };
+    assert_eq!(
+        field(read_point_tree::<f64, u32, 3>(&bytes).unwrap_err()),
+        "dimension"
+    );
+    assert_eq!(
+        field(read_point_tree::<f32, u32, 2>(&bytes).unwrap_err()),
+        "scalar"
+    );
+    assert_eq!(
+        field(read_point_tree::<f64, u64, 2>(&bytes).unwrap_err()),
+        "item size"
+    );
+    assert_eq!(
+        field(read_point_tree::<f64, [u8; 4], 2>(&bytes).unwrap_err()),
+        "item alignment"
+    );
+    let e = read_point_tree::<f64, u32, 3>(&bytes).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "saved tree: `dimension` at byte 11 is 2, expected 3"
+    );
+    let mut more = bytes.clone();
+    more.push(0);
+    assert!(matches!(
+        read_point_tree::<f64, u32, 2>(&more),
+        Err(SavedError::Trailing { extra: 1, .. })
+    ));
+    let mut other = bytes;
+    other[0] = b'X';
+    assert!(matches!(
+        read_point_tree::<f64, u32, 2>(&other),
+        Err(SavedError::Field {
+            field: "magic",
+            offset: 0,
+            ..
+        })
+    ));
+    assert!(matches!(
+        read_point_tree_file::<f64, u32, 2>("/nonexistent/orthtree.bin"),
+        Err(SavedError::Io(_))
+    ));
+}
+
+proptest! {
+    #![proptest_config(config(48, 0x5a7e_d001))]
+
+    /// Random trees with duplicates and points on split lines (a grid of halves) round-trip.
+    #[test]
+    fn random_trees_round_trip(
+        cells in proptest::collection::vec((0u8..12, 0u8..12, 0u8..12), 0..150),
+        bucket in 1usize..6,
+        depth in 1u8..12,
+    ) {
+        let pts: Vec<([f64; 3], u32)> = cells
+            .iter()
+            .enumerate()
+            .map(|(i, &(a, b, c))| ([a as f64 / 2.0, b as f64 / 2.0, c as f64 / 2.0], i as u32))
+            .collect();
+        let t = PointTreeBuilder::new().bucket_size(bucket).max_depth(depth).build(&pts).unwrap();
+        round_trip(&t, &queries(&pts));
+    }
+}
