@@ -11,13 +11,17 @@
 //! - [`board_text`]: a board for the mesher as plain text, one component per line (read and
 //!   write); [`read_board_file`] reads either format from a file, [`BoardFormat`] from bytes or
 //!   any reader.
+//! - [`ply`] and [`xyz`]: point clouds ([`crate::cloud::Cloud`]) as PLY (ASCII and binary)
+//!   and as XYZ/CSV text, read and written with their attributes.
 
 mod board_file;
 mod board_syntax;
 pub mod board_text;
+mod columns;
 pub mod gmsh;
 mod limits;
 pub mod pbm;
+pub mod ply;
 #[cfg(feature = "png")]
 pub mod png;
 pub mod poly;
@@ -25,6 +29,7 @@ pub mod svg;
 mod text_out;
 pub mod triangle;
 pub mod vtk;
+pub mod xyz;
 
 pub use board_file::{
     read_board_file, read_board_file_with_limit, BoardFileError, BoardFormat, BoardReadError,
