@@ -12,13 +12,16 @@
 //!   write); [`read_board_file`] reads either format from a file, [`BoardFormat`] from bytes or
 //!   any reader.
 //! - [`ply`] and [`xyz`]: point clouds ([`crate::cloud::Cloud`]) as PLY (ASCII and binary)
-//!   and as XYZ/CSV text, read and written with their attributes.
+//!   and as XYZ/CSV text, read and written with their attributes; `las` (behind the `las`
+//!   feature; LAZ with `laz`) as ASPRS LAS with integer coordinates kept.
 
 mod board_file;
 mod board_syntax;
 pub mod board_text;
 mod columns;
 pub mod gmsh;
+#[cfg(feature = "las")]
+pub mod las;
 mod limits;
 pub mod pbm;
 pub mod ply;

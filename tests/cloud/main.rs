@@ -7,5 +7,7 @@ mod common;
 
 mod formats;
 mod formats_hostile;
+#[cfg(feature = "las")]
+mod las_files;
 mod neighbours;
 mod voxels;
