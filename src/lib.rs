@@ -40,6 +40,7 @@
 // query engines (`prefetch.rs`, measured there and in `query/range.rs`).
 #![deny(unsafe_code)]
 
+pub mod cloud;
 pub mod compressed;
 pub mod error;
 pub mod geom;

@@ -13,13 +13,20 @@
 //!   any reader.
 //! - `saved` (behind the `saved` feature): a point tree in a compact, versioned binary format,
 //!   read back without a rebuild.
+//! - [`ply`] and [`xyz`]: point clouds ([`crate::cloud::Cloud`]) as PLY (ASCII and binary)
+//!   and as XYZ/CSV text, read and written with their attributes; `las` (behind the `las`
+//!   feature; LAZ with `laz`) as ASPRS LAS with integer coordinates kept.
 
 mod board_file;
 mod board_syntax;
 pub mod board_text;
+mod columns;
 pub mod gmsh;
+#[cfg(feature = "las")]
+pub mod las;
 mod limits;
 pub mod pbm;
+pub mod ply;
 #[cfg(feature = "png")]
 pub mod png;
 pub mod poly;
@@ -29,6 +36,7 @@ pub mod svg;
 mod text_out;
 pub mod triangle;
 pub mod vtk;
+pub mod xyz;
 
 pub use board_file::{
     read_board_file, read_board_file_with_limit, BoardFileError, BoardFormat, BoardReadError,

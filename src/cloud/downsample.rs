@@ -1,0 +1,152 @@
+//! Voxel-grid downsampling (Open3D's `voxel_down_sample`, PCL's `VoxelGrid` filter) on the
+//! runs of [`VoxelGrid::voxels`]: one output point per occupied voxel, in Morton order of the
+//! voxels, either the centroid of the voxel's points with their attributes averaged, or the
+//! point nearest that centroid with its own attributes.
+
+use super::voxel::{Representative, Voxel, VoxelGrid};
+use super::{Attributes, Cloud, CloudError, Column};
+use crate::geom::Scalar;
+use crate::query::PointSet;
+
+impl VoxelGrid<3> {
+    /// The cloud downsampled to one point per occupied voxel (in Morton order of the voxels),
+    /// coordinates in the cloud's own frame as `f64`.
+    ///
+    /// # Errors
+    /// [`CloudError::ColumnLength`] for attribute columns of another length than the points;
+    /// as [`VoxelGrid::tree`] for points the grid's tree refuses.
+    ///
+    /// # Complexity
+    /// The tree's build, O(n log n), then O(n).
+    ///
+    /// ```
+    /// use orthtree::cloud::{voxel::{Representative, VoxelGrid}, Cloud};
+    /// let mut cloud = Cloud::from_points(vec![[0, 0, 0], [1, 1, 1], [2, 2, 2], [7, 7, 7]]);
+    /// cloud.attributes.intensity = Some(vec![10, 20, 31, 5]);
+    /// let grid = VoxelGrid::with_size(&cloud.points, 4.0).unwrap();
+    /// let mean = grid.downsample(&cloud, Representative::Centroid).unwrap();
+    /// assert_eq!(mean.points, [[1.0, 1.0, 1.0], [7.0, 7.0, 7.0]]);
+    /// assert_eq!(mean.attributes.intensity, Some(vec![20, 5])); // 61 / 3 rounded
+    /// let near = grid.downsample(&cloud, Representative::Nearest).unwrap();
+    /// assert_eq!(near.attributes.intensity, Some(vec![20, 5]));
+    /// ```
+    pub fn downsample<S: Scalar>(
+        &self,
+        cloud: &Cloud<S>,
+        representative: Representative,
+    ) -> Result<Cloud<f64>, CloudError> {
+        cloud.attributes.check(cloud.len())?;
+        let tree = self.tree(&cloud.entries()?)?;
+        let voxels = self.voxels(&tree)?;
+        let index = |slot: usize| tree.items()[slot] as usize;
+        // Plain sums: exact for integer coordinates (so ties in Nearest are true ties), and
+        // independent of the order of the voxel's points.
+        let centroid = |v: &Voxel<3>| {
+            let mut sum = [0.0f64; 3];
+            for p in &tree.points()[v.slots.clone()] {
+                for a in 0..3 {
+                    sum[a] += Scalar::to_f64(p[a]);
+                }
+            }
+            let n = v.slots.len() as f64;
+            sum.map(|s| s / n)
+        };
+        match representative {
+            Representative::Nearest => {
+                let mut chosen = Vec::with_capacity(voxels.len());
+                for v in &voxels {
+                    let c: [f64; 3] = centroid(v);
+                    let d2 = |slot: usize| -> f64 {
+                        let p = tree.points()[slot];
+                        (0..3).map(|a| (Scalar::to_f64(p[a]) - c[a]).powi(2)).sum()
+                    };
+                    let best = v
+                        .slots
+                        .clone()
+                        .min_by(|&s, &t| d2(s).total_cmp(&d2(t)).then(index(s).cmp(&index(t))))
+                        .expect("an occupied voxel has a point");
+                    chosen.push(index(best));
+                }
+                let picked = cloud.select(&chosen);
+                Ok(Cloud {
+                    points: picked
+                        .points
+                        .iter()
+                        .map(|p| p.map(Scalar::to_f64))
+                        .collect(),
+                    attributes: picked.attributes,
+                    frame: cloud.frame,
+                })
+            }
+            Representative::Centroid => {
+                let points = voxels.iter().map(centroid).collect();
+                let groups: Vec<Vec<usize>> = voxels
+                    .iter()
+                    .map(|v| v.slots.clone().map(index).collect())
+                    .collect();
+                Ok(Cloud {
+                    points,
+                    attributes: averaged(&cloud.attributes, &groups),
+                    frame: cloud.frame,
+                })
+            }
+        }
+    }
+}
+
+/// The attributes of each group of point indices, averaged as [`Representative::Centroid`]
+/// says.
+fn averaged(a: &Attributes, groups: &[Vec<usize>]) -> Attributes {
+    let mean = |g: &[usize], value: &dyn Fn(usize) -> f64| {
+        g.iter().map(|&i| value(i)).sum::<f64>() / g.len() as f64
+    };
+    let per_group = |f: &dyn Fn(&[usize]) -> f64| groups.iter().map(|g| f(g)).collect::<Vec<_>>();
+    Attributes {
+        intensity: a.intensity.as_ref().map(|c| {
+            let m = per_group(&|g| mean(g, &|i| f64::from(c[i])));
+            m.iter().map(|v| v.round() as u16).collect()
+        }),
+        classification: a.classification.as_ref().map(|c| {
+            groups
+                .iter()
+                .map(|g| {
+                    let mut counts = [0u32; 256];
+                    for &i in g {
+                        counts[c[i] as usize] += 1;
+                    }
+                    let top = *counts.iter().max().expect("256 counts");
+                    counts.iter().position(|&n| n == top).expect("the maximum") as u8
+                })
+                .collect()
+        }),
+        color: a.color.as_ref().map(|c| {
+            groups
+                .iter()
+                .map(|g| core::array::from_fn(|k| mean(g, &|i| f64::from(c[i][k])).round() as u16))
+                .collect()
+        }),
+        gps_time: a
+            .gps_time
+            .as_ref()
+            .map(|c| per_group(&|g| mean(g, &|i| c[i]))),
+        normal: a.normal.as_ref().map(|c| {
+            groups
+                .iter()
+                .map(|g| {
+                    let m: [f64; 3] = core::array::from_fn(|k| mean(g, &|i| f64::from(c[i][k])));
+                    let len = m.iter().map(|x| x * x).sum::<f64>().sqrt();
+                    let scale = if len > 0.0 { 1.0 / len } else { 0.0 };
+                    m.map(|x| (x * scale) as f32)
+                })
+                .collect()
+        }),
+        extra: a
+            .extra
+            .iter()
+            .map(|col| Column {
+                name: col.name.clone(),
+                values: per_group(&|g| mean(g, &|i| col.values[i])),
+            })
+            .collect(),
+    }
+}

@@ -1,0 +1,563 @@
+//! Point clouds as ASPRS LAS files (and LAZ, their compressed form, with the `laz` feature),
+//! through the `las` crate: every point record of formats 0-3 and 6-8 with all its fields.
+//!
+//! Coordinates stay the file's integers (a [`Cloud<i32>`]) with its scale and offset as the
+//! cloud's [`Frame`]; intensity, classification, GPS time and colour fill their columns and
+//! every other field an extra column: `return_number`, `number_of_returns`, `scan_direction`,
+//! `edge_of_flight_line`, `synthetic`, `key_point`, `withheld`, `user_data`,
+//! `point_source_id`, `scan_angle_rank` (formats 0-5) or `scan_angle`, `overlap` and
+//! `scanner_channel` (formats 6-10), `nir`, and `extra_byte_0`, `extra_byte_1`, ... for the
+//! extra bytes. [`write_to`] writes all of them back, choosing the point format the columns
+//! need, so a read and a write give the same records. Waveform formats (4, 5, 9, 10) are
+//! refused rather than read without their packets.
+//!
+//! Points are read in batches of at most 4 MiB: memory follows the points read, never the
+//! count the header claims; a file that ends early is refused, naming the point.
+//!
+//! ```
+//! use orthtree::cloud::{Cloud, Frame};
+//! use orthtree::io::las;
+//! let mut cloud = Cloud::from_points(vec![[1000, 2000, 30], [-5, 7, 0]]);
+//! cloud.frame = Frame { scale: [0.01; 3], offset: [500_000.0, 4_000_000.0, 0.0] };
+//! cloud.attributes.intensity = Some(vec![12, 34]);
+//! let bytes = las::write_to(&cloud, std::io::Cursor::new(Vec::new()), false).unwrap().into_inner();
+//! let back = las::read_from(std::io::Cursor::new(bytes)).unwrap();
+//! assert_eq!(back.points, cloud.points);
+//! assert_eq!(back.frame, cloud.frame);
+//! assert_eq!(back.attributes.intensity, Some(vec![12, 34]));
+//! ```
+
+use crate::cloud::{Attributes, Cloud, Column, Frame};
+use ::las::raw::point::{Flags, ScanAngle};
+use ::las::{point::Format, raw, Builder, PointDataBuilder, Reader, Transform, Vector, Writer};
+use core::fmt;
+use std::io::{Read, Seek, SeekFrom, Write};
+use std::path::Path;
+
+/// The most bytes of point records read at once.
+const BATCH_BYTES: usize = 1 << 22;
+
+/// Why a LAS file was refused or could not be written.
+#[derive(Debug)]
+#[non_exhaustive]
+pub enum LasError {
+    /// The `las` crate refused the file (its header, or a record at `point`).
+    Las {
+        /// The point being read, if the error came from the records.
+        point: Option<u64>,
+        /// The crate's message.
+        message: String,
+    },
+    /// The file ends inside point `point` of the `count` the header declares.
+    Truncated {
+        /// The first point missing or incomplete.
+        point: u64,
+        /// The points declared.
+        count: u64,
+        /// The file's length in bytes.
+        length: u64,
+    },
+    /// A point format with waveform packets (4, 5, 9, 10).
+    UnsupportedFormat(u8),
+    /// A column the LAS point records cannot hold (a PLY property, normals).
+    UnsupportedColumn(String),
+    /// A column the chosen point format needs (`gps_time` for formats 6-8, colour for `nir`).
+    MissingColumn(&'static str),
+    /// Point `point`'s value in `column` does not fit its LAS field.
+    BadValue {
+        /// The point.
+        point: usize,
+        /// The column.
+        column: String,
+        /// The value.
+        value: f64,
+    },
+    /// Reading or writing failed.
+    Io(std::io::Error),
+}
+
+impl fmt::Display for LasError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            LasError::Las {
+                point: Some(p),
+                message,
+            } => write!(f, "LAS point {p}: {message}"),
+            LasError::Las { point: None, message } => write!(f, "LAS: {message}"),
+            LasError::Truncated {
+                point,
+                count,
+                length,
+            } => write!(
+                f,
+                "LAS: the file ends (at byte offset {length}) inside point {point} of the {count} declared"
+            ),
+            LasError::UnsupportedFormat(n) => {
+                write!(f, "LAS: point format {n} carries waveforms, which are not read")
+            }
+            LasError::UnsupportedColumn(name) => {
+                write!(f, "LAS: column {name} has no field in a LAS point record")
+            }
+            LasError::MissingColumn(name) => {
+                write!(f, "LAS: the point format needs column {name}")
+            }
+            LasError::BadValue {
+                point,
+                column,
+                value,
+            } => write!(f, "LAS point {point}: {column} = {value} does not fit its field"),
+            LasError::Io(e) => write!(f, "LAS: {e}"),
+        }
+    }
+}
+
+impl std::error::Error for LasError {}
+
+impl From<std::io::Error> for LasError {
+    fn from(e: std::io::Error) -> Self {
+        LasError::Io(e)
+    }
+}
+
+fn las_error(point: Option<u64>) -> impl Fn(::las::Error) -> LasError {
+    move |e| LasError::Las {
+        point,
+        message: e.to_string(),
+    }
+}
+
+/// Reads the LAS (or, with the `laz` feature, LAZ) file at `path`.
+///
+/// # Errors
+/// As [`read_from`], and [`LasError::Io`] when the file cannot be opened.
+pub fn read(path: impl AsRef<Path>) -> Result<Cloud<i32>, LasError> {
+    read_from(std::io::BufReader::new(std::fs::File::open(path)?))
+}
+
+/// Reads a LAS (or LAZ) cloud from `input`, keeping the integer coordinates.
+///
+/// # Errors
+/// [`LasError::Las`] for a header or record the `las` crate refuses, [`LasError::Truncated`]
+/// naming the first missing point, [`LasError::UnsupportedFormat`] for waveform formats.
+///
+/// # Complexity
+/// O(n); memory is the cloud plus one batch of at most 4 MiB of records.
+pub fn read_from<R: Read + Seek + Send + Sync + 'static>(
+    mut input: R,
+) -> Result<Cloud<i32>, LasError> {
+    let length = input.seek(SeekFrom::End(0))?;
+    input.seek(SeekFrom::Start(0))?;
+    let mut reader = Reader::new(input).map_err(las_error(None))?;
+    let header = reader.header().clone();
+    let format = *header.point_format();
+    if format.has_waveform {
+        return Err(LasError::UnsupportedFormat(format.to_u8().unwrap_or(4)));
+    }
+    let t = header.transforms();
+    let mut cloud = Cloud {
+        points: Vec::new(),
+        attributes: Fields::new(&format).attributes(),
+        frame: Frame {
+            scale: [t.x.scale, t.y.scale, t.z.scale],
+            offset: [t.x.offset, t.y.offset, t.z.offset],
+        },
+    };
+    let fields = Fields::new(&format);
+    let count = header.number_of_points();
+    let record = usize::from(format.len());
+    let batch = (BATCH_BYTES / record.max(1)).max(1) as u64;
+    let mut data = PointDataBuilder::new().for_header(&header).build();
+    let mut done = 0u64;
+    while done < count {
+        let want = batch.min(count - done);
+        match reader.fill_points(want, &mut data) {
+            Ok(got) if got == want => {}
+            Ok(_) | Err(::las::Error::Io(_)) => {
+                // Find the first point that cannot be read, one at a time.
+                reader.seek(done).map_err(las_error(Some(done)))?;
+                let mut point = done;
+                while reader.fill_points(1, &mut data).is_ok_and(|n| n == 1) {
+                    point += 1;
+                }
+                return Err(LasError::Truncated {
+                    point,
+                    count,
+                    length,
+                });
+            }
+            Err(e) => return Err(las_error(Some(done))(e)),
+        }
+        for (i, bytes) in data.raw_bytes().chunks_exact(record).enumerate() {
+            let p =
+                raw::Point::read_from(bytes, &format).map_err(las_error(Some(done + i as u64)))?;
+            fields.push(&p, &mut cloud);
+        }
+        done += want;
+    }
+    Ok(cloud)
+}
+
+/// The columns of a point format.
+struct Fields {
+    extended: bool,
+    extra_bytes: usize,
+}
+
+/// The extra columns of legacy formats (0-5), in order.
+const LEGACY: [&str; 10] = [
+    "return_number",
+    "number_of_returns",
+    "scan_direction",
+    "edge_of_flight_line",
+    "synthetic",
+    "key_point",
+    "withheld",
+    "scan_angle_rank",
+    "user_data",
+    "point_source_id",
+];
+
+/// The extra columns of extended formats (6-10), in order.
+const EXTENDED: [&str; 12] = [
+    "return_number",
+    "number_of_returns",
+    "scan_direction",
+    "edge_of_flight_line",
+    "synthetic",
+    "key_point",
+    "withheld",
+    "overlap",
+    "scanner_channel",
+    "scan_angle",
+    "user_data",
+    "point_source_id",
+];
+
+impl Fields {
+    fn new(format: &Format) -> Fields {
+        Fields {
+            extended: format.is_extended,
+            extra_bytes: usize::from(format.extra_bytes),
+        }
+    }
+
+    fn names(&self) -> &'static [&'static str] {
+        if self.extended {
+            &EXTENDED
+        } else {
+            &LEGACY
+        }
+    }
+
+    fn attributes(&self) -> Attributes {
+        Attributes {
+            intensity: Some(Vec::new()),
+            classification: Some(Vec::new()),
+            ..Attributes::default()
+        }
+    }
+
+    /// Appends one record's fields to the cloud, creating the optional columns on the first.
+    fn push(&self, p: &raw::Point, cloud: &mut Cloud<i32>) {
+        let a = &mut cloud.attributes;
+        if cloud.points.is_empty() {
+            if p.gps_time.is_some() {
+                a.gps_time = Some(Vec::new());
+            }
+            if p.color.is_some() {
+                a.color = Some(Vec::new());
+            }
+            let mut names: Vec<String> = self.names().iter().map(|s| s.to_string()).collect();
+            if p.nir.is_some() {
+                names.push("nir".into());
+            }
+            names.extend((0..self.extra_bytes).map(|i| format!("extra_byte_{i}")));
+            a.extra = names
+                .into_iter()
+                .map(|name| Column {
+                    name,
+                    values: Vec::new(),
+                })
+                .collect();
+        }
+        cloud.points.push([p.x, p.y, p.z]);
+        let bit = |b: u8, i: u32| f64::from((b >> i) & 1);
+        let (class, mut values): (u8, Vec<f64>) = match (p.flags, p.scan_angle) {
+            (Flags::TwoByte(r, c), ScanAngle::Rank(angle)) => (
+                c & 0x1f,
+                vec![
+                    f64::from(r & 7),
+                    f64::from((r >> 3) & 7),
+                    bit(r, 6),
+                    bit(r, 7),
+                    bit(c, 5),
+                    bit(c, 6),
+                    bit(c, 7),
+                    f64::from(angle),
+                ],
+            ),
+            (Flags::ThreeByte(r, f, c), angle) => (
+                c,
+                vec![
+                    f64::from(r & 15),
+                    f64::from(r >> 4),
+                    bit(f, 6),
+                    bit(f, 7),
+                    bit(f, 0),
+                    bit(f, 1),
+                    bit(f, 2),
+                    bit(f, 3),
+                    f64::from((f >> 4) & 3),
+                    match angle {
+                        ScanAngle::Scaled(s) => f64::from(s),
+                        ScanAngle::Rank(r) => f64::from(r),
+                    },
+                ],
+            ),
+            (Flags::TwoByte(r, c), ScanAngle::Scaled(s)) => (
+                c & 0x1f,
+                vec![
+                    f64::from(r & 7),
+                    f64::from((r >> 3) & 7),
+                    bit(r, 6),
+                    bit(r, 7),
+                    bit(c, 5),
+                    bit(c, 6),
+                    bit(c, 7),
+                    f64::from(s),
+                ],
+            ),
+        };
+        values.push(f64::from(p.user_data));
+        values.push(f64::from(p.point_source_id));
+        if let Some(nir) = p.nir {
+            values.push(f64::from(nir));
+        }
+        values.extend(p.extra_bytes.iter().map(|&b| f64::from(b)));
+        a.intensity.as_mut().expect("created").push(p.intensity);
+        a.classification.as_mut().expect("created").push(class);
+        if let (Some(col), Some(t)) = (a.gps_time.as_mut(), p.gps_time) {
+            col.push(t);
+        }
+        if let (Some(col), Some(c)) = (a.color.as_mut(), p.color) {
+            col.push([c.red, c.green, c.blue]);
+        }
+        for (col, v) in a.extra.iter_mut().zip(values) {
+            col.values.push(v);
+        }
+    }
+}
+
+/// Writes `cloud` as a LAS 1.4 file at `path` (LAZ when `compressed`, with the `laz` feature).
+///
+/// # Errors
+/// As [`write_to`], and [`LasError::Io`] when the file cannot be created.
+pub fn write(cloud: &Cloud<i32>, path: impl AsRef<Path>, compressed: bool) -> Result<(), LasError> {
+    let file = std::io::BufWriter::new(std::fs::File::create(path)?);
+    write_to(cloud, file, compressed)?;
+    Ok(())
+}
+
+/// Writes `cloud` as LAS 1.4 to `out` and returns it: point format 0-3 (by GPS time and
+/// colour), or 6-8 when the cloud has columns only those formats hold (`overlap`,
+/// `scanner_channel`, `scan_angle`, `nir`); missing flag columns are 0, a missing
+/// classification 0 and a missing intensity 0.
+///
+/// # Errors
+/// [`LasError::UnsupportedColumn`] for a column no LAS field holds,
+/// [`LasError::MissingColumn`] for one the format needs, [`LasError::BadValue`] naming the point
+/// and column of a value that does not fit its field, [`LasError::Las`] and
+/// [`LasError::Io`] when writing fails.
+///
+/// # Complexity
+/// O(n) time; the records are encoded in batches of 4 MiB.
+pub fn write_to<W: Write + Seek + Send + Sync + 'static>(
+    cloud: &Cloud<i32>,
+    out: W,
+    compressed: bool,
+) -> Result<W, LasError> {
+    let a = &cloud.attributes;
+    cloud
+        .attributes
+        .check(cloud.len())
+        .map_err(|e| LasError::UnsupportedColumn(e.to_string()))?;
+    if a.normal.is_some() {
+        return Err(LasError::UnsupportedColumn("normal".into()));
+    }
+    let has = |n: &str| a.extra.iter().any(|c| c.name == n);
+    let extended = ["overlap", "scanner_channel", "scan_angle", "nir"]
+        .iter()
+        .any(|n| has(n));
+    let extra_bytes = a
+        .extra
+        .iter()
+        .filter(|c| c.name.starts_with("extra_byte_"))
+        .count();
+    let fields = Fields {
+        extended,
+        extra_bytes,
+    };
+    let mut known: Vec<String> = fields.names().iter().map(|s| s.to_string()).collect();
+    known.push("nir".into());
+    known.extend((0..extra_bytes).map(|i| format!("extra_byte_{i}")));
+    if let Some(c) = a.extra.iter().find(|c| !known.contains(&c.name)) {
+        return Err(LasError::UnsupportedColumn(c.name.clone()));
+    }
+    let number = match (
+        extended,
+        a.gps_time.is_some(),
+        a.color.is_some(),
+        has("nir"),
+    ) {
+        (false, false, false, _) => 0,
+        (false, true, false, _) => 1,
+        (false, false, true, _) => 2,
+        (false, true, true, _) => 3,
+        (true, false, _, _) => return Err(LasError::MissingColumn("gps_time")),
+        (true, true, false, false) => 6,
+        (true, true, true, false) => 7,
+        (true, true, true, true) => 8,
+        (true, true, false, true) => return Err(LasError::MissingColumn("color")),
+    };
+    let mut format = Format::new(number).map_err(las_error(None))?;
+    format.extra_bytes = extra_bytes as u16;
+    format.is_compressed = compressed;
+    let mut builder = Builder::from((1, 4));
+    builder.point_format = format;
+    let (s, o) = (cloud.frame.scale, cloud.frame.offset);
+    builder.transforms = Vector {
+        x: Transform {
+            scale: s[0],
+            offset: o[0],
+        },
+        y: Transform {
+            scale: s[1],
+            offset: o[1],
+        },
+        z: Transform {
+            scale: s[2],
+            offset: o[2],
+        },
+    };
+    let header = builder.into_header().map_err(las_error(None))?;
+    let transforms = *header.transforms();
+    let mut writer = Writer::new(out, header).map_err(las_error(None))?;
+    let column = |name: &str| {
+        a.extra
+            .iter()
+            .find(|c| c.name == name)
+            .map(|c| &c.values[..])
+    };
+    let cols: Vec<Option<&[f64]>> = fields.names().iter().map(|n| column(n)).collect();
+    let nir = column("nir");
+    let extra: Vec<&[f64]> = (0..extra_bytes)
+        .map(|i| column(&format!("extra_byte_{i}")).expect("checked above"))
+        .collect();
+    let record = usize::from(format.len());
+    let batch = (BATCH_BYTES / record).max(1);
+    let mut bytes = Vec::new();
+    for start in (0..cloud.len()).step_by(batch) {
+        bytes.clear();
+        for i in start..(start + batch).min(cloud.len()) {
+            let value = |k: usize, max: f64, min: f64| -> Result<f64, LasError> {
+                let v = cols[k].map_or(0.0, |c| c[i]);
+                if v >= min && v <= max && v.fract() == 0.0 {
+                    Ok(v)
+                } else {
+                    Err(LasError::BadValue {
+                        point: i,
+                        column: fields.names()[k].to_string(),
+                        value: v,
+                    })
+                }
+            };
+            let class = a.classification.as_ref().map_or(0, |c| c[i]);
+            let (flags, scan_angle, rest) = if extended {
+                let r = value(0, 15.0, 0.0)? as u8 | ((value(1, 15.0, 0.0)? as u8) << 4);
+                let mut f = 0u8;
+                for (k, bit) in [(4, 0), (5, 1), (6, 2), (7, 3), (2, 6), (3, 7)] {
+                    f |= (value(k, 1.0, 0.0)? as u8) << bit;
+                }
+                f |= (value(8, 3.0, 0.0)? as u8) << 4;
+                let angle = value(9, 32767.0, -32768.0)? as i16;
+                (Flags::ThreeByte(r, f, class), ScanAngle::Scaled(angle), 10)
+            } else {
+                if class > 31 {
+                    return Err(LasError::BadValue {
+                        point: i,
+                        column: "classification".into(),
+                        value: f64::from(class),
+                    });
+                }
+                let mut r = value(0, 7.0, 0.0)? as u8 | ((value(1, 7.0, 0.0)? as u8) << 3);
+                r |= (value(2, 1.0, 0.0)? as u8) << 6 | (value(3, 1.0, 0.0)? as u8) << 7;
+                let mut c = class;
+                for (k, bit) in [(4, 5), (5, 6), (6, 7)] {
+                    c |= (value(k, 1.0, 0.0)? as u8) << bit;
+                }
+                let angle = value(7, 127.0, -128.0)? as i8;
+                (Flags::TwoByte(r, c), ScanAngle::Rank(angle), 8)
+            };
+            let nir_value = match nir {
+                Some(c) if (0.0..=65535.0).contains(&c[i]) && c[i].fract() == 0.0 => {
+                    Some(c[i] as u16)
+                }
+                Some(c) => {
+                    return Err(LasError::BadValue {
+                        point: i,
+                        column: "nir".into(),
+                        value: c[i],
+                    })
+                }
+                None => None,
+            };
+            let extra_bytes = extra
+                .iter()
+                .map(|c| {
+                    let v = c[i];
+                    if (0.0..=255.0).contains(&v) && v.fract() == 0.0 {
+                        Ok(v as u8)
+                    } else {
+                        Err(LasError::BadValue {
+                            point: i,
+                            column: "extra_byte".into(),
+                            value: v,
+                        })
+                    }
+                })
+                .collect::<Result<Vec<u8>, _>>()?;
+            let p = raw::Point {
+                x: cloud.points[i][0],
+                y: cloud.points[i][1],
+                z: cloud.points[i][2],
+                intensity: a.intensity.as_ref().map_or(0, |c| c[i]),
+                flags,
+                scan_angle,
+                user_data: value(rest, 255.0, 0.0)? as u8,
+                point_source_id: value(rest + 1, 65535.0, 0.0)? as u16,
+                gps_time: a.gps_time.as_ref().map(|c| c[i]),
+                color: a.color.as_ref().map(|c| ::las::Color {
+                    red: c[i][0],
+                    green: c[i][1],
+                    blue: c[i][2],
+                }),
+                waveform: None,
+                nir: nir_value,
+                extra_bytes,
+            };
+            p.write_to(&mut bytes, &format)
+                .map_err(las_error(Some(i as u64)))?;
+        }
+        let mut slab_format = format;
+        slab_format.is_compressed = false;
+        let data = PointDataBuilder::new()
+            .with_format(slab_format)
+            .with_transforms(transforms)
+            .build_from_bytes(std::mem::take(&mut bytes))
+            .map_err(las_error(Some(start as u64)))?;
+        writer
+            .write_points(&data)
+            .map_err(las_error(Some(start as u64)))?;
+    }
+    writer.into_inner().map_err(las_error(None))
+}

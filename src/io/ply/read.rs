@@ -1,0 +1,222 @@
+//! The PLY body: vertices read one at a time (a line of ASCII or one binary record) into the
+//! cloud's columns, each value converted exactly or refused.
+
+use super::header::{quote, read_header, Header};
+use super::{Encoding, Kind, PlyError};
+use crate::cloud::{Cloud, Frame};
+use crate::geom::Scalar;
+use crate::io::columns::Columns;
+use std::io::{BufRead, BufReader, Read};
+
+/// The longest ASCII vertex line read.
+const MAX_LINE_BYTES: usize = 1 << 16;
+
+/// Reads a PLY point cloud from `input` (buffered here), its positions converted exactly to
+/// `S`.
+///
+/// # Errors
+/// [`PlyError`]: a header that breaks the grammar (naming the line), a missing `x`, `y` or
+/// `z`, a malformed value (line and field), a truncated body or data after it (byte offset),
+/// a value that does not fit `S` or its attribute column exactly (vertex and property), or an
+/// I/O error.
+///
+/// # Complexity
+/// O(n) time; memory grows with the vertices read, never with the count the header claims.
+pub fn read<S: Scalar>(input: impl Read) -> Result<Cloud<S>, PlyError> {
+    let mut reader = BufReader::with_capacity(1 << 16, input);
+    let header = read_header(&mut reader)?;
+    let names: Vec<&str> = header.properties.iter().map(|(n, _)| n.as_str()).collect();
+    let columns = Columns::new(&names);
+    let mut cloud = Cloud {
+        points: Vec::new(),
+        attributes: columns.attributes(),
+        frame: header.frame.unwrap_or(Frame::IDENTITY),
+    };
+    let mut values = vec![0.0f64; header.properties.len()];
+    match header.encoding {
+        Encoding::Ascii => read_ascii(&mut reader, &header, &columns, &mut values, &mut cloud)?,
+        Encoding::BinaryLittleEndian | Encoding::BinaryBigEndian => {
+            read_binary(&mut reader, &header, &columns, &mut values, &mut cloud)?
+        }
+    }
+    Ok(cloud)
+}
+
+fn read_ascii<S: Scalar>(
+    reader: &mut impl BufRead,
+    header: &Header,
+    columns: &Columns,
+    values: &mut [f64],
+    cloud: &mut Cloud<S>,
+) -> Result<(), PlyError> {
+    let mut offset = header.bytes;
+    let mut line = Vec::new();
+    for vertex in 0..header.count {
+        line.clear();
+        let n = reader
+            .by_ref()
+            .take(MAX_LINE_BYTES as u64)
+            .read_until(b'\n', &mut line)?;
+        let line_no = header.lines + 1 + vertex as usize;
+        if n == 0 {
+            return Err(PlyError::Truncated {
+                vertex,
+                count: header.count,
+                offset,
+            });
+        }
+        offset += n as u64;
+        if n == MAX_LINE_BYTES && line.last() != Some(&b'\n') {
+            return Err(PlyError::BadValue {
+                line: line_no,
+                field: 1,
+                property: header.properties[0].0.clone(),
+                text: format!("(a line longer than {MAX_LINE_BYTES} bytes)"),
+            });
+        }
+        let text = core::str::from_utf8(&line).map_err(|_| PlyError::BadValue {
+            line: line_no,
+            field: 1,
+            property: header.properties[0].0.clone(),
+            text: "(not ASCII)".into(),
+        })?;
+        let mut found = 0;
+        for (field, word) in text.split_ascii_whitespace().enumerate() {
+            if field >= values.len() {
+                found = field + 1;
+                continue;
+            }
+            found = field + 1;
+            let (name, kind) = &header.properties[field];
+            values[field] = parse(word, *kind).ok_or_else(|| PlyError::BadValue {
+                line: line_no,
+                field: field + 1,
+                property: name.clone(),
+                text: quote(word),
+            })?;
+        }
+        if found != values.len() {
+            return Err(PlyError::FieldCount {
+                line: line_no,
+                found,
+                expected: values.len(),
+            });
+        }
+        columns.push(values, cloud).map_err(|i| PlyError::Inexact {
+            vertex,
+            property: header.properties[i].0.clone(),
+            value: values[i],
+        })?;
+    }
+    // Only white space may follow.
+    loop {
+        let buf = reader.fill_buf()?;
+        if buf.is_empty() {
+            return Ok(());
+        }
+        if let Some(p) = buf.iter().position(|b| !b.is_ascii_whitespace()) {
+            return Err(PlyError::TrailingData {
+                offset: offset + p as u64,
+            });
+        }
+        let n = buf.len();
+        offset += n as u64;
+        reader.consume(n);
+    }
+}
+
+/// An ASCII value of type `kind`, or `None` when malformed or out of range.
+fn parse(word: &str, kind: Kind) -> Option<f64> {
+    match kind {
+        Kind::F32 => word.parse::<f32>().ok().map(f64::from),
+        Kind::F64 => word.parse::<f64>().ok(),
+        _ => {
+            let v: i64 = word.parse().ok()?;
+            let (lo, hi) = match kind {
+                Kind::I8 => (i8::MIN as i64, i8::MAX as i64),
+                Kind::U8 => (0, u8::MAX as i64),
+                Kind::I16 => (i16::MIN as i64, i16::MAX as i64),
+                Kind::U16 => (0, u16::MAX as i64),
+                Kind::I32 => (i32::MIN as i64, i32::MAX as i64),
+                _ => (0, u32::MAX as i64),
+            };
+            (lo..=hi).contains(&v).then_some(v as f64)
+        }
+    }
+}
+
+fn read_binary<S: Scalar>(
+    reader: &mut impl BufRead,
+    header: &Header,
+    columns: &Columns,
+    values: &mut [f64],
+    cloud: &mut Cloud<S>,
+) -> Result<(), PlyError> {
+    let stride: usize = header.properties.iter().map(|(_, k)| k.size()).sum();
+    let little = header.encoding == Encoding::BinaryLittleEndian;
+    let mut record = vec![0u8; stride];
+    let mut offset = header.bytes;
+    for vertex in 0..header.count {
+        let got = fill(reader, &mut record)?;
+        if got < stride {
+            return Err(PlyError::Truncated {
+                vertex,
+                count: header.count,
+                offset: offset + got as u64,
+            });
+        }
+        offset += stride as u64;
+        let mut at = 0;
+        for (i, (_, kind)) in header.properties.iter().enumerate() {
+            values[i] = decode(&record[at..at + kind.size()], *kind, little);
+            at += kind.size();
+        }
+        columns.push(values, cloud).map_err(|i| PlyError::Inexact {
+            vertex,
+            property: header.properties[i].0.clone(),
+            value: values[i],
+        })?;
+    }
+    if !reader.fill_buf()?.is_empty() {
+        return Err(PlyError::TrailingData { offset });
+    }
+    Ok(())
+}
+
+/// Reads into `buf` until it is full or the input ends; the bytes read.
+fn fill(reader: &mut impl Read, buf: &mut [u8]) -> std::io::Result<usize> {
+    let mut got = 0;
+    while got < buf.len() {
+        match reader.read(&mut buf[got..]) {
+            Ok(0) => break,
+            Ok(n) => got += n,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(got)
+}
+
+/// A binary value of type `kind` from its bytes.
+fn decode(b: &[u8], kind: Kind, little: bool) -> f64 {
+    macro_rules! num {
+        ($t:ty, $n:expr) => {{
+            let a: [u8; $n] = b.try_into().expect("the record is cut by the kinds' sizes");
+            (if little {
+                <$t>::from_le_bytes(a)
+            } else {
+                <$t>::from_be_bytes(a)
+            }) as f64
+        }};
+    }
+    match kind {
+        Kind::I8 => num!(i8, 1),
+        Kind::U8 => num!(u8, 1),
+        Kind::I16 => num!(i16, 2),
+        Kind::U16 => num!(u16, 2),
+        Kind::I32 => num!(i32, 4),
+        Kind::U32 => num!(u32, 4),
+        Kind::F32 => num!(f32, 4),
+        Kind::F64 => num!(f64, 8),
+    }
+}

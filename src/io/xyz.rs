@@ -1,0 +1,277 @@
+//! Point clouds as XYZ / CSV text: one point a line, fields separated by commas, spaces or
+//! tabs, `#` starting a comment. A first line of names (`x,y,z,intensity,...`) says what each
+//! column is, with the names of the PLY reader ([`crate::io::ply`]); without one, the first
+//! three columns are `x y z` and the others extra columns `column4`, `column5`, ...
+//!
+//! Every line has the same number of fields; a field that is not a number, or a value that
+//! does not fit its column exactly, is refused with its line and field. Memory grows with the
+//! points read.
+//!
+//! ```
+//! use orthtree::cloud::Cloud;
+//! use orthtree::io::xyz;
+//! let text = "x,y,z,intensity\n0.5,1,2,7\n# a comment\n3,4,5.25,9\n";
+//! let cloud: Cloud<f64> = xyz::read(text.as_bytes()).unwrap();
+//! assert_eq!(cloud.points, [[0.5, 1.0, 2.0], [3.0, 4.0, 5.25]]);
+//! assert_eq!(cloud.attributes.intensity, Some(vec![7, 9]));
+//! let mut out = Vec::new();
+//! xyz::write(&cloud, &mut out).unwrap();
+//! assert_eq!(xyz::read::<f64>(&out[..]).unwrap(), cloud);
+//! let err = xyz::read::<f64>("1 2 3\n4 five 6\n".as_bytes()).unwrap_err();
+//! assert_eq!(err.to_string(), "XYZ line 2, field 2: \"five\" is not a number");
+//! ```
+
+use crate::cloud::Cloud;
+use crate::geom::Scalar;
+use crate::io::columns::{attribute_names, row, Columns};
+use core::fmt;
+use std::io::{BufRead, BufReader, BufWriter, Read, Write};
+
+/// The longest line read.
+pub const MAX_LINE_BYTES: usize = 1 << 16;
+
+/// Why an XYZ/CSV file was refused, naming the line (1-based) and field (1-based).
+#[derive(Debug)]
+#[non_exhaustive]
+pub enum XyzError {
+    /// Reading or writing failed.
+    Io(std::io::Error),
+    /// A field is not a number.
+    NotANumber {
+        /// The line.
+        line: usize,
+        /// The field.
+        field: usize,
+        /// The text (cut after 32 characters).
+        text: String,
+    },
+    /// A line has another number of fields than the first.
+    FieldCount {
+        /// The line.
+        line: usize,
+        /// Its fields.
+        found: usize,
+        /// The fields of the first line.
+        expected: usize,
+    },
+    /// The names lack `x`, `y` or `z`, or have fewer than three columns.
+    MissingColumn {
+        /// The column missing.
+        name: &'static str,
+    },
+    /// A value does not fit its column exactly (a coordinate of an integer cloud with a
+    /// fraction, an intensity above 65535, ...).
+    Inexact {
+        /// The line.
+        line: usize,
+        /// The field.
+        field: usize,
+        /// The value.
+        value: f64,
+    },
+    /// A line is longer than [`MAX_LINE_BYTES`] or not UTF-8.
+    BadLine {
+        /// The line.
+        line: usize,
+    },
+}
+
+impl fmt::Display for XyzError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            XyzError::Io(e) => write!(f, "XYZ: {e}"),
+            XyzError::NotANumber { line, field, text } => {
+                write!(
+                    f,
+                    "XYZ line {line}, field {field}: {text:?} is not a number"
+                )
+            }
+            XyzError::FieldCount {
+                line,
+                found,
+                expected,
+            } => write!(
+                f,
+                "XYZ line {line}: {found} fields where the first line has {expected}"
+            ),
+            XyzError::MissingColumn { name } => write!(f, "XYZ: no column {name}"),
+            XyzError::Inexact { line, field, value } => write!(
+                f,
+                "XYZ line {line}, field {field}: {value} does not fit its column exactly"
+            ),
+            XyzError::BadLine { line } => write!(
+                f,
+                "XYZ line {line}: not UTF-8 or longer than {MAX_LINE_BYTES} bytes"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for XyzError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            XyzError::Io(e) => Some(e),
+            _ => None,
+        }
+    }
+}
+
+impl From<std::io::Error> for XyzError {
+    fn from(e: std::io::Error) -> Self {
+        XyzError::Io(e)
+    }
+}
+
+fn fields(line: &str) -> impl Iterator<Item = &str> {
+    line.split(|c: char| c == ',' || c.is_ascii_whitespace())
+        .filter(|f| !f.is_empty())
+}
+
+/// Reads an XYZ/CSV cloud from `input` (buffered here), coordinates converted exactly to `S`.
+///
+/// # Errors
+/// [`XyzError`] naming the line and field of a field that is not a number, a value that does
+/// not fit its column, a line with another number of fields than the first, a missing `x`,
+/// `y` or `z` name, or an I/O error.
+///
+/// # Complexity
+/// O(n) time; memory grows with the points read.
+pub fn read<S: Scalar>(input: impl Read) -> Result<Cloud<S>, XyzError> {
+    let mut reader = BufReader::with_capacity(1 << 16, input);
+    let mut buf = Vec::new();
+    let mut line_no = 0;
+    let mut layout: Option<Columns> = None;
+    let mut cloud = Cloud::from_points(Vec::new());
+    let mut values: Vec<f64> = Vec::new();
+    loop {
+        buf.clear();
+        let n = reader
+            .by_ref()
+            .take(MAX_LINE_BYTES as u64)
+            .read_until(b'\n', &mut buf)?;
+        if n == 0 {
+            break;
+        }
+        line_no += 1;
+        if n == MAX_LINE_BYTES && buf.last() != Some(&b'\n') {
+            return Err(XyzError::BadLine { line: line_no });
+        }
+        let text = core::str::from_utf8(&buf).map_err(|_| XyzError::BadLine { line: line_no })?;
+        let text = text.split('#').next().unwrap_or("");
+        if text.trim().is_empty() {
+            continue;
+        }
+        let Some(columns) = &layout else {
+            let first: Vec<&str> = fields(text).collect();
+            let numeric = first[0].parse::<f64>().is_ok();
+            let names: Vec<String> = if numeric {
+                (0..first.len())
+                    .map(|i| match i {
+                        0 => "x".to_string(),
+                        1 => "y".to_string(),
+                        2 => "z".to_string(),
+                        _ => format!("column{}", i + 1),
+                    })
+                    .collect()
+            } else {
+                first.iter().map(|s| s.to_string()).collect()
+            };
+            for name in ["x", "y", "z"] {
+                if !names.iter().any(|n| n == name) {
+                    return Err(XyzError::MissingColumn { name });
+                }
+            }
+            let names: Vec<&str> = names.iter().map(String::as_str).collect();
+            let columns = Columns::new(&names);
+            cloud.attributes = columns.attributes();
+            values = vec![0.0; names.len()];
+            layout = Some(columns);
+            if !numeric {
+                continue;
+            }
+            push_line(
+                text,
+                line_no,
+                &mut values,
+                layout.as_ref().expect("set"),
+                &mut cloud,
+            )?;
+            continue;
+        };
+        push_line(text, line_no, &mut values, columns, &mut cloud)?;
+    }
+    Ok(cloud)
+}
+
+fn push_line<S: Scalar>(
+    text: &str,
+    line: usize,
+    values: &mut [f64],
+    columns: &Columns,
+    cloud: &mut Cloud<S>,
+) -> Result<(), XyzError> {
+    let mut found = 0;
+    for (i, word) in fields(text).enumerate() {
+        found = i + 1;
+        if i < values.len() {
+            values[i] = word.parse().map_err(|_| XyzError::NotANumber {
+                line,
+                field: i + 1,
+                text: word.chars().take(32).collect(),
+            })?;
+        }
+    }
+    if found != values.len() {
+        return Err(XyzError::FieldCount {
+            line,
+            found,
+            expected: values.len(),
+        });
+    }
+    columns.push(values, cloud).map_err(|i| XyzError::Inexact {
+        line,
+        field: i + 1,
+        value: values[i],
+    })
+}
+
+/// Writes `cloud` as CSV to `out` (buffered here): a line of names (`x,y,z` and the present
+/// attribute columns, named as [`read`] reads them), then one point a line, each value in the
+/// shortest text that reads back to it. The frame is not written: write world coordinates
+/// ([`Cloud::world_points`]) or use PLY to keep it.
+///
+/// # Errors
+/// [`XyzError::Io`] when writing fails.
+///
+/// # Panics
+/// When an attribute column is shorter than the points ([`Cloud::check`] tells first).
+///
+/// # Complexity
+/// O(n) time, O(1) memory beyond the buffer.
+pub fn write<S: Scalar>(cloud: &Cloud<S>, out: impl Write) -> Result<(), XyzError> {
+    let mut w = BufWriter::with_capacity(1 << 16, out);
+    let mut names = vec!["x".to_string(), "y".to_string(), "z".to_string()];
+    names.extend(
+        attribute_names(&cloud.attributes)
+            .into_iter()
+            .map(|(n, _)| n),
+    );
+    writeln!(w, "{}", names.join(","))?;
+    let mut values = Vec::new();
+    let mut line = String::new();
+    for i in 0..cloud.len() {
+        row(cloud, i, &mut values);
+        line.clear();
+        for (j, v) in values.iter().enumerate() {
+            use core::fmt::Write as _;
+            if j > 0 {
+                line.push(',');
+            }
+            let _ = write!(line, "{v}");
+        }
+        line.push('\n');
+        w.write_all(line.as_bytes())?;
+    }
+    w.flush()?;
+    Ok(())
+}
