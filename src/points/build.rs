@@ -97,6 +97,12 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
         self
     }
 
+    /// The root box, bucket size and maximum depth set (the distributed build reads them).
+    #[cfg(feature = "mpi")]
+    pub(crate) fn settings(&self) -> (Option<Aabb<S, D>>, usize, Option<u8>) {
+        (self.root, self.bucket_size, self.max_depth)
+    }
+
     /// Builds from a slice of (point, item) pairs, cloning the items.
     ///
     /// # Errors
@@ -218,7 +224,7 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
     }
 
     /// Checks the settings for `n` points; returns the root box given, if any, as `f64`.
-    pub(super) fn check_settings(&self, n: usize) -> Result<Option<Aabb<f64, D>>, Error> {
+    pub(crate) fn check_settings(&self, n: usize) -> Result<Option<Aabb<f64, D>>, Error> {
         if self.bucket_size == 0 {
             return Err(Error::ZeroBucketSize);
         }
@@ -241,7 +247,7 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
 
     /// Checks the points with indices in `range` (finite, inside `root` when given) and returns
     /// their bounding box (min above max for an empty range).
-    pub(super) fn scan<'p>(
+    pub(crate) fn scan<'p>(
         &self,
         root: Option<&Aabb<f64, D>>,
         range: core::ops::Range<usize>,
@@ -260,7 +266,7 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
 
 /// The number of low key bits [`pack`] gives to the index for `n` points: enough for `n - 1`.
 #[inline]
-pub(super) fn index_bits(n: usize) -> u32 {
+pub(crate) fn index_bits(n: usize) -> u32 {
     (usize::BITS - n.saturating_sub(1).leading_zeros()).max(1)
 }
 
@@ -270,7 +276,7 @@ pub(super) fn index_bits(n: usize) -> u32 {
 /// ([`order_by_full_keys`]): with 2^bits >= n they are rare unless the points crowd into cells
 /// deeper than (64 - bits) / D levels.
 #[inline]
-pub(super) fn pack(key: u64, index: usize, bits: u32) -> u64 {
+pub(crate) fn pack(key: u64, index: usize, bits: u32) -> u64 {
     (key >> bits << bits) | index as u64
 }
 
@@ -284,7 +290,7 @@ pub(super) fn later_index(packed: &[u64], j: usize, bits: u32) -> usize {
 
 /// The input index of a [`pack`]ed key.
 #[inline]
-pub(super) fn unpack_index(packed: u64, bits: u32) -> usize {
+pub(crate) fn unpack_index(packed: u64, bits: u32) -> usize {
     (packed & ((1u64 << bits) - 1)) as usize
 }
 
@@ -292,7 +298,7 @@ pub(super) fn unpack_index(packed: u64, bits: u32) -> usize {
 /// index bits into (full key, input index) order; a run of copies of one point, the common
 /// case, is already in input order and is only compared. O(n) plus O(r log r) per run of r
 /// distinct points.
-pub(super) fn order_by_full_keys<S: Scalar, T, const D: usize>(
+pub(crate) fn order_by_full_keys<S: Scalar, T, const D: usize>(
     geometry: &RootGeometry<D>,
     packed: &mut [u64],
     bits: u32,
@@ -356,7 +362,7 @@ pub(super) fn key_pair<S: Scalar, const D: usize>(
 /// The root geometry and the domain points must lie in: the root box given, or the smallest
 /// enclosing cube of the points' `bounds` (the unit box when there are no points: the chapter's
 /// linear scan of the extreme points gives `bounds`).
-pub(super) fn settle<const D: usize>(
+pub(crate) fn settle<const D: usize>(
     root: Option<Aabb<f64, D>>,
     bounds: Aabb<f64, D>,
     n: usize,

@@ -31,6 +31,11 @@ use crate::tree::{BalanceOptions, NodeId, Tree};
 #[cfg(feature = "saved")]
 pub(crate) use raw::{PointTreeParts, PointTreeView};
 pub(crate) use runs::Runs;
+#[cfg(feature = "mpi")]
+pub(crate) use {
+    build::{index_bits, order_by_full_keys, pack, settle},
+    radix::sort_keyed,
+};
 
 /// A point quadtree (D = 2), octree (D = 3) or 2^D-tree storing (point, item) pairs.
 ///

@@ -27,7 +27,7 @@ use super::network::sort_short;
 const SMALL: usize = 768;
 
 /// A (key, index) pair packed into one integer whose order is the pairs' order.
-pub(super) trait Packed: Copy + Ord + Default + Send + Sync {
+pub(crate) trait Packed: Copy + Ord + Default + Send + Sync {
     /// The greatest value (pads the sorting networks' inputs).
     const MAX: Self;
     /// Byte `shift / 8` (0 the lowest, 7 the highest) of the 64-bit sort key: for a `u128`
@@ -52,7 +52,7 @@ impl Packed for u64 {
 }
 
 /// Sorts `pairs` by key, then index (a `u64` by value).
-pub(super) fn sort_keyed<P: Packed>(pairs: &mut [P]) {
+pub(crate) fn sort_keyed<P: Packed>(pairs: &mut [P]) {
     if pairs.len() <= SMALL {
         sort_short(pairs, P::MAX);
         return;

@@ -1,0 +1,43 @@
+//! The forest over MPI ranks (feature `mpi`): points in global Morton order, each rank holding
+//! one contiguous run of them, the way p4est distributes a forest of octrees (Burstedde,
+//! Wilcox and Ghattas 2011).
+//!
+//! - [`Partition`]: the replicated table of each rank's first position and first Morton key
+//!   (p4est's `global_first_position`), and repartition by counts or weights.
+//! - [`DistPointTree`]: built from points scattered arbitrarily over the ranks (an agreement
+//!   step, Morton keys over the global root box, a sample sort with one all-to-all exchange,
+//!   then a local [`PointTree`](crate::PointTree) over the global root box on every rank);
+//!   batch box, ball and k-nearest queries issued on any rank, routed to the ranks that can
+//!   hold answers, answered there and merged back. Every answer is the one a single-process
+//!   tree over the union of the inputs gives (the union in rank order: rank 0's points first),
+//!   ties included: the global slot of a point is its position in that tree.
+//!
+//! Every operation here is collective: every rank of the communicator calls it, in the same
+//! order. A bad input on one rank (a NaN coordinate, a bad query) is agreed on before any
+//! exchange that depends on it and returned as the same [`DistError`] on every rank.
+//!
+//! Points and items travel as plain bytes, so both are [`bytemuck::Pod`].
+//!
+//! ```
+//! use orthtree::dist::DistPointTree;
+//! let universe = mpi::initialize().unwrap();
+//! let world = universe.world();
+//! let rank = mpi::traits::Communicator::rank(&world) as u32;
+//! let mine: Vec<([f64; 2], u32)> = (0..100).map(|i| ([i as f64, rank as f64], rank)).collect();
+//! let tree = DistPointTree::builder().build_from_vec(&world, mine).unwrap();
+//! let near = tree.k_nearest_batch(&[[10.2, 0.0]], 3).unwrap();
+//! assert_eq!(near[0].len(), 3);
+//! ```
+
+mod build;
+mod comm;
+mod error;
+mod partition;
+mod queries;
+mod tree;
+
+pub use build::{DistPointTreeBuilder, MAX_TOTAL};
+pub use error::DistError;
+pub use partition::Partition;
+pub use queries::DistNeighbor;
+pub use tree::DistPointTree;

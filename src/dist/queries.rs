@@ -1,0 +1,371 @@
+//! Batch queries of a [`DistPointTree`]: box, ball and k-nearest queries issued on any rank,
+//! routed by the rank boxes (the bounding box of each rank's points, replicated), answered by
+//! the local trees and merged back on the issuing rank.
+//!
+//! A round sends each request to its ranks with one all-to-all exchange and the answers back
+//! with another. Boxes and balls take one round, to every rank whose box the region does not
+//! miss (the region's own `classify`, the test the local tree prunes with). k-nearest takes
+//! two, as in distributed kd-tree searches (e.g. Patwary et al. 2016, "PANDA: Extreme scale
+//! parallel k-nearest neighbor on distributed architectures"): first to the rank whose box is
+//! nearest, whose k-th distance r bounds the answer; then, with that bound, to every other
+//! rank whose box lies within r. Candidates are merged by (distance, global slot): the local
+//! order is the global order, so the answer equals the single-process tree's, ties included.
+
+use super::comm::{self, point_bytes, Reader, Words, Writer};
+use super::{DistError, DistPointTree};
+use crate::geom::{Aabb, Scalar};
+use crate::query::range::{for_each_in, scan_limit};
+use crate::query::SquaredEuclidean;
+use crate::query::{query_box, query_point, Ball, Metric, PointSet, QueryError, Region, Relation};
+use bytemuck::Pod;
+
+/// A point found by a distributed query: its point and item (copied from the rank holding
+/// it), its global slot (its position in the single-process tree over the union) and its
+/// squared Euclidean distance from the query point or ball centre (0 for box queries).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DistNeighbor<S, T, const D: usize> {
+    /// The point.
+    pub point: [S; D],
+    /// Its item.
+    pub item: T,
+    /// Its squared distance from the query point (0 for a box query).
+    pub distance: f64,
+    /// Its global slot.
+    pub slot: u64,
+}
+
+/// Every query's answers, in query order.
+type Answers<S, T, const D: usize> = Vec<Vec<DistNeighbor<S, T, D>>>;
+
+impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
+    /// The `k` nearest points (squared Euclidean) of every query point of this rank's batch
+    /// (collective: every rank calls it with its own batch, any length, its own `k`); answers
+    /// in query order, each sorted by (distance, global slot): exactly the single-process
+    /// tree's [`PointSet::k_nearest`] over the union.
+    ///
+    /// # Errors
+    /// The same on every rank: [`DistError::Query`] naming the first bad query point (NaN,
+    /// infinite, inexact) of the lowest rank with one; [`DistError::MessageTooLarge`].
+    ///
+    /// # Complexity
+    /// Two rounds of two all-to-all exchanges; each query costs a local k-nearest search on
+    /// its nearest rank and on each rank within its k-th distance.
+    pub fn k_nearest_batch(
+        &self,
+        queries: &[[S; D]],
+        k: usize,
+    ) -> Result<Answers<S, T, D>, DistError> {
+        let bad = queries.iter().position(|q| query_point(q).is_err());
+        self.agree_query(
+            bad,
+            point_bytes::<S, D>(),
+            |w| {
+                w.point(&queries[bad.unwrap_or(0)]);
+            },
+            |r| query_point(&r.point::<S, D>()).expect_err("refused on its rank"),
+        )?;
+        let q64: Vec<[f64; D]> = queries
+            .iter()
+            .map(|q| query_point(q).expect("checked"))
+            .collect();
+        let bound = |q: usize, r: usize| SquaredEuclidean.box_distance(&q64[q], &self.boxes[r]);
+        let ranks = self.nonempty_ranks();
+        let home: Vec<Option<usize>> = (0..queries.len())
+            .map(|q| {
+                ranks
+                    .iter()
+                    .copied()
+                    .min_by(|&a, &b| bound(q, a).total_cmp(&bound(q, b)).then(a.cmp(&b)))
+            })
+            .collect();
+        let bytes = 16 + point_bytes::<S, D>();
+        let write = |q: usize, radius: f64, w: &mut Writer<'_>| {
+            w.put(&(k as u64)).put(&radius).point(&queries[q]);
+        };
+        let answer = |r: &mut Reader<'_>, hits: &mut Vec<(f64, usize)>| {
+            let (k, max) = (r.get::<u64>() as usize, r.get::<f64>());
+            let p: [S; D] = r.point();
+            if let Ok(found) = self.local.k_nearest_within(&p, k, max) {
+                hits.extend(found.iter().map(|n| (n.distance, n.index)));
+            }
+        };
+        let first: Vec<(usize, usize)> = (0..queries.len())
+            .filter(|_| k > 0)
+            .filter_map(|q| home[q].map(|r| (r, q)))
+            .collect();
+        let mut found = self.round(
+            &first,
+            bytes,
+            |q, w| write(q, f64::INFINITY, w),
+            answer,
+            queries.len(),
+        )?;
+        let radius: Vec<f64> = found
+            .iter()
+            .map(|f| {
+                if f.len() == k {
+                    f[k - 1].distance
+                } else {
+                    f64::INFINITY
+                }
+            })
+            .collect();
+        let second: Vec<(usize, usize)> = first
+            .iter()
+            .flat_map(|&(h, q)| {
+                let (radius, bound) = (&radius, &bound);
+                ranks
+                    .iter()
+                    .copied()
+                    .filter(move |&r| r != h && bound(q, r) <= radius[q])
+                    .map(move |r| (r, q))
+            })
+            .collect();
+        let more = self.round(
+            &second,
+            bytes,
+            |q, w| write(q, radius[q], w),
+            answer,
+            queries.len(),
+        )?;
+        for (f, m) in found.iter_mut().zip(more) {
+            f.extend(m);
+            f.sort_by(|a, b| a.distance.total_cmp(&b.distance).then(a.slot.cmp(&b.slot)));
+            f.truncate(k);
+        }
+        Ok(found)
+    }
+
+    /// The points in each closed box of this rank's batch (collective), each answer in global
+    /// slot order: the single-process tree's [`PointSet::in_box`] over the union.
+    ///
+    /// # Errors
+    /// The same on every rank: [`DistError::Query`] naming the first bad box (a NaN bound,
+    /// an inexact integer corner) of the lowest rank with one; [`DistError::MessageTooLarge`].
+    pub fn in_box_batch(&self, boxes: &[Aabb<S, D>]) -> Result<Answers<S, T, D>, DistError> {
+        let check = |b: &Aabb<S, D>| query_box(b).and_then(|f| f.validate().map(|()| f));
+        let bad = boxes.iter().position(|b| check(b).is_err());
+        self.agree_query(
+            bad,
+            2 * point_bytes::<S, D>(),
+            |w| {
+                let b = &boxes[bad.unwrap_or(0)];
+                w.point(&b.min).point(&b.max);
+            },
+            |r| {
+                let b = Aabb {
+                    min: r.point::<S, D>(),
+                    max: r.point::<S, D>(),
+                };
+                check(&b).expect_err("refused on its rank")
+            },
+        )?;
+        let regions: Vec<Aabb<f64, D>> = boxes.iter().map(|b| check(b).expect("checked")).collect();
+        self.range_round(
+            &regions,
+            2 * point_bytes::<S, D>(),
+            |q, w| {
+                w.point(&boxes[q].min).point(&boxes[q].max);
+            },
+            |r| {
+                let b = Aabb {
+                    min: r.point::<S, D>(),
+                    max: r.point::<S, D>(),
+                };
+                (check(&b).expect("checked on its rank"), None)
+            },
+        )
+    }
+
+    /// The points within Euclidean distance `radius` of `center` for each `(center, radius)`
+    /// of this rank's batch (collective), each answer in global slot order with squared
+    /// distances: the single-process tree's [`PointSet::in_ball`] over the union.
+    ///
+    /// # Errors
+    /// The same on every rank: [`DistError::Query`] naming the first bad ball (a non-finite
+    /// centre, a negative or NaN radius) of the lowest rank with one;
+    /// [`DistError::MessageTooLarge`].
+    pub fn in_ball_batch(&self, balls: &[([S; D], f64)]) -> Result<Answers<S, T, D>, DistError> {
+        let check = |(c, r): &([S; D], f64)| Ball::new(query_point(c)?, *r);
+        let bad = balls.iter().position(|b| check(b).is_err());
+        let bytes = 8 + point_bytes::<S, D>();
+        let write = |b: &([S; D], f64), w: &mut Writer<'_>| {
+            w.put(&b.1).point(&b.0);
+        };
+        let read = |r: &mut Reader<'_>| {
+            let radius = r.get::<f64>();
+            (r.point::<S, D>(), radius)
+        };
+        self.agree_query(
+            bad,
+            bytes,
+            |w| write(&balls[bad.unwrap_or(0)], w),
+            |r| check(&read(r)).expect_err("refused on its rank"),
+        )?;
+        let regions: Vec<Ball<D>> = balls.iter().map(|b| check(b).expect("checked")).collect();
+        self.range_round(
+            &regions,
+            bytes,
+            |q, w| write(&balls[q], w),
+            |r| {
+                let b = check(&read(r)).expect("checked on its rank");
+                let center = b.center;
+                (b, Some(center))
+            },
+        )
+    }
+
+    /// One round of range queries: each region to every non-empty rank whose box it does not
+    /// miss; `read` rebuilds a region there (with the centre to measure distances from).
+    fn range_round<R: Region<D>>(
+        &self,
+        regions: &[R],
+        bytes: usize,
+        write: impl Fn(usize, &mut Writer<'_>),
+        read: impl Fn(&mut Reader<'_>) -> (R, Option<[f64; D]>),
+    ) -> Result<Answers<S, T, D>, DistError> {
+        let ranks = self.nonempty_ranks();
+        let sends: Vec<(usize, usize)> = regions
+            .iter()
+            .enumerate()
+            .flat_map(|(q, region)| {
+                ranks
+                    .iter()
+                    .copied()
+                    .filter(move |&r| region.classify(&self.boxes[r]) != Relation::Outside)
+                    .map(move |r| (r, q))
+            })
+            .collect();
+        let points = self.local.points();
+        let mut found = self.round(
+            &sends,
+            bytes,
+            write,
+            |r, hits| {
+                let (region, center) = read(r);
+                let _ = for_each_in(&self.local, &region, scan_limit(D), true, |i| {
+                    let d = center.map_or(0.0, |c| {
+                        SquaredEuclidean.distance(&c, &points[i].map(Scalar::to_f64))
+                    });
+                    hits.push((d, i));
+                });
+            },
+            regions.len(),
+        )?;
+        for f in &mut found {
+            f.sort_by_key(|n| n.slot);
+        }
+        Ok(found)
+    }
+
+    /// The ranks holding points.
+    fn nonempty_ranks(&self) -> Vec<usize> {
+        (0..self.partition.ranks())
+            .filter(|&r| self.partition.count(r) > 0)
+            .collect()
+    }
+
+    /// The agreement on a batch: if a rank has a bad query (`bad`, its position), the lowest
+    /// such rank sends it (`write`, `bytes` long) and every rank rebuilds the same error from
+    /// it (`error`).
+    fn agree_query(
+        &self,
+        bad: Option<usize>,
+        bytes: usize,
+        write: impl Fn(&mut Writer<'_>),
+        error: impl Fn(&mut Reader<'_>) -> QueryError,
+    ) -> Result<(), DistError> {
+        let Some(rank) = comm::lowest_failing(&self.comm, bad.is_some()) else {
+            return Ok(());
+        };
+        let mut w = Words::with_records(1, 8 + bytes);
+        if let Some(index) = bad {
+            let mut writer = w.writer(0);
+            writer.put(&(index as u64));
+            write(&mut writer);
+        }
+        comm::broadcast(&self.comm, rank, &mut w.words);
+        let mut r = w.reader(0);
+        let index = r.get::<u64>() as usize;
+        Err(DistError::Query {
+            rank,
+            index,
+            error: error(&mut r),
+        })
+    }
+
+    /// One request-and-answer round: request `q` goes to rank `r` for each `(r, q)` of
+    /// `sends` (`write` puts its `bytes`); there `answer` reads it and adds its hits
+    /// (distance, local slot); the hits come back, grouped by query.
+    fn round(
+        &self,
+        sends: &[(usize, usize)],
+        bytes: usize,
+        write: impl Fn(usize, &mut Writer<'_>),
+        answer: impl Fn(&mut Reader<'_>, &mut Vec<(f64, usize)>),
+        queries: usize,
+    ) -> Result<Answers<S, T, D>, DistError> {
+        let ranks = self.partition.ranks();
+        let mut order = sends.to_vec();
+        order.sort_by_key(|&(r, _)| r);
+        let mut requests = Words::with_records(order.len(), 8 + bytes);
+        let mut counts = vec![0usize; ranks];
+        for (i, &(r, q)) in order.iter().enumerate() {
+            let mut w = requests.writer(i);
+            w.put(&(q as u64));
+            write(q, &mut w);
+            counts[r] += requests.per;
+        }
+        let (incoming, from) = comm::exchange(&self.comm, &requests.words, &counts)?;
+        let per = requests.per;
+        drop(requests);
+        let incoming = Words::from_words(incoming, 8 + bytes);
+        // Answer in the order received: grouped by the sending rank.
+        let first = self.first_slot();
+        let reply_bytes = 24 + point_bytes::<S, D>() + core::mem::size_of::<T>();
+        let mut replies: Vec<(u64, f64, usize)> = Vec::new();
+        let mut reply_counts = vec![0usize; ranks];
+        let mut hits = Vec::new();
+        let mut j = 0;
+        for (source, &words) in from.iter().enumerate() {
+            for _ in 0..words / per {
+                let mut r = incoming.reader(j);
+                let q = r.get::<u64>();
+                hits.clear();
+                answer(&mut r, &mut hits);
+                replies.extend(hits.iter().map(|&(d, i)| (q, d, i)));
+                reply_counts[source] += hits.len();
+                j += 1;
+            }
+        }
+        let (points, items) = (self.local.points(), self.local.items());
+        let mut out = Words::with_records(replies.len(), reply_bytes);
+        for (i, &(q, d, s)) in replies.iter().enumerate() {
+            out.writer(i)
+                .put(&q)
+                .put(&(first + s as u64))
+                .put(&d)
+                .point(&points[s])
+                .put(&items[s]);
+        }
+        let counts: Vec<usize> = reply_counts.iter().map(|c| c * out.per).collect();
+        let (back, _) = comm::exchange(&self.comm, &out.words, &counts)?;
+        let back = Words::from_words(back, reply_bytes);
+        let mut found: Answers<S, T, D> = vec![Vec::new(); queries];
+        for i in 0..back.len() {
+            let mut r = back.reader(i);
+            let q = r.get::<u64>() as usize;
+            let slot = r.get::<u64>();
+            let distance = r.get::<f64>();
+            let point = r.point::<S, D>();
+            let item = r.get::<T>();
+            found[q].push(DistNeighbor {
+                point,
+                item,
+                distance,
+                slot,
+            });
+        }
+        Ok(found)
+    }
+}
