@@ -13,6 +13,8 @@
 //!   any reader.
 //! - `saved` (behind the `saved` feature): a point tree in a compact, versioned binary format,
 //!   read back without a rebuild.
+//! - `serialize` (behind the `serde` feature, private): `Serialize` and `Deserialize` for boxes,
+//!   cells, the arena, point trees and region trees, each checked on the way in.
 
 mod board_file;
 mod board_syntax;
@@ -25,6 +27,8 @@ pub mod png;
 pub mod poly;
 #[cfg(feature = "saved")]
 pub mod saved;
+#[cfg(feature = "serde")]
+mod serialize;
 pub mod svg;
 mod text_out;
 pub mod triangle;
