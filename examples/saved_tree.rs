@@ -95,6 +95,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let q: [f64; 3] = rng.gen();
             back.k_nearest(&q, 10).ok() == tree.k_nearest(&q, 10).ok()
         });
+    // The load's check alone: the tree's own validate, which the load runs once.
+    let start = Instant::now();
+    back.validate()?;
+    let check = start.elapsed().as_secs_f64();
     let (build, load) = (median(builds), median(loads));
     println!(
         "{n} points in 3D (f64, u32 items), {} runs (medians):",
@@ -111,6 +115,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "  load from bytes {:9.1} ms: {:.1}x faster than the build",
         load * 1e3,
         build / load
+    );
+    println!(
+        "  of which check  {:9.1} ms (validate, run again alone)",
+        check * 1e3
     );
     if let Some(path) = &args.file {
         drop(back);

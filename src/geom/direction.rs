@@ -155,6 +155,7 @@ impl Direction {
 /// also cells sharing a (D-2)-dimensional edge (in 2D the same as `Corner`). `Corner`: cells
 /// sharing any boundary point (p4est's "full" balance).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Connectivity {
     /// Across (D-1)-dimensional faces only.
     Face,

@@ -99,7 +99,7 @@ impl<const D: usize> RootGeometry<D> {
 
     /// The two numbers that fix the geometry: the root cube's lower corner halved (rounded
     /// down) and half its side ([`RootGeometry::try_from_halves`] takes them back).
-    #[cfg(feature = "saved")]
+    #[cfg(any(feature = "saved", feature = "serde"))]
     pub(crate) fn halves(&self) -> ([f64; D], f64) {
         (self.half_lo, self.half_side)
     }
@@ -110,7 +110,7 @@ impl<const D: usize> RootGeometry<D> {
     /// # Errors
     /// [`AabbError::NonFinite`] naming the first non-finite axis of `half_lo`,
     /// [`AabbError::InvalidSide`] for a half side that is NaN, infinite or negative.
-    #[cfg(feature = "saved")]
+    #[cfg(any(feature = "saved", feature = "serde"))]
     pub(crate) fn try_from_halves(half_lo: [f64; D], half_side: f64) -> Result<Self, AabbError> {
         if let Some(axis) = half_lo.iter().position(|x| !x.is_finite()) {
             return Err(AabbError::NonFinite { axis });

@@ -16,6 +16,8 @@
 //! - [`ply`] and [`xyz`]: point clouds ([`crate::cloud::Cloud`]) as PLY (ASCII and binary)
 //!   and as XYZ/CSV text, read and written with their attributes; `las` (behind the `las`
 //!   feature; LAZ with `laz`) as ASPRS LAS with integer coordinates kept.
+//! - `serialize` (behind the `serde` feature, private): `Serialize` and `Deserialize` for boxes,
+//!   cells, the arena, point trees and region trees, each checked on the way in.
 
 mod board_file;
 mod board_syntax;
@@ -32,6 +34,8 @@ pub mod png;
 pub mod poly;
 #[cfg(feature = "saved")]
 pub mod saved;
+#[cfg(feature = "serde")]
+mod serialize;
 pub mod svg;
 mod text_out;
 pub mod triangle;

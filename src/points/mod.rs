@@ -14,7 +14,7 @@ mod network;
 #[cfg(feature = "rayon")]
 mod parallel;
 mod radix;
-#[cfg(feature = "saved")]
+#[cfg(any(feature = "saved", feature = "serde"))]
 mod raw;
 mod runs;
 mod update;
@@ -28,7 +28,7 @@ use crate::error::{Error, ValidationError};
 use crate::geom::{Aabb, Cell, Dim, RootGeometry, Scalar};
 use crate::query::{Location, PointSet, QueryError};
 use crate::tree::{BalanceOptions, NodeId, Tree};
-#[cfg(feature = "saved")]
+#[cfg(any(feature = "saved", feature = "serde"))]
 pub(crate) use raw::{PointTreeParts, PointTreeView};
 pub(crate) use runs::Runs;
 #[cfg(feature = "mpi")]
@@ -328,7 +328,8 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// [`PointSet::validate`](crate::query::PointSet::validate): checks every invariant and
     /// names the first one broken: node runs nest and partition their
     /// parent's; every point lies in its leaf's cell under the split convention and inside the
-    /// domain; the points are in Morton order; a leaf holds more than the bucket size only at the
+    /// domain, with coordinates `f64` holds exactly; the points are in Morton order (so only
+    /// each leaf's first and last point need a look at its cell); a leaf holds more than the bucket size only at the
     /// maximum depth; an internal node holds more than the bucket size unless balance split it,
     /// and then the tree is balanced.
     fn check_invariants(&self) -> Result<(), ValidationError> {
@@ -351,10 +352,35 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
                 ValidationError::new(I::Counts).detail("the root does not own every point"),
             );
         }
+        // Every point exact and in the domain, then all in Morton order: two passes over the
+        // points, the keys computed in vector lanes (`keys_into`).
+        if let Some(i) = self.points.iter().position(|p| {
+            !p.iter().all(|x| x.converts_exactly()) || !self.domain.contains(&p.map(Scalar::to_f64))
+        }) {
+            return fail(ValidationError::new(I::InDomain).point(i));
+        }
+        let (mut previous_key, mut unordered) = (0u64, None);
+        let points = &self.points;
+        self.geometry.keys_into(
+            points.len(),
+            |i| &points[i],
+            |i, key| {
+                if key < previous_key && unordered.is_none() {
+                    unordered = Some(i);
+                }
+                previous_key = key;
+            },
+        );
+        if let Some(i) = unordered {
+            return fail(
+                ValidationError::new(I::InLeaf)
+                    .point(i)
+                    .detail("out of Morton order"),
+            );
+        }
         // Absolute runs, filled parent first by the pre-order walk.
         let mut runs = vec![(0u32, 0u32); self.tree.node_count()];
         runs[0] = (0, self.len() as u32);
-        let mut previous_key = 0u64;
         for (id, cell) in self.tree.pre_order() {
             let (s, e) = runs[id.index()];
             if self.runs.run(&self.tree, id) != (s, e) {
@@ -373,20 +399,13 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
                             .detail(format!("holds {count} points")),
                     );
                 }
-                for (i, p) in self.points[s as usize..e as usize].iter().enumerate() {
-                    let q = p.map(Scalar::to_f64);
-                    if !self.domain.contains(&q) || !p.iter().all(|x| x.converts_exactly()) {
-                        return fail(ValidationError::new(I::InDomain).point(s as usize + i));
+                // The keys are in order and a cell's keys are one range: when the leaf's first
+                // and last points lie in its cell, all do.
+                for i in [s, e.wrapping_sub(1)].into_iter().filter(|_| count > 0) {
+                    let key = self.geometry.scalar_key(&self.points[i as usize]);
+                    if Cell::from_aligned_key(key, cell.level()) != cell {
+                        return fail(ValidationError::new(I::InLeaf).node(id.0).point(i as usize));
                     }
-                    let key = self.geometry.key(&q);
-                    if key < previous_key || Cell::from_aligned_key(key, cell.level()) != cell {
-                        return fail(
-                            ValidationError::new(I::InLeaf)
-                                .node(id.0)
-                                .point(s as usize + i),
-                        );
-                    }
-                    previous_key = key;
                 }
             } else {
                 let mut at = s;

@@ -35,13 +35,13 @@ impl Runs {
 
     /// The runs of the relative `ends` (one per node slot), unchecked: the tree's `validate`
     /// checks them.
-    #[cfg(feature = "saved")]
+    #[cfg(any(feature = "saved", feature = "serde"))]
     pub(crate) fn from_ends(ends: Vec<u32>) -> Self {
         Runs { ends }
     }
 
     /// The relative end of every node slot's run.
-    #[cfg(feature = "saved")]
+    #[cfg(any(feature = "saved", feature = "serde"))]
     pub(crate) fn ends(&self) -> &[u32] {
         &self.ends
     }

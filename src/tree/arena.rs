@@ -218,7 +218,7 @@ impl<const D: usize> Tree<D> {
     }
 
     /// A tree of the given arrays, unchecked: [`Tree::from_raw_parts`] (`raw.rs`) checks them.
-    #[cfg(feature = "saved")]
+    #[cfg(any(feature = "saved", feature = "serde"))]
     pub(super) fn from_arrays(raw: super::raw::OwnedRawTree) -> Self {
         Tree {
             first_child: raw.first_child,

@@ -24,7 +24,7 @@ mod balanced_split;
 mod inner;
 mod merge;
 mod neighbors;
-#[cfg(feature = "saved")]
+#[cfg(any(feature = "saved", feature = "serde"))]
 pub(crate) mod raw;
 pub(crate) mod traverse;
 mod validate;

@@ -1,6 +1,6 @@
 //! The point trees (`PointTree`, `DynamicPointTree`): build, bounds, duplicates, queries against
 //! brute force, single and batch updates, every dimension, bad input, the rayon entry points, and
-//! the saved-tree format (feature `saved`).
+//! the saved-tree format (feature `saved`) and serde (feature `serde`).
 //!
 //! One test binary per area: each former test file is a module of it.
 
@@ -28,5 +28,7 @@ mod streaming;
 mod saved;
 #[cfg(feature = "saved")]
 mod saved_fuzz;
+#[cfg(all(feature = "serde", feature = "saved"))]
+mod serde_round_trips;
 mod updates;
 mod updates_after_balance;

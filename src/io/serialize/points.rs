@@ -1,0 +1,110 @@
+//! Serde for [`PointTree`]: its stored arrays and settings (`raw.rs` in `points`), points as one
+//! flat sequence, read back through `PointTree::from_parts`, which checks the settings, the
+//! topology and then the tree's own `validate`; nothing is sorted or rebuilt.
+
+use super::array;
+use super::tree::{TreeOwned, TreeRef};
+use crate::points::PointTreeParts;
+use crate::tree::BalanceOptions;
+use crate::{Aabb, Connectivity, PointTree, Scalar};
+use serde::de::Error as _;
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+#[derive(Serialize)]
+struct PointTreeRef<'a, S, T> {
+    tree: TreeRef<'a>,
+    half_lo: &'a [f64],
+    half_side: f64,
+    domain_min: &'a [f64],
+    domain_max: &'a [f64],
+    points: &'a [S],
+    items: &'a [T],
+    run_ends: &'a [u32],
+    bucket_size: u64,
+    max_depth: u8,
+    balance: Option<(Connectivity, u8)>,
+}
+
+#[derive(Deserialize)]
+struct PointTreeOwned<S, T> {
+    tree: TreeOwned,
+    half_lo: Vec<f64>,
+    half_side: f64,
+    domain_min: Vec<f64>,
+    domain_max: Vec<f64>,
+    points: Vec<S>,
+    items: Vec<T>,
+    run_ends: Vec<u32>,
+    bucket_size: u64,
+    max_depth: u8,
+    balance: Option<(Connectivity, u8)>,
+}
+
+impl<S: Scalar + Serialize, T: Serialize, const D: usize> Serialize for PointTree<S, T, D> {
+    fn serialize<Se: Serializer>(&self, s: Se) -> Result<Se::Ok, Se::Error> {
+        let v = self.view();
+        PointTreeRef {
+            tree: TreeRef::new::<D>(v.tree),
+            half_lo: &v.half_lo,
+            half_side: v.half_side,
+            domain_min: &v.domain.min,
+            domain_max: &v.domain.max,
+            points: v.points.as_flattened(),
+            items: v.items,
+            run_ends: v.run_ends,
+            bucket_size: v.bucket_size as u64,
+            max_depth: v.max_depth,
+            balance: v
+                .balanced
+                .map(|b| (b.connectivity, b.max_level_difference())),
+        }
+        .serialize(s)
+    }
+}
+
+impl<'de, S, T, const D: usize> Deserialize<'de> for PointTree<S, T, D>
+where
+    S: Scalar + Deserialize<'de>,
+    T: Deserialize<'de>,
+{
+    fn deserialize<De: Deserializer<'de>>(d: De) -> Result<Self, De::Error> {
+        let o = PointTreeOwned::<S, T>::deserialize(d)?;
+        let custom = |m: String| De::Error::custom(format!("point tree: {m}"));
+        if o.points.len() % D != 0 {
+            return Err(custom(format!(
+                "{} coordinates are not whole points of {D}",
+                o.points.len()
+            )));
+        }
+        let points: Vec<[S; D]> = o
+            .points
+            .chunks_exact(D)
+            .map(|c| core::array::from_fn(|a| c[a]))
+            .collect();
+        let balanced = match o.balance {
+            None => None,
+            Some((c, k)) => Some(
+                BalanceOptions::new(c)
+                    .with_max_level_difference(k)
+                    .map_err(|e| custom(e.to_string()))?,
+            ),
+        };
+        let parts = PointTreeParts {
+            tree: o.tree.into_raw::<De::Error, D>()?,
+            half_lo: array("half_lo", &o.half_lo)?,
+            half_side: o.half_side,
+            domain: Aabb {
+                min: array("domain_min", &o.domain_min)?,
+                max: array("domain_max", &o.domain_max)?,
+            },
+            points,
+            items: o.items,
+            run_ends: o.run_ends,
+            bucket_size: usize::try_from(o.bucket_size)
+                .map_err(|_| custom(format!("bucket size {} is not a usize", o.bucket_size)))?,
+            max_depth: o.max_depth,
+            balanced,
+        };
+        PointTree::from_parts(parts).map_err(|e| custom(e.to_string()))
+    }
+}
