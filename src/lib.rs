@@ -7,8 +7,8 @@
 //! Layers, each using only those before it: [`geom`] (scalars, boxes, cells, Morton keys,
 //! directions, the root geometry) → [`tree`] (topology: arena, traversals, neighbours, balance)
 //! → [`query`] (the engines over an index trait, and the point-set traits) → the consumers
-//! [`points`], [`compressed`], [`image`] and [`mesh`] (and, with the feature `mpi`, `dist`: the
-//! point tree distributed over MPI ranks) → [`io`] (readers and writers).
+//! [`points`], [`compressed`], [`image`], [`mesh`] and [`cloud`] (and, with the feature `mpi`,
+//! `dist`: the point tree distributed over MPI ranks) → [`io`] (readers and writers).
 //!
 //! # The public surface
 //! The crate root names what a first program names: the trees ([`PointTree`] with its aliases
