@@ -23,12 +23,12 @@ mod point_bounds;
 mod point_sets;
 mod point_tree;
 mod queries;
-mod streaming;
 #[cfg(feature = "saved")]
 mod saved;
 #[cfg(feature = "saved")]
 mod saved_fuzz;
 #[cfg(all(feature = "serde", feature = "saved"))]
 mod serde_round_trips;
+mod streaming;
 mod updates;
 mod updates_after_balance;
