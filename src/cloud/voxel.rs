@@ -20,7 +20,7 @@
 //! ```
 
 use super::CloudError;
-use crate::geom::{morton, Aabb, Cell, RootGeometry, Scalar};
+use crate::geom::{exact_point, morton, Aabb, Cell, RootGeometry, Scalar};
 use crate::image::{Coverage, RegionTree};
 use crate::points::PointTree;
 use core::ops::Range;
@@ -69,27 +69,23 @@ impl<const D: usize> VoxelGrid<D> {
     /// # Complexity
     /// O(n) for the points' bounds.
     pub fn with_size<S: Scalar>(points: &[[S; D]], voxel: f64) -> Result<Self, CloudError> {
-        let mut min = [0.0f64; D];
-        let mut max = [0.0f64; D];
+        // The points' bounds, through the crate's one point check; no points: the origin.
+        let mut bounds = Aabb::empty();
         for (index, p) in points.iter().enumerate() {
-            for a in 0..D {
-                let x = Scalar::to_f64(p[a]);
-                if !p[a].converts_exactly() {
-                    return Err(CloudError::BadCoordinate {
-                        index,
-                        axis: a,
-                        value: x,
-                    });
-                }
-                if index == 0 || x < min[a] {
-                    min[a] = x;
-                }
-                if index == 0 || x > max[a] {
-                    max[a] = x;
-                }
-            }
+            let q = exact_point(p).map_err(|(axis, _)| CloudError::BadCoordinate {
+                index,
+                axis,
+                value: Scalar::to_f64(p[axis]),
+            })?;
+            bounds.add_point(&q);
         }
-        Self::for_box(&Aabb { min, max }, voxel)
+        if points.is_empty() {
+            bounds = Aabb {
+                min: [0.0; D],
+                max: [0.0; D],
+            };
+        }
+        Self::for_box(&bounds, voxel)
     }
 
     /// The grid of voxels of side `voxel` whose cube starts at `bounds.min` and covers

@@ -31,6 +31,7 @@ use crate::cloud::{Attributes, Cloud, Column, Frame};
 use ::las::raw::point::{Flags, ScanAngle};
 use ::las::{point::Format, raw, Builder, PointDataBuilder, Reader, Transform, Vector, Writer};
 use core::fmt;
+use smallvec::SmallVec;
 use std::io::{Read, Seek, SeekFrom, Write};
 use std::path::Path;
 
@@ -282,10 +283,15 @@ impl Fields {
         }
         cloud.points.push([p.x, p.y, p.z]);
         let bit = |b: u8, i: u32| f64::from((b >> i) & 1);
-        let (class, mut values): (u8, Vec<f64>) = match (p.flags, p.scan_angle) {
-            (Flags::TwoByte(r, c), ScanAngle::Rank(angle)) => (
-                c & 0x1f,
-                vec![
+        let angle = match p.scan_angle {
+            ScanAngle::Scaled(s) => f64::from(s),
+            ScanAngle::Rank(r) => f64::from(r),
+        };
+        // One record's columns, on the stack: no allocation per point.
+        let mut values: SmallVec<[f64; 16]> = SmallVec::new();
+        let class = match p.flags {
+            Flags::TwoByte(r, c) => {
+                values.extend([
                     f64::from(r & 7),
                     f64::from((r >> 3) & 7),
                     bit(r, 6),
@@ -293,12 +299,12 @@ impl Fields {
                     bit(c, 5),
                     bit(c, 6),
                     bit(c, 7),
-                    f64::from(angle),
-                ],
-            ),
-            (Flags::ThreeByte(r, f, c), angle) => (
-                c,
-                vec![
+                    angle,
+                ]);
+                c & 0x1f
+            }
+            Flags::ThreeByte(r, f, c) => {
+                values.extend([
                     f64::from(r & 15),
                     f64::from(r >> 4),
                     bit(f, 6),
@@ -308,25 +314,10 @@ impl Fields {
                     bit(f, 2),
                     bit(f, 3),
                     f64::from((f >> 4) & 3),
-                    match angle {
-                        ScanAngle::Scaled(s) => f64::from(s),
-                        ScanAngle::Rank(r) => f64::from(r),
-                    },
-                ],
-            ),
-            (Flags::TwoByte(r, c), ScanAngle::Scaled(s)) => (
-                c & 0x1f,
-                vec![
-                    f64::from(r & 7),
-                    f64::from((r >> 3) & 7),
-                    bit(r, 6),
-                    bit(r, 7),
-                    bit(c, 5),
-                    bit(c, 6),
-                    bit(c, 7),
-                    f64::from(s),
-                ],
-            ),
+                    angle,
+                ]);
+                c
+            }
         };
         values.push(f64::from(p.user_data));
         values.push(f64::from(p.point_source_id));
