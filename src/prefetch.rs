@@ -7,7 +7,7 @@
 //! The gather, measured (10^6 uniform points, `(point, u64)` input, the build alone, four alternating runs
 //! of 21 builds each, medians): 2D 45.5-46.1 ms without, 37.1-39.4 ms with a lookahead of 16
 //! records; 3D 46.5-47.3 against 38.3-39.3. Lookaheads of 8, 32 and 64 were no better.
-//! After the sort and the keys got faster (session 6), a finer scan of the lookahead, three
+//! After the sort and the keys got faster, a finer scan of the lookahead, three
 //! alternating runs of 15 builds each, 2D medians: 16 gave 32.8-33.4 ms, 20 31.8-32.8, 24
 //! 31.6-32.0, 28 30.4-31.1, then 30 33.1, 32 34.7-35.1 and 36 38.1-39.9 (3D alike): the
 //! processor seems to keep about 28 misses in flight and drops or stalls beyond. 24 keeps a

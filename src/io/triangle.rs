@@ -51,19 +51,59 @@ fn marker(kind: SegmentKind) -> u64 {
 /// assert_eq!(edges, [([0, 1], 1), ([1, 2], 0), ([2, 0], 0), ([2, 3], 0), ([3, 0], 0)]);
 /// ```
 pub fn edges_with_markers(mesh: &Mesh) -> Vec<([u32; 2], u64)> {
+    let first = FirstAppearances::new(mesh);
     let markers = SegmentMarkers::new(mesh);
-    let mut seen = SeenEdges::new(mesh);
-    // At most one edge per half-edge; reserved, not touched, so only the edges take memory.
-    let mut edges = Vec::with_capacity(seen.larger.len());
-    for tri in &mesh.triangles {
-        for i in 0..3 {
-            let (a, b) = (tri[i], tri[(i + 1) % 3]);
-            if seen.insert(a, b) {
-                edges.push(([a, b], markers.get(a, b)));
+    let mut edges = Vec::with_capacity(first.count);
+    let pushed: Result<(), std::convert::Infallible> = first.try_for_each(mesh, |a, b| {
+        edges.push(([a, b], markers.get(a, b)));
+        Ok(())
+    });
+    match pushed {
+        Ok(()) => edges,
+    }
+}
+
+/// Which half-edges (edge `i` of triangle `t` is bit `3t + i`) are the first appearance of their
+/// edge, as a bit set: 3 bits per triangle, so the edges need not be held to be counted first.
+struct FirstAppearances {
+    bits: Vec<u64>,
+    count: usize,
+}
+
+impl FirstAppearances {
+    fn new(mesh: &Mesh) -> Self {
+        let mut seen = SeenEdges::new(mesh);
+        let mut bits = vec![0u64; (3 * mesh.triangles.len()).div_ceil(64)];
+        let mut count = 0;
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            for i in 0..3 {
+                if seen.insert(tri[i], tri[(i + 1) % 3]) {
+                    let h = 3 * t + i;
+                    bits[h / 64] |= 1 << (h % 64);
+                    count += 1;
+                }
             }
         }
+        FirstAppearances { bits, count }
     }
-    edges
+
+    /// Calls `f(a, b)` for every edge once, in order of first appearance, oriented as there,
+    /// until it fails.
+    fn try_for_each<E>(
+        &self,
+        mesh: &Mesh,
+        mut f: impl FnMut(u32, u32) -> Result<(), E>,
+    ) -> Result<(), E> {
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            for i in 0..3 {
+                let h = 3 * t + i;
+                if self.bits[h / 64] >> (h % 64) & 1 == 1 {
+                    f(tri[i], tri[(i + 1) % 3])?;
+                }
+            }
+        }
+        Ok(())
+    }
 }
 
 /// The `.edge` markers of the mesh's segments, by unordered endpoints (see the module doc).
@@ -234,15 +274,17 @@ pub fn write_edge(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
 
 /// [`write_edge`] on a mesh whose indices are checked.
 fn edge_unchecked(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
-    let edges = edges_with_markers(mesh);
+    let first = FirstAppearances::new(mesh);
+    let markers = SegmentMarkers::new(mesh);
     let mut o = TextOut::new(out);
-    o.u(edges.len() as u64).s(" 1").nl()?;
+    o.u(first.count as u64).s(" 1").nl()?;
     let mut line = Counter::new(1);
-    for &([a, b], m) in &edges {
+    first.try_for_each(mesh, |a, b| {
+        let m = markers.get(a, b);
         let (a, b) = (u64::from(a) + 1, u64::from(b) + 1);
         o.count(&mut line).sp().u(a).sp().u(b).sp().u(m);
-        o.nl()?;
-    }
+        o.nl()
+    })?;
     o.finish()
 }
 

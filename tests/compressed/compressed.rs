@@ -284,7 +284,7 @@ proptest! {
     }
 }
 
-/// The pathological inputs of the issue, by name, each with the unit square's corners so that
+/// Pathological inputs for a plain quadtree (deep corners, tight clusters, tiny spacings), by name, each with the unit square's corners so that
 /// the root cube is the unit square and the clusters sit deep inside it.
 fn pathological() -> Vec<(&'static str, Vec<[f64; 2]>)> {
     let tiny = |k: i32| (-(k as f64)).exp2();

@@ -17,7 +17,7 @@ use proptest::prelude::*;
 
 const P53: i64 = 1 << 53;
 
-/// The pair: (2^53, 0) and (2^53 + 1, 0). The second has no f64: every tree refuses it,
+/// The smallest pair a conversion to f64 confuses: (2^53, 0) and (2^53 + 1, 0). The second has no f64: every tree refuses it,
 /// naming point 1 and axis 0, at build, and at insert when built from the first alone.
 #[test]
 fn odd_integers_beyond_2_pow_53_are_refused_by_every_tree() {

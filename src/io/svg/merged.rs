@@ -179,10 +179,22 @@ fn edge_pass(mesh: &Mesh, svg: &Svg, coverage: &mut Coverage, edge_px: f64) -> L
             continue;
         };
         let c = [p0, p1, p2];
+        let lengths = [0, 1, 2].map(|i| {
+            let (p, q) = (c[i], c[(i + 1) % 3]);
+            (p[0] - q[0]).abs().max((p[1] - q[1]).abs()) * scale
+        });
+        if lengths.iter().all(|&l| l < MIN_EDGE_PX) {
+            // A small triangle (most of a large mesh): its three half-edges' ink lands within
+            // a few pixels, so it is added once, at the centroid.
+            let x = svg.x_at_scale((p0[0] + p1[0] + p2[0]) / 3.0, scale);
+            let y = svg.y_at_scale((p0[1] + p1[1] + p2[1]) / 3.0, scale);
+            coverage.add(x, y, 0.5 * (lengths[0] + lengths[1] + lengths[2]) * edge_px);
+            continue;
+        }
         for i in 0..3 {
             let (a, b) = (tri[i], tri[(i + 1) % 3]);
             let (p, q) = (c[i], c[(i + 1) % 3]);
-            let length = (p[0] - q[0]).abs().max((p[1] - q[1]).abs()) * scale;
+            let length = lengths[i];
             if length < MIN_EDGE_PX {
                 // Half from each of the (at most) two triangles holding the edge.
                 let x = svg.x_at_scale((p[0] + q[0]) / 2.0, scale);
