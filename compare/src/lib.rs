@@ -10,6 +10,7 @@
 pub mod joins;
 #[path = "../../benches/common/mod.rs"]
 pub mod points;
+pub mod python;
 pub mod rivals;
 pub mod scipy;
 pub mod timing;

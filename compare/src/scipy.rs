@@ -182,11 +182,11 @@ impl ScipyRun {
 }
 
 /// A file of points that is removed when dropped.
-struct TempFile(PathBuf);
+pub(crate) struct TempFile(pub(crate) PathBuf);
 
 impl TempFile {
     /// `points` as little-endian `f64`, row after row, at `path`.
-    fn write(path: PathBuf, points: &[[f64; 3]]) -> Result<TempFile, String> {
+    pub(crate) fn write(path: PathBuf, points: &[[f64; 3]]) -> Result<TempFile, String> {
         let file = TempFile(path);
         let err = |e: std::io::Error| format!("cannot write {}: {e}", file.0.display());
         let mut w = BufWriter::new(File::create(&file.0).map_err(err)?);
