@@ -29,15 +29,22 @@
 //! assert_eq!(near[0].len(), 3);
 //! ```
 
+mod balance;
 mod build;
 mod comm;
 mod error;
+mod exchange;
+mod forest;
+mod ghost;
 mod partition;
 mod queries;
 mod tree;
 
+pub use balance::BalanceStats;
 pub use build::{DistPointTreeBuilder, MAX_TOTAL};
-pub use error::DistError;
+pub use error::{DistError, LeafProblem};
+pub use forest::DistForest;
+pub use ghost::GhostLayer;
 pub use partition::Partition;
 pub use queries::DistNeighbor;
 pub use tree::DistPointTree;
