@@ -21,7 +21,7 @@
 //! the loop has no depth and ends, since every round splits a leaf.
 
 use super::comm;
-use super::exchange::{exchange_cells, layer_directions, layer_ranks, KeyRanges};
+use super::exchange::{exchange_cells, layer_ancestor, layer_directions, layer_ranks, KeyRanges};
 use super::forest::span;
 use super::{DistError, DistForest};
 use crate::geom::Cell;
@@ -85,15 +85,13 @@ impl<const D: usize> DistForest<D> {
 
         let mut tree = Tree::<D>::new();
         tree.reserve_splits(self.leaves.len() / ((1 << D) - 1) + 64);
-        for c in &self.leaves {
-            tree.refine_to(c, |_| {});
-        }
+        tree.refine_to_sorted(&self.leaves);
         phases.push(("build", clock.elapsed().as_secs_f64()));
         let clock = Instant::now();
         tree.balance(options);
         phases.push(("local balance", clock.elapsed().as_secs_f64()));
-        // The own leaves not yet sent: at first all of them.
-        let mut fresh: Vec<Cell<D>> = own_leaves(&tree, mine);
+        // The own leaves not yet sent: at first all of them near another rank's range.
+        let mut fresh: Vec<Cell<D>> = boundary_leaves(&tree, mine);
         let (mut rounds, mut sent, mut received) = (0, 0u64, 0u64);
         let (mut exchange_s, mut fixup_s) = (0.0, 0.0);
         loop {
@@ -153,14 +151,44 @@ impl<const D: usize> DistForest<D> {
 }
 
 /// The leaves of `tree` whose keys lie in `mine`, in Morton order: the walk skips every subtree
-/// outside the range.
+/// outside the range, and tests no key below a node inside it.
 fn own_leaves<const D: usize>(tree: &Tree<D>, mine: (u128, u128)) -> Vec<Cell<D>> {
+    let mut out = Vec::new();
+    let mut stack: SmallVec<[(NodeId, Cell<D>, bool); 64]> = SmallVec::new();
+    stack.push((NodeId::ROOT, Cell::root(), false));
+    while let Some((v, cell, mut inside)) = stack.pop() {
+        if !inside {
+            let (lo, hi) = span(&cell);
+            if hi <= mine.0 || lo >= mine.1 {
+                continue;
+            }
+            inside = lo >= mine.0 && hi <= mine.1;
+        }
+        if tree.is_leaf(v) {
+            out.push(cell);
+            continue;
+        }
+        for (i, child) in tree.children(v).enumerate().rev() {
+            stack.push((child, cell.child(i), inside));
+        }
+    }
+    out
+}
+
+/// The own leaves (keys in `mine`) whose insulation layer may leave `mine`, in Morton order: the
+/// walk skips every subtree outside the range, and every subtree whose cell and same-size
+/// neighbours lie inside it (the layer of a leaf below lies among them).
+fn boundary_leaves<const D: usize>(tree: &Tree<D>, mine: (u128, u128)) -> Vec<Cell<D>> {
     let mut out = Vec::new();
     let mut stack: SmallVec<[(NodeId, Cell<D>); 64]> = SmallVec::new();
     stack.push((NodeId::ROOT, Cell::root()));
     while let Some((v, cell)) = stack.pop() {
         let (lo, hi) = span(&cell);
         if hi <= mine.0 || lo >= mine.1 {
+            continue;
+        }
+        let (lo, hi) = span(&layer_ancestor(&cell));
+        if lo >= mine.0 && hi <= mine.1 {
             continue;
         }
         if tree.is_leaf(v) {

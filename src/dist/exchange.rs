@@ -102,7 +102,7 @@ pub(crate) fn layer_ranks<const D: usize>(
 /// The smallest ancestor of `cell` (the root at most) whose cell holds every
 /// same-size neighbour of `cell` inside the root cube.
 #[inline]
-fn layer_ancestor<const D: usize>(cell: &Cell<D>) -> Cell<D> {
+pub(crate) fn layer_ancestor<const D: usize>(cell: &Cell<D>) -> Cell<D> {
     let level = cell.level();
     let top = (1u64 << level) - 1;
     let mut up = 0u32;

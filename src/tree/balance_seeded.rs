@@ -28,6 +28,28 @@ impl<const D: usize> Tree<D> {
         v
     }
 
+    /// [`Tree::refine_to`] for each of `cells`, in Morton order: the walk down starts from the
+    /// deepest node on the previous cell's path that contains the next cell, so a run of n
+    /// leaves costs O(n + depth) node visits rather than O(n depth).
+    pub(crate) fn refine_to_sorted(&mut self, cells: &[Cell<D>]) {
+        let mut path: Vec<(NodeId, Cell<D>)> = vec![(NodeId::ROOT, Cell::root())];
+        for cell in cells {
+            while path.len() > 1 && !path.last().expect("the root stays").1.contains(cell) {
+                path.pop();
+            }
+            let (mut v, mut at) = *path.last().expect("the root stays");
+            while at.level() < cell.level() {
+                if self.is_leaf(v) {
+                    self.split(v);
+                }
+                let c = cell.ancestor(at.level() + 1).child_index();
+                v = self.child(v, c).expect("split above");
+                at = at.child(c);
+                path.push((v, at));
+            }
+        }
+    }
+
     /// [`Tree::balance`] of a tree that was balanced before the nodes `seeds` were split (see the
     /// module doc): returns the leaves it split, each after its parent.
     pub(crate) fn balance_seeded(
