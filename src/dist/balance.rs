@@ -153,7 +153,7 @@ impl<const D: usize> DistForest<D> {
 /// The leaves of `tree` whose keys lie in `mine`, in Morton order: the walk skips every subtree
 /// outside the range, and tests no key below a node inside it.
 fn own_leaves<const D: usize>(tree: &Tree<D>, mine: (u128, u128)) -> Vec<Cell<D>> {
-    let mut out = Vec::new();
+    let mut out = Vec::with_capacity(tree.leaf_count());
     let mut stack: SmallVec<[(NodeId, Cell<D>, bool); 64]> = SmallVec::new();
     stack.push((NodeId::ROOT, Cell::root(), false));
     while let Some((v, cell, mut inside)) = stack.pop() {

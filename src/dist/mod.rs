@@ -19,8 +19,9 @@
 //!   mirrors); repartition by counts.
 //!
 //! Every operation here is collective: every rank of the communicator calls it, in the same
-//! order. A bad input on one rank (a NaN coordinate, a bad query, leaves out of order) is agreed on before any
-//! exchange that depends on it and returned as the same [`DistError`] on every rank.
+//! order. A bad input on one rank (a NaN coordinate, a bad query, leaves out of order) is
+//! agreed on before any exchange that depends on it and returned as the same [`DistError`] on
+//! every rank.
 //!
 //! Points and items travel as plain bytes, so both are [`bytemuck::Pod`].
 //!
