@@ -8,7 +8,7 @@
 //! ```text
 //! cargo build --release --features mpi --example dist_balance
 //! mpirun -np 2 target/release/examples/dist_balance [--dim 2|3|4] [--level L]
-//!     [--connect face|edge|corner] [--reps N] [--check]
+//!     [--connect face|edge|corner] [--reps N] [--ghost] [--check]
 //! ```
 
 use mpi::collective::SystemOperation;
@@ -24,7 +24,7 @@ use cli::{Cli, CliError};
 mod fractal;
 
 const USAGE: &str = "\
-usage: dist_balance [--dim D] [--level L] [--connect C] [--reps N] [--check]
+usage: dist_balance [--dim D] [--level L] [--connect C] [--reps N] [--ghost] [--check]
 
 Refines p4est's fractal at level L over every rank, balances the forest and prints the leaf
 counts, the checksum of the leaves (equal to `orthtree balance`'s) and the phase times (maximum
@@ -36,6 +36,7 @@ options:
                  4D); levels whose leaves would not fit in memory are refused (default 8)
   --connect C    face, edge or corner (default face)
   --reps N       balance runs, 1 to 100, median reported (default 1)
+  --ghost        also builds the ghost layer of the balanced forest (same connectivity)
   --check        rank 0 also balances the whole fractal serially and compares
   -h, --help     this text
 ";
@@ -45,6 +46,7 @@ struct Args {
     level: u8,
     connect: Connectivity,
     reps: usize,
+    ghost: bool,
     check: bool,
 }
 
@@ -76,6 +78,7 @@ fn parse(cli: &mut Cli) -> Result<Args, CliError> {
         level: 8,
         connect: Connectivity::Face,
         reps: 1,
+        ghost: false,
         check: false,
     };
     while let Some(flag) = cli.next_arg()? {
@@ -95,6 +98,7 @@ fn parse(cli: &mut Cli) -> Result<Args, CliError> {
                 }
             }
             "--reps" => args.reps = cli.number("--reps", 1, 100)?,
+            "--ghost" => args.ghost = true,
             "--check" => args.check = true,
             other => return Err(CliError::unknown(other)),
         }
@@ -230,6 +234,21 @@ fn run<const D: usize>(world: &impl Communicator, args: &Args) {
             "exchange:              {} rounds, {sent} cells sent in all",
             stats.rounds
         );
+    }
+    if args.ghost {
+        world.barrier();
+        let t = mpi::time();
+        let ghost = forest
+            .ghost(world, args.connect)
+            .unwrap_or_else(|e| panic!("rank {rank}: {e}"));
+        let ghost_s = max(mpi::time() - t);
+        let (ghosts, mirrors) = (
+            sum(ghost.ghosts().len() as u64),
+            sum(ghost.mirrors().len() as u64),
+        );
+        if rank == 0 {
+            println!("ghost layer:           {ghosts} ghosts, {mirrors} mirrors, {ghost_s:.4} s");
+        }
     }
     if args.check {
         let all = gather_counts(world, &forest);

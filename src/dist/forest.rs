@@ -60,8 +60,7 @@ impl<const D: usize> DistForest<D> {
     ///
     /// # Errors
     /// [`DistError::Leaves`] on every rank, naming the lowest rank and the leaf where the tiling
-    /// breaks (checked on each rank first, then between ranks); [`DistError::TooManyPoints`] when
-    /// the leaves cannot be counted.
+    /// breaks (checked on each rank first, then between ranks).
     ///
     /// # Complexity
     /// O(n) per rank for n leaves there, plus an allgather of three words per rank.
