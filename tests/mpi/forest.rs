@@ -281,7 +281,12 @@ fn fractal_parts(world: &SimpleCommunicator) {
             .collect();
         let cells = Partition::uniform(fractal::uniform_cells::<2>(level), size);
         let part = fractal::fractal_part::<2>(level, cells[rank], cells[rank + 1]);
-        let forest = DistForest::new(world, part).unwrap();
+        let mut forest = DistForest::new(world, part).unwrap();
+        assert_eq!(gather(world, forest.leaves()), want);
+        let mut serial = fractal::fractal::<2>(level);
+        serial.balance(Connectivity::Corner);
+        forest.balance(world, Connectivity::Corner).unwrap();
+        let want: Vec<Cell<2>> = serial.leaves().map(|(_, c)| c).collect();
         assert_eq!(gather(world, forest.leaves()), want);
     }
     let want: Vec<Cell<3>> = fractal::fractal::<3>(5).leaves().map(|(_, c)| c).collect();
