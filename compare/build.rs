@@ -3,9 +3,6 @@
 //! (`libp4est-dev`), and hands their paths to `p4est_balance`. Without the feature it does
 //! nothing, so the default build needs neither MPI nor p4est.
 
-use std::path::PathBuf;
-use std::process::Command;
-
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
     println!("cargo:rerun-if-changed=p4est/balance.c");
@@ -18,6 +15,8 @@ fn main() {
 
 #[cfg(feature = "p4est")]
 fn compile() {
+    use std::path::PathBuf;
+    use std::process::Command;
     let out = PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
     let mpicc = std::env::var("MPICC").unwrap_or_else(|_| "mpicc".into());
     for (dim, define) in [(2, None), (3, Some("-DP4_TO_P8"))] {
