@@ -74,6 +74,16 @@ pub enum DistError {
         /// Its elements.
         elements: usize,
     },
+    /// The leaves given to a forest ([`DistForest::new`](super::DistForest::new)) do not tile
+    /// the root cube in Morton order, one contiguous run per rank.
+    Leaves {
+        /// The lowest rank where the order breaks.
+        rank: usize,
+        /// The leaf's position on that rank (the rank's leaf count when the run ends too early).
+        index: usize,
+        /// What is wrong there.
+        problem: LeafProblem,
+    },
     /// A partition's target table is not one first position per rank, non-decreasing from 0
     /// to the total, plus the total.
     InvalidTargets {
@@ -114,11 +124,36 @@ impl core::fmt::Display for DistError {
                 f,
                 "rank {rank}: {weights} weights given for {elements} elements"
             ),
+            DistError::Leaves {
+                rank,
+                index,
+                problem,
+            } => write!(f, "rank {rank}: leaf {index}: {problem}"),
             DistError::InvalidTargets { index } => write!(
                 f,
                 "entry {index} of the partition targets breaks the order 0 <= ... <= total"
             ),
         }
+    }
+}
+
+/// How the leaves of a forest fail to tile the root cube in Morton order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LeafProblem {
+    /// The leaf overlaps the leaf before it or comes before it in Morton order (on the same rank,
+    /// or, for a rank's first leaf, the last leaf of the ranks before it).
+    Overlap,
+    /// Part of the root cube between the previous leaf (on this rank or the ranks before) and
+    /// this one is covered by no leaf; at the rank's leaf count, the part after its last leaf.
+    Gap,
+}
+
+impl core::fmt::Display for LeafProblem {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            LeafProblem::Overlap => "overlaps the leaf before it or precedes it in Morton order",
+            LeafProblem::Gap => "leaves part of the root cube before it uncovered",
+        })
     }
 }
 

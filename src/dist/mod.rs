@@ -11,10 +11,17 @@
 //!   hold answers, answered there and merged back. Every answer is the one a single-process
 //!   tree over the union of the inputs gives (the union in rank order: rank 0's points first),
 //!   ties included: the global slot of a point is its position in that tree.
+//! - [`DistForest`]: the leaves of one 2^D-tree in Morton runs over the ranks (p4est's linear
+//!   forest, one tree), checked by an agreement step; 2:1 balance for any connectivity with the
+//!   same leaves as the serial [`Tree::balance`](crate::Tree::balance) of the union (local
+//!   balance, then only the insulation layer exchanged, then a local fix-up: Isaac, Burstedde
+//!   and Ghattas 2012); the [`GhostLayer`] (remote leaves adjacent to each rank's, and its
+//!   mirrors); repartition by counts.
 //!
 //! Every operation here is collective: every rank of the communicator calls it, in the same
-//! order. A bad input on one rank (a NaN coordinate, a bad query) is agreed on before any
-//! exchange that depends on it and returned as the same [`DistError`] on every rank.
+//! order. A bad input on one rank (a NaN coordinate, a bad query, leaves out of order) is
+//! agreed on before any exchange that depends on it and returned as the same [`DistError`] on
+//! every rank.
 //!
 //! Points and items travel as plain bytes, so both are [`bytemuck::Pod`].
 //!
@@ -29,15 +36,22 @@
 //! assert_eq!(near[0].len(), 3);
 //! ```
 
+mod balance;
 mod build;
 mod comm;
 mod error;
+mod exchange;
+mod forest;
+mod ghost;
 mod partition;
 mod queries;
 mod tree;
 
+pub use balance::BalanceStats;
 pub use build::{DistPointTreeBuilder, MAX_TOTAL};
-pub use error::DistError;
+pub use error::{DistError, LeafProblem};
+pub use forest::DistForest;
+pub use ghost::GhostLayer;
 pub use partition::Partition;
 pub use queries::DistNeighbor;
 pub use tree::DistPointTree;

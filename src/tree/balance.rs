@@ -160,6 +160,27 @@ impl Levels {
         }
     }
 
+    /// The internal nodes among `seeds` by level (the nodes split since the tree was balanced).
+    #[cfg(feature = "mpi")]
+    pub(super) fn seeded<const D: usize>(
+        tree: &Tree<D>,
+        options: BalanceOptions,
+        seeds: &[NodeId],
+    ) -> Levels {
+        let mut by_level: Vec<Vec<NodeId>> = vec![Vec::new(); Cell::<D>::MAX_LEVEL as usize + 1];
+        for &id in seeds {
+            if !tree.is_leaf(id) {
+                by_level[tree.level(id) as usize].push(id);
+            }
+        }
+        Levels {
+            slack: options.max_level_difference() - 1,
+            level: by_level.len(),
+            by_level,
+            split: Vec::new(),
+        }
+    }
+
     /// The internal nodes of the next level to examine (deepest first, the root's level never)
     /// and the level their neighbour searches must reach; `None` when every level is done.
     pub(super) fn next_level(&mut self) -> Option<(Vec<NodeId>, u8)> {

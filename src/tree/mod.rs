@@ -4,7 +4,8 @@
 //! Files by what they hold: `arena.rs` (the nodes), `traverse.rs`, `neighbors.rs`, `merge.rs`,
 //! `validate.rs` ([`Tree::validate`]), `raw.rs` (the arrays as stored, for saved trees); `balance_options.rs` ([`BalanceOptions`]), `balance.rs`
 //! ([`Tree::balance`]), `balance_check.rs` and `balance_check_dense.rs` ([`Tree::is_balanced`]),
-//! `balance_parallel.rs` (feature `rayon`), `balanced_split.rs` ([`Tree::split_balanced`]), and
+//! `balance_parallel.rs` (feature `rayon`), `balance_seeded.rs` (refinement toward
+//! given cells and balance restarted from new splits, for the forest over MPI ranks; feature `mpi`), `balanced_split.rs` ([`Tree::split_balanced`]), and
 //! `balance_reference.rs`, the chapter's algorithm that the others are tested against
 //! (`Tree::balance_chapter`, feature `reference`; the crate's own tests, benches and examples
 //! turn the feature on).
@@ -20,6 +21,8 @@ mod balance_options;
 mod balance_parallel;
 #[cfg(any(test, feature = "reference"))]
 mod balance_reference;
+#[cfg(feature = "mpi")]
+mod balance_seeded;
 mod balanced_split;
 mod inner;
 mod merge;
