@@ -31,9 +31,11 @@ use crate::tree::{BalanceOptions, NodeId, Tree};
 #[cfg(any(feature = "saved", feature = "serde"))]
 pub(crate) use raw::{PointTreeParts, PointTreeView};
 pub(crate) use runs::Runs;
+#[cfg(any(feature = "saved", feature = "mpi"))]
+pub(crate) use build::settle;
 #[cfg(feature = "mpi")]
 pub(crate) use {
-    build::{index_bits, order_by_full_keys, pack, settle},
+    build::{index_bits, order_by_full_keys, pack},
     radix::sort_keyed,
 };
 

@@ -61,7 +61,9 @@
 //! ```
 
 mod error;
+pub mod external;
 mod header;
+mod topology;
 
 pub use error::SavedError;
 pub use header::{ALIGN, MAGIC, VERSION};
