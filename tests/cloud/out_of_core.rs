@@ -26,7 +26,11 @@ fn cloud(seed: u64, n: usize) -> Vec<([f64; 3], u32)> {
         .map(|i| {
             let p = match rng.gen_range(0..4) {
                 0 => [rng.gen(), rng.gen(), rng.gen()],
-                1 => [0.3 + 1e-4 * rng.gen::<f64>(), 0.7, 0.2 + 1e-4 * rng.gen::<f64>()],
+                1 => [
+                    0.3 + 1e-4 * rng.gen::<f64>(),
+                    0.7,
+                    0.2 + 1e-4 * rng.gen::<f64>(),
+                ],
                 2 => [0.25, 0.5, 0.75],
                 _ => [0.5, f64::from(rng.gen_range(0..5u8)) / 4.0, rng.gen()],
             };
@@ -140,5 +144,59 @@ fn external_build_refuses_bad_points_and_a_changed_source() {
         .unwrap_err();
     assert!(err.to_string().contains("10 points, then 11"), "{err}");
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0, "no file left");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Box queries through the map equal a scan of the points, on a tree built out of core; a
+/// damaged node section gives an error or an answer, never a panic.
+#[cfg(feature = "mmap")]
+#[test]
+fn mapped_box_queries_equal_a_scan() {
+    use orthtree::io::saved::mapped::MappedTree;
+    use orthtree::Aabb;
+    let dir = folder("mapped");
+    let file = dir.join("t.tree");
+    let pts = cloud(11, 30_000);
+    ExternalBuild::new(1 << 16)
+        .bucket_size(16)
+        .write(|| pts.iter().copied(), &file)
+        .unwrap();
+    let mapped = MappedTree::<f64, u32, 3>::open(&file).unwrap();
+    assert_eq!(mapped.len(), pts.len());
+    let mut rng = SmallRng::seed_from_u64(12);
+    for q in 0..200 {
+        let (a, b): ([f64; 3], [f64; 3]) = (rng.gen(), rng.gen());
+        let mut min: [f64; 3] = core::array::from_fn(|k| a[k].min(b[k]));
+        let mut max: [f64; 3] = core::array::from_fn(|k| a[k].max(b[k]));
+        if q % 4 == 0 {
+            // faces through the duplicates and the points on halving planes
+            min = [0.25, 0.25, 0.0];
+            max = [0.5, 0.5 + f64::from(q % 3) / 8.0, 0.75];
+        }
+        let query = Aabb::new(min, max).unwrap();
+        let mut got = Vec::new();
+        let count = mapped.query_box(&query, |_, &i| got.push(i)).unwrap();
+        got.sort_unstable();
+        let want: Vec<u32> = pts
+            .iter()
+            .filter(|(p, _)| (0..3).all(|k| min[k] <= p[k] && p[k] <= max[k]))
+            .map(|e| e.1)
+            .collect();
+        assert_eq!(count, want.len(), "query {q}");
+        assert_eq!(got, want, "query {q}");
+    }
+    drop(mapped);
+    let bytes = std::fs::read(&file).unwrap();
+    let everything = Aabb::new([-1.0; 3], [2.0; 3]).unwrap();
+    for k in 0..64 {
+        let mut damaged = bytes.clone();
+        let at = damaged.len() - 1 - (k * 7919) % (damaged.len() / 8);
+        damaged[at] ^= 0xa5;
+        std::fs::write(&file, &damaged).unwrap();
+        if let Ok(m) = MappedTree::<f64, u32, 3>::open(&file) {
+            let _ = m.query_box(&everything, |_, _| {});
+            assert!(m.to_tree().is_err() || m.query_box(&everything, |_, _| {}).is_ok());
+        }
+    }
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -25,8 +25,8 @@ use crate::points::DEFAULT_BUCKET_SIZE;
 use crate::Error;
 use bytemuck::Pod;
 use core::fmt;
-use std::collections::BinaryHeap;
 use std::cmp::Reverse;
+use std::collections::BinaryHeap;
 use std::fs::{File, OpenOptions};
 use std::io::{BufReader, BufWriter, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
@@ -301,7 +301,9 @@ impl ExternalBuild {
             bounds.add_point(&q);
             n += 1;
             if n >= u64::from(u32::MAX) {
-                return Err(ExternalError::Build(Error::TooManyPoints { len: n as usize }));
+                return Err(ExternalError::Build(Error::TooManyPoints {
+                    len: n as usize,
+                }));
             }
         }
         let (geometry, domain) = crate::points::settle(None, bounds, n as usize);
@@ -356,9 +358,8 @@ impl ExternalBuild {
             runs = merged;
         }
         report.passes += 1;
-        let (file_bytes, slots) = self.write_file::<S, T, D>(
-            &runs, &geometry, domain, n, max_depth, buffer, out,
-        )?;
+        let (file_bytes, slots) =
+            self.write_file::<S, T, D>(&runs, &geometry, domain, n, max_depth, buffer, out)?;
         for (p, _) in &runs {
             spill.remove(p);
         }

@@ -63,6 +63,8 @@
 mod error;
 pub mod external;
 mod header;
+#[cfg(feature = "mmap")]
+pub mod mapped;
 mod topology;
 
 pub use error::SavedError;
