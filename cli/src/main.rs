@@ -82,9 +82,18 @@ fn main() -> ExitCode {
         Err(Failure::Usage(message)) => {
             // clap's format, with the command's usage line and exit code 2.
             let mut command = Cli::command();
-            let sub = command.find_subcommand_mut(name).map(|c| c.clone());
+            let mut sub = command.find_subcommand_mut(name).map(|c| c.clone());
+            let mut bin = format!("orthtree {name}");
+            // A command with commands of its own (`cloud`): the one that ran.
+            if let (Some(inner), Command::Cloud(args)) = (sub.as_mut(), &cli.command) {
+                let leaf = args.name();
+                if let Some(c) = inner.find_subcommand_mut(leaf).map(|c| c.clone()) {
+                    bin = format!("{bin} {leaf}");
+                    sub = Some(c);
+                }
+            }
             let mut target = sub.unwrap_or(command);
-            target = target.bin_name(format!("orthtree {name}"));
+            target = target.bin_name(bin);
             target.error(ErrorKind::ValueValidation, message).exit()
         }
         Err(failure @ Failure::Input(_)) => {

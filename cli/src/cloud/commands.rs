@@ -4,31 +4,26 @@
 
 use super::input::{self, to_world};
 use super::picture::{self, Raster};
-use super::{scan, DiffArgs, DownsampleArgs, IndexArgs, InfoArgs, OutliersArgs, Source};
-use crate::limits::{self, human_bytes};
+use super::{scan, DiffArgs, DownsampleArgs, InfoArgs, OutliersArgs, Source};
+use crate::limits;
 use crate::progress::Phase;
 use crate::Failure;
 use orthtree::cloud::voxel::{Representative, VoxelGrid};
 use orthtree::cloud::{outliers, Cloud, CloudError, Column};
 use orthtree::geom::Aabb;
 use orthtree::image::RegionTree;
-use orthtree::{PointSet, PointTree};
 use std::time::Instant;
-
-/// `println!` that ignores a closed standard output (a pipe into `head`).
-macro_rules! say {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = writeln!(std::io::stdout(), $($arg)*);
-    }};
-}
 
 /// Bytes a point costs in these commands beyond the cloud itself (the tree's points, items and
 /// sort keys, the world copy): the estimate checked against memory before work starts.
 const BYTES_PER_POINT: f64 = 120.0;
 
 /// The cloud of `input`, or the built-in scan of epoch `epoch`, with a name for messages.
-fn load(input: Option<&str>, src: &Source, epoch: u32) -> Result<(Cloud<f64>, String), Failure> {
+pub fn load(
+    input: Option<&str>,
+    src: &Source,
+    epoch: u32,
+) -> Result<(Cloud<f64>, String), Failure> {
     let start = Instant::now();
     let (cloud, name) = match input {
         Some(path) => {
@@ -68,7 +63,7 @@ fn cloud_failure(name: &str, arg: &str, e: CloudError) -> Failure {
 }
 
 /// The bounding box of the points (the origin for none).
-fn bounds(points: &[[f64; 3]]) -> Aabb<f64, 3> {
+pub fn bounds(points: &[[f64; 3]]) -> Aabb<f64, 3> {
     let mut min = [f64::INFINITY; 3];
     let mut max = [f64::NEG_INFINITY; 3];
     for p in points {
@@ -350,69 +345,4 @@ fn for_each_voxel(tree: &RegionTree<3>, mut f: impl FnMut([u32; 3], u32)) {
     for b in tree.blocks().filter(|b| b.black) {
         f(b.min, b.side);
     }
-}
-
-/// `orthtree cloud index`.
-pub fn index(a: &IndexArgs) -> Result<(), Failure> {
-    let (cloud, name) = load(a.input.as_deref(), &a.source, 0)?;
-    let entries = cloud
-        .entries()
-        .map_err(|e| Failure::Input(format!("{name}: {e}")))?;
-    let start = Instant::now();
-    let fail = |e: &dyn std::fmt::Display| Failure::Input(format!("{}: {e}", a.out.display()));
-    if a.source.no_files {
-        let tree = PointTree::builder()
-            .bucket_size(a.bucket_size)
-            .build(&entries)
-            .map_err(|e| Failure::Input(format!("{name}: {e}")))?;
-        say!(
-            "tree:        {} points, {} leaves (not written: --no-files)",
-            tree.len(),
-            tree.tree().leaf_count()
-        );
-        return Ok(());
-    }
-    let phase = Phase::start("building and writing the tree");
-    super::index::write(&entries, a, &name)?;
-    drop(phase);
-    let build = start.elapsed();
-    let bytes = std::fs::metadata(&a.out).map_err(|e| fail(&e))?.len();
-    let start = Instant::now();
-    let phase = Phase::start("checking the saved tree");
-    let tree: PointTree<f64, u32, 3> =
-        orthtree::io::saved::read_point_tree_file(&a.out).map_err(|e| fail(&e))?;
-    drop(phase);
-    let load = start.elapsed();
-    let b = bounds(&cloud.points);
-    let centre: [f64; 3] = core::array::from_fn(|k| 0.5 * (b.min[k] + b.max[k]));
-    let half: [f64; 3] = core::array::from_fn(|k| 0.05 * (b.max[k] - b.min[k]));
-    let query = Aabb {
-        min: core::array::from_fn(|k| centre[k] - half[k]),
-        max: core::array::from_fn(|k| centre[k] + half[k]),
-    };
-    let start = Instant::now();
-    let found = tree
-        .query_count(query)
-        .map_err(|e| Failure::Input(e.to_string()))?;
-    let query_time = start.elapsed();
-    say!(
-        "tree:        {} points, {} leaves, bucket size {}, {} in {:.1} ms{}",
-        tree.len(),
-        tree.tree().leaf_count(),
-        a.bucket_size,
-        human_bytes(bytes as f64),
-        build.as_secs_f64() * 1e3,
-        match a.budget {
-            Some(b) => format!(" (out of core, budget {})", human_bytes(b as f64)),
-            None => String::new(),
-        }
-    );
-    say!(
-        "check:       loaded and validated in {:.1} ms; a box of a tenth of the extent per axis \
-         holds {found} points ({:.3} ms)",
-        load.as_secs_f64() * 1e3,
-        query_time.as_secs_f64() * 1e3
-    );
-    say!("wrote:       {}", a.out.display());
-    Ok(())
 }

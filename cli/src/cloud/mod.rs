@@ -12,6 +12,14 @@
 //! pictures PNG (feature `png`) or SVG. With no file, a built-in synthetic scan
 //! ([`scan`]): two epochs of it for `diff`.
 
+/// `println!` that ignores a closed standard output (a pipe into `head`).
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout(), $($arg)*);
+    }};
+}
+
 mod commands;
 mod index;
 mod input;
@@ -47,9 +55,10 @@ enum CloudCommand {
 /// Where a command's cloud comes from, and what it writes.
 #[derive(clap::Args, Debug, Clone)]
 pub struct Source {
-    /// The built-in scan's number of points (no file given); at most 10^8
+    /// The built-in scan's number of points (no file given): at most 4e9 for `index
+    /// --budget`, which streams them; the other commands refuse what memory cannot hold
     #[arg(long, value_name = "N", default_value_t = scan::DEFAULT_POINTS,
-          value_parser = limits::number(1usize, 100_000_000))]
+          value_parser = limits::number(1usize, 4_000_000_000))]
     points: usize,
     /// The built-in scan's seed
     #[arg(long, value_name = "SEED", default_value_t = 1)]
@@ -65,7 +74,7 @@ pub struct Source {
 /// x-y footprint and per occupied voxel of --voxel, and writes a top-down heat map of the point
 /// density as PICTURE.png (feature png) or PICTURE.svg.
 #[derive(clap::Args, Debug)]
-#[command(after_help = crate::EXIT_CODES)]
+#[command(after_help = crate::EXIT_CODES, allow_negative_numbers = true)]
 pub struct InfoArgs {
     /// The cloud: .ply, .xyz, .csv, .txt, .las, .laz (none: the built-in scan)
     #[arg(value_name = "CLOUD")]
@@ -86,7 +95,7 @@ pub struct InfoArgs {
 /// corner at the cloud's lowest corner): the centroid with the attributes averaged, or the
 /// point nearest it with its own. Writes OUT (PLY) and a density picture of the result.
 #[derive(clap::Args, Debug)]
-#[command(after_help = crate::EXIT_CODES)]
+#[command(after_help = crate::EXIT_CODES, allow_negative_numbers = true)]
 pub struct DownsampleArgs {
     /// The cloud: .ply, .xyz, .csv, .txt, .las, .laz (none: the built-in scan)
     #[arg(value_name = "CLOUD")]
@@ -144,7 +153,7 @@ pub struct OutliersArgs {
 /// gone, +1 new) and a top-down change map (gone red, new green). With no files: two epochs
 /// of the built-in scan (one building torn down, one built).
 #[derive(clap::Args, Debug)]
-#[command(after_help = crate::EXIT_CODES)]
+#[command(after_help = crate::EXIT_CODES, allow_negative_numbers = true)]
 pub struct DiffArgs {
     /// The two clouds, before and after (none: the built-in scan's two epochs)
     #[arg(value_name = "CLOUD", num_args = 0..=2)]
@@ -165,12 +174,13 @@ pub struct DiffArgs {
 /// Build the point tree of a cloud and save it (the library's saved-tree format)
 ///
 /// Builds an octree of the cloud's points (f64 world coordinates, each point's index as its u32
-/// item) and writes it in the saved format, then opens the file again and checks it. With
-/// --budget the build is out of core: the points are sorted in runs of at most BYTES, spilled
-/// to temporary files next to OUT and merged, so that clouds larger than memory can be indexed;
-/// the file is the same, byte for byte.
+/// item) and writes it in the saved format, then opens the file again, checks it and runs a box
+/// query. With --budget the build is out of core: the points are sorted in runs that fit BYTES,
+/// spilled to temporary files next to OUT and merged, so that clouds larger than memory can be
+/// indexed (the built-in scan is then streamed, never held; a file is read whole first); the
+/// file is the same, byte for byte, and is checked and queried through a memory map.
 #[derive(clap::Args, Debug)]
-#[command(after_help = crate::EXIT_CODES)]
+#[command(after_help = crate::EXIT_CODES, allow_negative_numbers = true)]
 pub struct IndexArgs {
     /// The cloud: .ply, .xyz, .csv, .txt, .las, .laz (none: the built-in scan)
     #[arg(value_name = "CLOUD")]
@@ -182,8 +192,8 @@ pub struct IndexArgs {
     #[arg(long, value_name = "N", default_value_t = orthtree::points::DEFAULT_BUCKET_SIZE,
           value_parser = limits::number(1usize, 1 << 20))]
     bucket_size: usize,
-    /// Build out of core with this memory budget in bytes (at least 1 MiB; suffixes k, M, G
-    /// for 2^10, 2^20, 2^30)
+    /// Build out of core within this memory budget in bytes, from 1M to 2^50 (suffixes k, M,
+    /// G for 2^10, 2^20, 2^30)
     #[arg(long, value_name = "BYTES", value_parser = parse_bytes)]
     budget: Option<u64>,
     #[command(flatten)]
@@ -227,6 +237,19 @@ fn parse_bytes(raw: &str) -> Result<u64, String> {
     Ok(bytes)
 }
 
+impl CloudArgs {
+    /// The name of the command given (`info`, `downsample`, ...).
+    pub fn name(&self) -> &'static str {
+        match &self.command {
+            CloudCommand::Info(_) => "info",
+            CloudCommand::Downsample(_) => "downsample",
+            CloudCommand::Outliers(_) => "outliers",
+            CloudCommand::Diff(_) => "diff",
+            CloudCommand::Index(_) => "index",
+        }
+    }
+}
+
 /// Runs `orthtree cloud`.
 pub fn run(args: &CloudArgs) -> Result<(), Failure> {
     match &args.command {
@@ -234,6 +257,6 @@ pub fn run(args: &CloudArgs) -> Result<(), Failure> {
         CloudCommand::Downsample(a) => commands::downsample(a),
         CloudCommand::Outliers(a) => commands::outliers(a),
         CloudCommand::Diff(a) => commands::diff(a),
-        CloudCommand::Index(a) => commands::index(a),
+        CloudCommand::Index(a) => index::run(a),
     }
 }

@@ -85,24 +85,44 @@ fn buildings(epoch: u32) -> Vec<Building> {
     out
 }
 
-/// `n` points of epoch `epoch` of the site, sampled with `seed`: about 75% on the ground and
-/// roofs (one return each, seen from above), 24% on walls, 1% stray returns up to 40 m above.
-/// The attributes are intensity (roofs bright, ground dimmer) and classification (2 ground,
-/// 6 building, 7 noise: the ASPRS codes).
-pub fn scan(seed: u64, n: usize, epoch: u32) -> Cloud<f64> {
-    let houses = buildings(epoch);
-    let mut rng = Rng::new(seed ^ (u64::from(epoch) << 32));
-    let mut points = Vec::with_capacity(n);
-    let mut intensity = Vec::with_capacity(n);
-    let mut class = Vec::with_capacity(n);
-    let noise = |rng: &mut Rng| 0.05 * (rng.unit() + rng.unit() + rng.unit() - 1.5);
-    for _ in 0..n {
+/// One return of the scan: position, intensity, ASPRS class.
+pub type Return = ([f64; 3], u16, u8);
+
+/// The returns of [`scan`] one at a time, without holding them (for clouds larger than
+/// memory).
+pub struct Returns {
+    houses: Vec<Building>,
+    rng: Rng,
+    left: usize,
+}
+
+impl Returns {
+    /// The `n` returns of epoch `epoch` sampled with `seed`.
+    pub fn new(seed: u64, n: usize, epoch: u32) -> Returns {
+        Returns {
+            houses: buildings(epoch),
+            rng: Rng::new(seed ^ (u64::from(epoch) << 32)),
+            left: n,
+        }
+    }
+}
+
+impl Iterator for Returns {
+    type Item = Return;
+
+    fn next(&mut self) -> Option<Return> {
+        if self.left == 0 {
+            return None;
+        }
+        self.left -= 1;
+        let rng = &mut self.rng;
+        let houses = &self.houses;
+        let noise = |rng: &mut Rng| 0.05 * (rng.unit() + rng.unit() + rng.unit() - 1.5);
         let pick = rng.unit();
         let (x, y) = (rng.range(0.0, SITE), rng.range(0.0, SITE));
-        if pick < 0.01 {
-            points.push([x, y, ground(x, y) + rng.range(5.0, 40.0)]);
-            intensity.push(rng.range(0.0, 200.0) as u16);
-            class.push(7);
+        Some(if pick < 0.01 {
+            let z = ground(x, y) + rng.range(5.0, 40.0);
+            ([x, y, z], rng.range(0.0, 200.0) as u16, 7)
         } else if pick < 0.25 && !houses.is_empty() {
             // a wall: a random side of a random building
             let b = houses[(rng.next_u64() % houses.len() as u64) as usize];
@@ -113,19 +133,30 @@ pub fn scan(seed: u64, n: usize, epoch: u32) -> Cloud<f64> {
                 2 => [b.lo[0], b.lo[1] + t * (b.hi[1] - b.lo[1])],
                 _ => [b.hi[0], b.lo[1] + t * (b.hi[1] - b.lo[1])],
             };
-            let base = ground(b.lo[0], b.lo[1]);
-            points.push([x, y, base + rng.unit() * b.height + noise(&mut rng)]);
-            intensity.push(rng.range(600.0, 900.0) as u16);
-            class.push(6);
+            let z = ground(b.lo[0], b.lo[1]) + rng.unit() * b.height + noise(rng);
+            ([x, y, z], rng.range(600.0, 900.0) as u16, 6)
         } else if let Some(b) = houses.iter().find(|b| b.contains(x, y)) {
-            points.push([x, y, ground(b.lo[0], b.lo[1]) + b.height + noise(&mut rng)]);
-            intensity.push(rng.range(1500.0, 2000.0) as u16);
-            class.push(6);
+            let z = ground(b.lo[0], b.lo[1]) + b.height + noise(rng);
+            ([x, y, z], rng.range(1500.0, 2000.0) as u16, 6)
         } else {
-            points.push([x, y, ground(x, y) + noise(&mut rng)]);
-            intensity.push(rng.range(300.0, 700.0) as u16);
-            class.push(2);
-        }
+            let z = ground(x, y) + noise(rng);
+            ([x, y, z], rng.range(300.0, 700.0) as u16, 2)
+        })
+    }
+}
+
+/// `n` points of epoch `epoch` of the site, sampled with `seed`: about 75% on the ground and
+/// roofs (one return each, seen from above), 24% on walls, 1% stray returns up to 40 m above.
+/// The attributes are intensity (roofs bright, ground dimmer) and classification (2 ground,
+/// 6 building, 7 noise: the ASPRS codes).
+pub fn scan(seed: u64, n: usize, epoch: u32) -> Cloud<f64> {
+    let mut points = Vec::with_capacity(n);
+    let mut intensity = Vec::with_capacity(n);
+    let mut class = Vec::with_capacity(n);
+    for (p, i, c) in Returns::new(seed, n, epoch) {
+        points.push(p);
+        intensity.push(i);
+        class.push(c);
     }
     let mut cloud = Cloud::from_points(points);
     cloud.attributes.intensity = Some(intensity);

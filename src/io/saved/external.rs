@@ -13,10 +13,11 @@
 //! The file is the one [`write_point_tree`](super::write_point_tree) writes for the in-memory
 //! build of the same points, byte for byte, whatever the budget (tested, down to runs of one
 //! point). Memory: the run being sorted (44 bytes a point for `f64` coordinates and `u32`
-//! items) within the budget, then the merge's buffers (the budget shared among the streams)
-//! and the node arrays, about 13 bytes per node slot (0.2 bytes per point at the default bucket
-//! size of 64). Disk: the runs (the points, items and keys, once) beside the output, removed as
-//! they are merged.
+//! items) in seven eighths of the budget, then the merge's buffers (an eighth of the budget
+//! shared among the streams) and the node arrays, about 13 bytes per node slot (0.13 bytes per
+//! point at the default bucket size of 64 on a scan), which must fit what the runs left.
+//! Disk: the runs (the points, items and keys, once) beside the output, removed as they are
+//! merged.
 
 use super::header::{header_len, padded, Header};
 use super::{SavedScalar, ALIGN};
@@ -238,10 +239,11 @@ impl ExternalBuild {
         self
     }
 
-    /// The points a run holds within the budget (at least one).
+    /// The points a run holds: seven eighths of the budget (the rest is for the program, the
+    /// merge's buffers and the node arrays), at least one point.
     pub fn run_points<S: Pod, T: Pod, const D: usize>(&self) -> u64 {
         let per_point = core::mem::size_of::<([S; D], T)>() + 16;
-        (self.budget / per_point as u64).max(1)
+        (self.budget / 8 * 7 / per_point as u64).max(1)
     }
 
     /// Writes the saved tree of the points `source()` yields (called twice: once for the
@@ -370,10 +372,10 @@ impl ExternalBuild {
         Ok(report)
     }
 
-    /// The buffer of each stream in a merge: the budget shared among the inputs and outputs,
-    /// at least one record.
+    /// The buffer of each stream in a merge: an eighth of the budget shared among the inputs
+    /// and outputs, at least one record, at most 1 MiB.
     fn stream_buffer<S: Pod, T: Pod, const D: usize>(&self) -> usize {
-        let share = self.budget / (FAN_IN as u64 + 3);
+        let share = self.budget / 8 / (FAN_IN as u64 + 3);
         (share.min(1 << 20) as usize).max(Layout::<S, T, D>::RECORD)
     }
 

@@ -99,6 +99,11 @@ impl<S: SavedScalar, T: Pod, const D: usize> MappedTree<S, T, D> {
         self.header.points as usize
     }
 
+    /// The box the points lie in (the root cube, or the root box the tree was built with).
+    pub fn domain(&self) -> Aabb<f64, D> {
+        self.header.domain
+    }
+
     /// `true` for a tree without points.
     pub fn is_empty(&self) -> bool {
         self.header.points == 0
