@@ -202,9 +202,9 @@ fn the_built_in_scan_against_the_library() {
     let later = scan::scan(1, 20_000, 1);
     let mut both = orthtree::Aabb::new(cloud.points[0], cloud.points[0]).unwrap();
     for p in cloud.points.iter().chain(&later.points) {
-        for k in 0..3 {
-            both.min[k] = both.min[k].min(p[k]);
-            both.max[k] = both.max[k].max(p[k]);
+        for (k, &x) in p.iter().enumerate() {
+            both.min[k] = both.min[k].min(x);
+            both.max[k] = both.max[k].max(x);
         }
     }
     let grid = VoxelGrid::for_box(&both, 2.0).unwrap();

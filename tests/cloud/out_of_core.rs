@@ -127,7 +127,7 @@ fn external_build_in_two_dimensions_with_f32_and_small_items() {
 fn external_build_refuses_bad_points_and_a_changed_source() {
     let dir = folder("refuse");
     let file = dir.join("t.tree");
-    let pts = vec![([0.0, 0.0, 0.0], 0u32), ([1.0, f64::NAN, 0.0], 1)];
+    let pts = [([0.0, 0.0, 0.0], 0u32), ([1.0, f64::NAN, 0.0], 1)];
     let err = ExternalBuild::new(1 << 20)
         .write(|| pts.iter().copied(), &file)
         .unwrap_err();

@@ -65,7 +65,7 @@ fn ground(x: f64, y: f64) -> f64 {
 /// The buildings of epoch `epoch` (0 or 1): twelve of them from the site's own seed; epoch 1
 /// loses the first and gains one more.
 fn buildings(epoch: u32) -> Vec<Building> {
-    let mut rng = Rng::new(0x5eed_0f_5173);
+    let mut rng = Rng::new(0x005e_ed0f_5173);
     let mut out: Vec<Building> = (0..13)
         .map(|_| {
             let (w, d) = (rng.range(10.0, 30.0), rng.range(10.0, 30.0));

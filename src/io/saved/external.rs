@@ -8,7 +8,7 @@
 //! 3. Runs are merged, at most [`FAN_IN`] at a time (the earlier run first among equal keys, so
 //!    the order is the in-memory build's), until one pass can merge all of them into the saved
 //!    file: the points and items stream into their sections while the node arrays are built
-//!    from the keys ([`super::topology`]); the header and node arrays follow.
+//!    from the keys (in the in-memory build's split order); the header and node arrays follow.
 //!
 //! The file is the one [`write_point_tree`](super::write_point_tree) writes for the in-memory
 //! build of the same points, byte for byte, whatever the budget (tested, down to runs of one
@@ -221,13 +221,13 @@ impl ExternalBuild {
         self.budget
     }
 
-    /// Points per leaf (as [`PointTreeBuilder::bucket_size`](crate::PointTreeBuilder::bucket_size)).
+    /// Points per leaf (as [`PointTreeBuilder::bucket_size`](crate::points::PointTreeBuilder::bucket_size)).
     pub fn bucket_size(mut self, bucket_size: usize) -> Self {
         self.bucket_size = bucket_size;
         self
     }
 
-    /// The deepest level split to (as [`PointTreeBuilder::max_depth`](crate::PointTreeBuilder::max_depth)).
+    /// The deepest level split to (as [`PointTreeBuilder::max_depth`](crate::points::PointTreeBuilder::max_depth)).
     pub fn max_depth(mut self, max_depth: u8) -> Self {
         self.max_depth = Some(max_depth);
         self

@@ -10,7 +10,7 @@
 //! [`read_point_tree`](super::read_point_tree) checks it (counts against the file's length
 //! before anything is read), and the sections are borrowed from the map by `bytemuck`'s checked
 //! casts (the format aligns every section to 16 bytes, the map to a page). A
-//! [`PointTree`](crate::PointTree) owns its arrays, so the queries here walk the saved arrays
+//! [`PointTree`] owns its arrays, so the queries here walk the saved arrays
 //! themselves instead of building one: they check every index they follow and return
 //! [`SavedError::Corrupt`] rather than panic on a damaged file. `open` does not read the arrays
 //! (that would page in the whole file); [`MappedTree::to_tree`] copies them into an owned tree
@@ -179,8 +179,8 @@ impl<S: SavedScalar, T: Pod, const D: usize> MappedTree<S, T, D> {
                 .get(v as usize)
                 .ok_or(corrupt("node id", u64::from(v)))?;
             if inside || first == u32::MAX {
-                for i in s..e {
-                    let p = &points[i];
+                for (i, p) in points[s..e].iter().enumerate() {
+                    let i = s + i;
                     if inside || query.contains(&p.map(Scalar::to_f64)) {
                         visit(p, item(i));
                         found += 1;
