@@ -20,16 +20,15 @@
 //! merged.
 
 use super::header::{header_len, padded, Header};
+use super::runs::{io, merge, Layout, Spill};
 use super::{SavedScalar, ALIGN};
 use crate::geom::{Aabb, Cell, RootGeometry};
 use crate::points::DEFAULT_BUCKET_SIZE;
 use crate::Error;
 use bytemuck::Pod;
 use core::fmt;
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
 use std::fs::{File, OpenOptions};
-use std::io::{BufReader, BufWriter, Read, Seek, SeekFrom, Write};
+use std::io::{BufWriter, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
 /// The most runs merged at once.
@@ -112,95 +111,6 @@ impl std::error::Error for ExternalError {
             ExternalError::Io { source, .. } => Some(source),
             ExternalError::SourceChanged { .. } => None,
         }
-    }
-}
-
-fn io(path: &Path) -> impl Fn(std::io::Error) -> ExternalError + '_ {
-    move |source| ExternalError::Io {
-        path: path.to_path_buf(),
-        source,
-    }
-}
-
-/// Temporary run files, removed when merged or when the build ends (also on failure).
-struct Spill {
-    dir: PathBuf,
-    stem: String,
-    next: u64,
-    live: Vec<(PathBuf, u64)>,
-    written: u64,
-    peak: u64,
-}
-
-impl Spill {
-    fn path(&mut self) -> PathBuf {
-        self.next += 1;
-        let p = self.dir.join(format!("{}.run{}.tmp", self.stem, self.next));
-        p
-    }
-
-    fn add(&mut self, path: PathBuf, bytes: u64) {
-        self.live.push((path, bytes));
-        self.written += bytes;
-        let now: u64 = self.live.iter().map(|l| l.1).sum();
-        self.peak = self.peak.max(now);
-    }
-
-    fn remove(&mut self, path: &Path) {
-        let _ = std::fs::remove_file(path);
-        self.live.retain(|l| l.0 != path);
-    }
-}
-
-impl Drop for Spill {
-    fn drop(&mut self) {
-        for (p, _) in &self.live {
-            let _ = std::fs::remove_file(p);
-        }
-    }
-}
-
-/// One spilled record: key, point, item (little-endian, packed).
-struct Layout<S, T, const D: usize>(core::marker::PhantomData<(S, T)>);
-
-impl<S: Pod, T: Pod, const D: usize> Layout<S, T, D> {
-    const POINT: usize = core::mem::size_of::<[S; D]>();
-    const ITEM: usize = core::mem::size_of::<T>();
-    const RECORD: usize = 8 + Self::POINT + Self::ITEM;
-
-    fn put(out: &mut impl Write, key: u64, p: &[S; D], item: &T) -> std::io::Result<()> {
-        out.write_all(&key.to_le_bytes())?;
-        out.write_all(bytemuck::bytes_of(p))?;
-        out.write_all(item_bytes(item))
-    }
-}
-
-fn item_bytes<T: Pod>(item: &T) -> &[u8] {
-    if core::mem::size_of::<T>() == 0 {
-        &[]
-    } else {
-        bytemuck::bytes_of(item)
-    }
-}
-
-/// A sorted run being read in the merge.
-struct RunReader {
-    input: BufReader<File>,
-    record: Vec<u8>,
-    left: u64,
-}
-
-impl RunReader {
-    /// The next record's key (the record in `self.record`), or `None` at the end.
-    fn next(&mut self) -> std::io::Result<Option<u64>> {
-        if self.left == 0 {
-            return Ok(None);
-        }
-        self.left -= 1;
-        self.input.read_exact(&mut self.record)?;
-        Ok(Some(u64::from_le_bytes(
-            self.record[..8].try_into().expect("8 bytes"),
-        )))
     }
 }
 
@@ -522,35 +432,4 @@ impl ExternalBuild {
         items.flush().map_err(&fail)?;
         Ok((at, topology.slots()))
     }
-}
-
-/// Merges the sorted `runs` (in input order) by (key, run), handing each record's key and
-/// bytes to `emit` in order.
-fn merge<S: Pod, T: Pod, const D: usize>(
-    runs: &[(PathBuf, u64)],
-    buffer: usize,
-    mut emit: impl FnMut(u64, &[u8]) -> std::io::Result<()>,
-) -> Result<(), ExternalError> {
-    let mut readers = Vec::with_capacity(runs.len());
-    let mut heap = BinaryHeap::with_capacity(runs.len());
-    for (r, (path, count)) in runs.iter().enumerate() {
-        let file = File::open(path).map_err(io(path))?;
-        let mut reader = RunReader {
-            input: BufReader::with_capacity(buffer, file),
-            record: vec![0; Layout::<S, T, D>::RECORD],
-            left: *count,
-        };
-        if let Some(key) = reader.next().map_err(io(path))? {
-            heap.push(Reverse((key, r)));
-        }
-        readers.push(reader);
-    }
-    while let Some(Reverse((key, r))) = heap.pop() {
-        let path = &runs[r].0;
-        emit(key, &readers[r].record).map_err(io(path))?;
-        if let Some(next) = readers[r].next().map_err(io(path))? {
-            heap.push(Reverse((next, r)));
-        }
-    }
-    Ok(())
 }

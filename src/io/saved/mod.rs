@@ -65,6 +65,7 @@ pub mod external;
 mod header;
 #[cfg(feature = "mmap")]
 pub mod mapped;
+mod runs;
 mod topology;
 
 pub use error::SavedError;

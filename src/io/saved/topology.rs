@@ -168,13 +168,12 @@ impl<const D: usize> Topology<D> {
             let mut child_start = 0usize;
             for (j, &k) in self.leaf_keys.iter().enumerate() {
                 let d = digit::<D>(k, leaf.level);
-                if d != open.child || j == 0 {
+                if d != open.child {
+                    // The children before `d` end here (the one being filled, empty ones).
                     for c in open.child..d {
                         self.run_ends[first + c] = j as u32;
                     }
-                    if d != open.child {
-                        child_start = j;
-                    }
+                    child_start = j;
                     open.child = d;
                 }
             }
