@@ -321,3 +321,39 @@ fn small_files_by_extension_whatever_the_case() {
     assert_eq!(number_after(&out, "change:"), 0, "{out}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// LAS and LAZ input (features `las`, `laz`): the cloud in world coordinates (scale and offset
+/// applied), downsampled as the library does.
+#[cfg(feature = "laz")]
+#[test]
+fn las_and_laz_files_in_world_coordinates() {
+    use orthtree::cloud::Frame;
+    let dir = scratch_dir("cloud-las");
+    let mut cloud: Cloud<i32> = Cloud::from_points(
+        (0..400)
+            .map(|i| [i % 20 * 50, i / 20 * 50, i % 7 * 10])
+            .collect(),
+    );
+    cloud.frame = Frame {
+        scale: [0.01; 3],
+        offset: [1000.0, 2000.0, 5.0],
+    };
+    orthtree::io::las::write(&cloud, dir.join("c.LAS"), false).unwrap();
+    orthtree::io::las::write(&cloud, dir.join("c.laz"), true).unwrap();
+    let world = Cloud::from_points(cloud.world_points());
+    let grid = VoxelGrid::with_size(&world.points, 1.0).unwrap();
+    let want = grid.downsample(&world, Representative::Centroid).unwrap();
+    for file in ["c.LAS", "c.laz"] {
+        let out = ok(
+            &["downsample", file, "--voxel", "1", "--out", "d.ply"],
+            &dir,
+        );
+        assert_eq!(
+            number_after(&out, "400 points ->"),
+            want.len() as u64,
+            "{file}"
+        );
+        assert_eq!(read_ply(&dir.join("d.ply")).points, want.points, "{file}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
