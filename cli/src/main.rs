@@ -3,7 +3,8 @@
 //! - `orthtree mesh [BOARD]`: the main job, the chapter's quadtree mesher on a circuit board;
 //! - `orthtree heat [BOARD]`: steady heat on the board's mesh (with the `heat` feature);
 //! - `orthtree image A [B] --op OP --out C`: Boolean operations on images with region trees;
-//! - `orthtree balance`: p4est's fractal refinement, then 2:1 balance.
+//! - `orthtree balance`: p4est's fractal refinement, then 2:1 balance;
+//! - `orthtree cloud info|downsample|outliers|diff|index`: point clouds (PLY, XYZ/CSV, LAS/LAZ).
 //!
 //! Every command answers `--help`. Exit codes: 0 success, 1 an input or processing error (a file
 //! that cannot be read or written, a board the mesher refuses, a check that fails), 2 a usage
@@ -11,6 +12,7 @@
 //! `error:` line naming the argument or the file.
 
 mod balance;
+mod cloud;
 mod heat;
 mod image;
 mod limits;
@@ -30,7 +32,7 @@ Exit codes:
   2  a usage error (an unknown option, a bad value, work the arguments make too large)";
 
 /// 2^D-trees at work: mesh a circuit board with the chapter's quadtree mesher, solve heat on it,
-/// combine images with region quadtrees, balance p4est's fractal.
+/// combine images with region quadtrees, balance p4est's fractal, voxelise point clouds.
 #[derive(Parser, Debug)]
 #[command(name = "orthtree", version, after_help = EXIT_CODES, propagate_version = true)]
 struct Cli {
@@ -44,6 +46,7 @@ enum Command {
     Heat(heat::HeatArgs),
     Image(image::ImageArgs),
     Balance(balance::BalanceArgs),
+    Cloud(cloud::CloudArgs),
 }
 
 /// Why a command stopped.
@@ -72,15 +75,25 @@ fn main() -> ExitCode {
         Command::Heat(args) => ("heat", heat::run(args)),
         Command::Image(args) => ("image", image::run(args)),
         Command::Balance(args) => ("balance", balance::run(args)),
+        Command::Cloud(args) => ("cloud", cloud::run(args)),
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,
         Err(Failure::Usage(message)) => {
             // clap's format, with the command's usage line and exit code 2.
             let mut command = Cli::command();
-            let sub = command.find_subcommand_mut(name).map(|c| c.clone());
+            let mut sub = command.find_subcommand_mut(name).map(|c| c.clone());
+            let mut bin = format!("orthtree {name}");
+            // A command with commands of its own (`cloud`): the one that ran.
+            if let (Some(inner), Command::Cloud(args)) = (sub.as_mut(), &cli.command) {
+                let leaf = args.name();
+                if let Some(c) = inner.find_subcommand_mut(leaf).map(|c| c.clone()) {
+                    bin = format!("{bin} {leaf}");
+                    sub = Some(c);
+                }
+            }
             let mut target = sub.unwrap_or(command);
-            target = target.bin_name(format!("orthtree {name}"));
+            target = target.bin_name(bin);
             target.error(ErrorKind::ValueValidation, message).exit()
         }
         Err(failure @ Failure::Input(_)) => {

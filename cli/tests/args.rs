@@ -8,7 +8,7 @@ use std::process::{Command, Stdio};
 use std::time::Duration;
 
 /// The commands covered here.
-const COMMANDS: [&str; 4] = ["balance", "heat", "image", "mesh"];
+const COMMANDS: [&str; 5] = ["balance", "cloud", "heat", "image", "mesh"];
 
 #[path = "../../tests/programs/mod.rs"]
 mod programs;

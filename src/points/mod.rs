@@ -28,12 +28,14 @@ use crate::error::{Error, ValidationError};
 use crate::geom::{Aabb, Cell, Dim, RootGeometry, Scalar};
 use crate::query::{Location, PointSet, QueryError};
 use crate::tree::{BalanceOptions, NodeId, Tree};
+#[cfg(any(feature = "saved", feature = "mpi"))]
+pub(crate) use build::settle;
 #[cfg(any(feature = "saved", feature = "serde"))]
 pub(crate) use raw::{PointTreeParts, PointTreeView};
 pub(crate) use runs::Runs;
 #[cfg(feature = "mpi")]
 pub(crate) use {
-    build::{index_bits, order_by_full_keys, pack, settle},
+    build::{index_bits, order_by_full_keys, pack},
     radix::sort_keyed,
 };
 

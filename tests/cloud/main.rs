@@ -1,6 +1,7 @@
 //! Point clouds: the PLY, XYZ/CSV and LAS readers and writers (round trips, hostile files), and
 //! the voxel operations against brute force (downsampling and occupancy against a sort by voxel
-//! key, outlier removal and normals against a k-nearest scan).
+//! key, outlier removal and normals against a k-nearest scan); the out-of-core build against
+//! the in-memory one (feature `saved`).
 
 #[path = "../common/mod.rs"]
 mod common;
@@ -10,4 +11,6 @@ mod formats_hostile;
 #[cfg(feature = "las")]
 mod las_files;
 mod neighbours;
+#[cfg(feature = "saved")]
+mod out_of_core;
 mod voxels;

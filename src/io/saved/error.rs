@@ -64,6 +64,14 @@ pub enum SavedError {
     BigEndianHost,
     /// Reading the file failed.
     Io(std::io::Error),
+    /// A query through a memory map found `what` out of range at node (or section) `at`: the
+    /// file was damaged after it was written (only the header is checked when it is mapped).
+    Corrupt {
+        /// What is out of range.
+        what: &'static str,
+        /// The node id or section number.
+        at: u64,
+    },
 }
 
 impl fmt::Display for SavedError {
@@ -101,6 +109,9 @@ impl fmt::Display for SavedError {
                 "saved tree: the format is little-endian and this machine is big-endian"
             ),
             SavedError::Io(e) => write!(f, "saved tree: {e}"),
+            SavedError::Corrupt { what, at } => {
+                write!(f, "saved tree: {what} out of range at node {at}")
+            }
         }
     }
 }

@@ -61,7 +61,12 @@
 //! ```
 
 mod error;
+pub mod external;
 mod header;
+#[cfg(feature = "mmap")]
+pub mod mapped;
+mod runs;
+mod topology;
 
 pub use error::SavedError;
 pub use header::{ALIGN, MAGIC, VERSION};

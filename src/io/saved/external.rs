@@ -1,0 +1,435 @@
+//! The out-of-core build: the saved file of a [`PointTree`](crate::PointTree) over more points
+//! than fit in memory, by an external Morton sort within a memory budget.
+//!
+//! 1. A first pass over the points checks them and takes their bounds: the root cube, as the
+//!    in-memory build chooses it.
+//! 2. A second pass cuts the points into runs of as many as fit the budget, sorts each run by
+//!    (Morton key, input index) and spills it to a temporary file.
+//! 3. Runs are merged, at most [`FAN_IN`] at a time (the earlier run first among equal keys, so
+//!    the order is the in-memory build's), until one pass can merge all of them into the saved
+//!    file: the points and items stream into their sections while the node arrays are built
+//!    from the keys (in the in-memory build's split order); the header and node arrays follow.
+//!
+//! The file is the one [`write_point_tree`](super::write_point_tree) writes for the in-memory
+//! build of the same points, byte for byte, whatever the budget (tested, down to runs of one
+//! point). Memory: the run being sorted (44 bytes a point for `f64` coordinates and `u32`
+//! items) in seven eighths of the budget, then the merge's buffers (an eighth of the budget
+//! shared among the streams) and the node arrays, about 13 bytes per node slot (0.13 bytes per
+//! point at the default bucket size of 64 on a scan), which must fit what the runs left.
+//! Disk: the runs (the points, items and keys, once) beside the output, removed as they are
+//! merged.
+
+use super::header::{header_len, padded, Header};
+use super::runs::{io, merge, Layout, Spill};
+use super::{SavedScalar, ALIGN};
+use crate::geom::{Aabb, Cell, RootGeometry};
+use crate::points::DEFAULT_BUCKET_SIZE;
+use crate::Error;
+use bytemuck::Pod;
+use core::fmt;
+use std::fs::{File, OpenOptions};
+use std::io::{BufWriter, Seek, SeekFrom, Write};
+use std::path::{Path, PathBuf};
+
+/// The most runs merged at once.
+pub const FAN_IN: usize = 16;
+
+/// The settings of an out-of-core build: the memory budget and the tree's settings.
+///
+/// ```
+/// use orthtree::io::saved::external::ExternalBuild;
+/// let b = ExternalBuild::new(1 << 30).bucket_size(32).max_depth(12);
+/// assert_eq!(b.budget(), 1 << 30);
+/// ```
+#[derive(Clone, Debug)]
+pub struct ExternalBuild {
+    budget: u64,
+    bucket_size: usize,
+    max_depth: Option<u8>,
+    temp_dir: Option<PathBuf>,
+}
+
+/// What an out-of-core build did.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ExternalReport {
+    /// The points written.
+    pub points: u64,
+    /// The sorted runs spilled.
+    pub runs: u64,
+    /// Merge passes (the last writes the saved file).
+    pub passes: u32,
+    /// Bytes written to temporary files in all.
+    pub spilled_bytes: u64,
+    /// The most bytes of temporary files present at once.
+    pub peak_temp_bytes: u64,
+    /// The saved file's length.
+    pub file_bytes: u64,
+    /// The node slots of the tree.
+    pub slots: u64,
+}
+
+/// Why an out-of-core build failed.
+#[derive(Debug)]
+#[non_exhaustive]
+pub enum ExternalError {
+    /// A point the tree refuses (not finite, not exact), or too many points: as the in-memory
+    /// build says, naming the input index.
+    Build(Error),
+    /// The second pass over the points gave another number of points than the first.
+    SourceChanged {
+        /// Points in the first pass.
+        first: u64,
+        /// Points in the second.
+        second: u64,
+    },
+    /// Reading or writing `path` failed.
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// What failed.
+        source: std::io::Error,
+    },
+}
+
+impl fmt::Display for ExternalError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ExternalError::Build(e) => write!(f, "{e}"),
+            ExternalError::SourceChanged { first, second } => write!(
+                f,
+                "the points changed between passes: {first} points, then {second}"
+            ),
+            ExternalError::Io { path, source } => write!(f, "{}: {source}", path.display()),
+        }
+    }
+}
+
+impl std::error::Error for ExternalError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            ExternalError::Build(e) => Some(e),
+            ExternalError::Io { source, .. } => Some(source),
+            ExternalError::SourceChanged { .. } => None,
+        }
+    }
+}
+
+impl ExternalBuild {
+    /// A build within `budget` bytes of memory (runs of at least one point), the default
+    /// bucket size and maximum depth, temporary files beside the output.
+    pub fn new(budget: u64) -> Self {
+        ExternalBuild {
+            budget,
+            bucket_size: DEFAULT_BUCKET_SIZE,
+            max_depth: None,
+            temp_dir: None,
+        }
+    }
+
+    /// The memory budget in bytes.
+    pub fn budget(&self) -> u64 {
+        self.budget
+    }
+
+    /// Points per leaf (as [`PointTreeBuilder::bucket_size`](crate::points::PointTreeBuilder::bucket_size)).
+    pub fn bucket_size(mut self, bucket_size: usize) -> Self {
+        self.bucket_size = bucket_size;
+        self
+    }
+
+    /// The deepest level split to (as [`PointTreeBuilder::max_depth`](crate::points::PointTreeBuilder::max_depth)).
+    pub fn max_depth(mut self, max_depth: u8) -> Self {
+        self.max_depth = Some(max_depth);
+        self
+    }
+
+    /// The folder of the temporary run files (default: the output's).
+    pub fn temp_dir(mut self, dir: impl Into<PathBuf>) -> Self {
+        self.temp_dir = Some(dir.into());
+        self
+    }
+
+    /// The points a run holds: seven eighths of the budget (the rest is for the program, the
+    /// merge's buffers and the node arrays), at least one point.
+    pub fn run_points<S: Pod, T: Pod, const D: usize>(&self) -> u64 {
+        let per_point = core::mem::size_of::<([S; D], T)>() + 16;
+        (self.budget / 8 * 7 / per_point as u64).max(1)
+    }
+
+    /// Writes the saved tree of the points `source()` yields (called twice: once for the
+    /// bounds, once for the runs; both passes must yield the same points) to `out`, with each
+    /// point's position in the sequence as input index.
+    ///
+    /// # Errors
+    /// [`ExternalError::Build`] for a point the in-memory build refuses (naming its index) or
+    /// settings it refuses (bucket size 0, maximum depth too large, `u32::MAX` points or more);
+    /// [`ExternalError::SourceChanged`]; [`ExternalError::Io`] naming the file.
+    ///
+    /// # Complexity
+    /// O(n log n) time; two passes over the source, the runs written and read once per merge
+    /// pass (one pass up to [`FAN_IN`] runs).
+    ///
+    /// ```
+    /// use orthtree::io::saved::{external::ExternalBuild, read_point_tree, write_point_tree};
+    /// use orthtree::{Octree, PointSet};
+    /// let pts: Vec<([f64; 3], u32)> =
+    ///     (0..1000u32).map(|i| ([(i % 10) as f64, (i / 10 % 10) as f64, (i / 100) as f64], i)).collect();
+    /// let dir = std::env::temp_dir().join(format!("orthtree-doc-external-{}", std::process::id()));
+    /// std::fs::create_dir_all(&dir).unwrap();
+    /// let file = dir.join("cloud.tree");
+    /// let report = ExternalBuild::new(4096).write(|| pts.iter().copied(), &file).unwrap();
+    /// assert!(report.runs > 1);
+    /// let mut bytes = Vec::new();
+    /// write_point_tree(&Octree::new(&pts).unwrap(), &mut bytes).unwrap();
+    /// assert_eq!(std::fs::read(&file).unwrap(), bytes); // the in-memory build's file
+    /// std::fs::remove_dir_all(&dir).unwrap();
+    /// ```
+    pub fn write<S, T, I, const D: usize>(
+        &self,
+        mut source: impl FnMut() -> I,
+        out: impl AsRef<Path>,
+    ) -> Result<ExternalReport, ExternalError>
+    where
+        S: SavedScalar,
+        T: Pod,
+        I: IntoIterator<Item = ([S; D], T)>,
+    {
+        let out = out.as_ref();
+        if self.bucket_size == 0 {
+            return Err(ExternalError::Build(Error::ZeroBucketSize));
+        }
+        let max_depth = self.max_depth.unwrap_or(Cell::<D>::MAX_LEVEL);
+        if max_depth > Cell::<D>::MAX_LEVEL {
+            return Err(ExternalError::Build(Error::MaxDepthTooLarge {
+                requested: max_depth,
+                limit: Cell::<D>::MAX_LEVEL,
+            }));
+        }
+        // Pass 1: the points' check and bounds.
+        let mut bounds = Aabb::empty();
+        let mut n = 0u64;
+        for (index, (p, _)) in source().into_iter().enumerate() {
+            let q = Error::check_input(&p, None, index).map_err(ExternalError::Build)?;
+            bounds.add_point(&q);
+            n += 1;
+            if n >= u64::from(u32::MAX) {
+                return Err(ExternalError::Build(Error::TooManyPoints {
+                    len: n as usize,
+                }));
+            }
+        }
+        let (geometry, domain) = crate::points::settle(None, bounds, n as usize);
+        let dir = match &self.temp_dir {
+            Some(d) => d.clone(),
+            None => match out.parent() {
+                Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+                _ => PathBuf::from("."),
+            },
+        };
+        let stem = out
+            .file_name()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "tree".into());
+        let mut spill = Spill {
+            dir,
+            stem,
+            next: 0,
+            live: Vec::new(),
+            written: 0,
+            peak: 0,
+        };
+        // Pass 2: sorted runs.
+        let runs = self.spill_runs::<S, T, I, D>(&mut source, &geometry, n, &mut spill)?;
+        let mut report = ExternalReport {
+            points: n,
+            runs: runs.len() as u64,
+            ..ExternalReport::default()
+        };
+        // Merge passes until one can write the file.
+        let mut runs = runs;
+        let buffer = self.stream_buffer::<S, T, D>();
+        while runs.len() > FAN_IN {
+            report.passes += 1;
+            let mut merged = Vec::new();
+            for group in runs.chunks(FAN_IN) {
+                let path = spill.path();
+                let file = File::create(&path).map_err(io(&path))?;
+                let mut w = BufWriter::with_capacity(buffer, file);
+                let mut count = 0u64;
+                merge::<S, T, D>(group, buffer, |_, record| {
+                    count += 1;
+                    w.write_all(record)
+                })?;
+                w.flush().map_err(io(&path))?;
+                spill.add(path.clone(), count * Layout::<S, T, D>::RECORD as u64);
+                for (p, _) in group {
+                    spill.remove(p);
+                }
+                merged.push((path, count));
+            }
+            runs = merged;
+        }
+        report.passes += 1;
+        let (file_bytes, slots) =
+            self.write_file::<S, T, D>(&runs, &geometry, domain, n, max_depth, buffer, out)?;
+        for (p, _) in &runs {
+            spill.remove(p);
+        }
+        report.spilled_bytes = spill.written;
+        report.peak_temp_bytes = spill.peak;
+        report.file_bytes = file_bytes;
+        report.slots = slots;
+        Ok(report)
+    }
+
+    /// The buffer of each stream in a merge: an eighth of the budget shared among the inputs
+    /// and outputs, at least one record, at most 1 MiB.
+    fn stream_buffer<S: Pod, T: Pod, const D: usize>(&self) -> usize {
+        let share = self.budget / 8 / (FAN_IN as u64 + 3);
+        (share.min(1 << 20) as usize).max(Layout::<S, T, D>::RECORD)
+    }
+
+    /// Pass 2: the points in runs of [`ExternalBuild::run_points`], each sorted by (key,
+    /// index) and spilled; returns the run files and their point counts, in input order.
+    fn spill_runs<S, T, I, const D: usize>(
+        &self,
+        source: &mut impl FnMut() -> I,
+        geometry: &RootGeometry<D>,
+        n: u64,
+        spill: &mut Spill,
+    ) -> Result<Vec<(PathBuf, u64)>, ExternalError>
+    where
+        S: SavedScalar,
+        T: Pod,
+        I: IntoIterator<Item = ([S; D], T)>,
+    {
+        let cap = self.run_points::<S, T, D>().min(n.max(1)) as usize;
+        let mut entries: Vec<([S; D], T)> = Vec::with_capacity(cap);
+        let mut order: Vec<(u64, u32)> = Vec::with_capacity(cap);
+        let mut runs = Vec::new();
+        let mut seen = 0u64;
+        let mut flush = |entries: &mut Vec<([S; D], T)>,
+                         order: &mut Vec<(u64, u32)>,
+                         spill: &mut Spill|
+         -> Result<(), ExternalError> {
+            order.sort_unstable();
+            let path = spill.path();
+            let file = File::create(&path).map_err(io(&path))?;
+            let mut w = BufWriter::with_capacity(1 << 16, file);
+            for &(key, i) in order.iter() {
+                let (p, item) = &entries[i as usize];
+                Layout::<S, T, D>::put(&mut w, key, p, item).map_err(io(&path))?;
+            }
+            w.flush().map_err(io(&path))?;
+            let count = entries.len() as u64;
+            spill.add(path.clone(), count * Layout::<S, T, D>::RECORD as u64);
+            runs.push((path, count));
+            entries.clear();
+            order.clear();
+            Ok(())
+        };
+        for (p, item) in source() {
+            seen += 1;
+            if seen > n {
+                return Err(ExternalError::SourceChanged {
+                    first: n,
+                    second: seen,
+                });
+            }
+            order.push((geometry.scalar_key(&p), entries.len() as u32));
+            entries.push((p, item));
+            if entries.len() == cap {
+                flush(&mut entries, &mut order, spill)?;
+            }
+        }
+        if seen != n {
+            return Err(ExternalError::SourceChanged {
+                first: n,
+                second: seen,
+            });
+        }
+        if !entries.is_empty() {
+            flush(&mut entries, &mut order, spill)?;
+        }
+        Ok(runs)
+    }
+
+    /// The last merge into the saved file at `out`; returns its length and node slots.
+    #[allow(clippy::too_many_arguments)]
+    fn write_file<S: SavedScalar, T: Pod, const D: usize>(
+        &self,
+        runs: &[(PathBuf, u64)],
+        geometry: &RootGeometry<D>,
+        domain: Aabb<f64, D>,
+        n: u64,
+        max_depth: u8,
+        buffer: usize,
+        out: &Path,
+    ) -> Result<(u64, u64), ExternalError> {
+        let fail = io(out);
+        let head = padded(header_len::<D>()).expect("a short header");
+        let point_bytes = n * Layout::<S, T, D>::POINT as u64;
+        let items_at = padded(head + point_bytes).expect("in range");
+        let item_bytes = n * Layout::<S, T, D>::ITEM as u64;
+        let nodes_at = padded(items_at + item_bytes).expect("in range");
+        let file = File::create(out).map_err(&fail)?;
+        let mut points = BufWriter::with_capacity(buffer, file);
+        points.seek(SeekFrom::Start(head)).map_err(&fail)?;
+        let second = OpenOptions::new().write(true).open(out).map_err(&fail)?;
+        let mut items = BufWriter::with_capacity(buffer, second);
+        items.seek(SeekFrom::Start(items_at)).map_err(&fail)?;
+        let mut topology = super::topology::Topology::<D>::new(self.bucket_size, max_depth);
+        let mut last = None;
+        let (p_len, i_len) = (Layout::<S, T, D>::POINT, Layout::<S, T, D>::ITEM);
+        merge::<S, T, D>(runs, buffer, |key, record| {
+            topology.push(key, last);
+            last = Some(key);
+            points.write_all(&record[8..8 + p_len])?;
+            items.write_all(&record[8 + p_len..8 + p_len + i_len])
+        })?;
+        topology.finish();
+        let zeros = [0u8; ALIGN as usize];
+        points
+            .write_all(&zeros[..(items_at - head - point_bytes) as usize])
+            .map_err(&fail)?;
+        points.flush().map_err(&fail)?;
+        items
+            .write_all(&zeros[..(nodes_at - items_at - item_bytes) as usize])
+            .map_err(&fail)?;
+        let (half_lo, half_side) = geometry.halves();
+        let header = Header::<D> {
+            max_depth,
+            depth: topology.depth,
+            balanced: None,
+            item_size: Layout::<S, T, D>::ITEM as u32,
+            item_align: core::mem::align_of::<T>() as u32,
+            points: n,
+            slots: topology.slots(),
+            free_blocks: 0,
+            bucket_size: self.bucket_size as u64,
+            half_side,
+            half_lo,
+            domain,
+            live_blocks: topology.live_blocks.clone(),
+        };
+        let mut at = nodes_at;
+        let sections: [&[u8]; 5] = [
+            bytemuck::cast_slice(&topology.run_ends),
+            bytemuck::cast_slice(&topology.first_child),
+            &topology.level,
+            bytemuck::cast_slice(&topology.block_parent),
+            &[],
+        ];
+        for s in sections {
+            items.write_all(s).map_err(&fail)?;
+            at += s.len() as u64;
+            let pad = padded(at).expect("in range") - at;
+            items.write_all(&zeros[..pad as usize]).map_err(&fail)?;
+            at += pad;
+        }
+        items.seek(SeekFrom::Start(0)).map_err(&fail)?;
+        items.write_all(&header.encode::<S>()).map_err(&fail)?;
+        items.flush().map_err(&fail)?;
+        Ok((at, topology.slots()))
+    }
+}

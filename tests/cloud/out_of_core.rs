@@ -1,0 +1,202 @@
+//! The out-of-core build (`io::saved::external`) against the in-memory build: the same saved
+//! bytes for random clouds with duplicates, clusters, points on cell faces and a maximum depth,
+//! under budgets from one point per run (many merge passes) to one run for all; and the mapped
+//! tree's box queries against a scan of the points.
+
+use orthtree::io::saved::external::ExternalBuild;
+use orthtree::io::saved::write_point_tree;
+use orthtree::points::PointTreeBuilder;
+use orthtree::PointTree;
+use rand::rngs::SmallRng;
+use rand::{Rng, SeedableRng};
+use std::path::PathBuf;
+
+/// A fresh folder for one test's files.
+fn folder(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("orthtree-ooc-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// `n` points: a uniform part, a tight cluster, exact duplicates and points on the halving
+/// planes of a unit cube, each with its index as item.
+fn cloud(seed: u64, n: usize) -> Vec<([f64; 3], u32)> {
+    let mut rng = SmallRng::seed_from_u64(seed);
+    (0..n as u32)
+        .map(|i| {
+            let p = match rng.gen_range(0..4) {
+                0 => [rng.gen(), rng.gen(), rng.gen()],
+                1 => [
+                    0.3 + 1e-4 * rng.gen::<f64>(),
+                    0.7,
+                    0.2 + 1e-4 * rng.gen::<f64>(),
+                ],
+                2 => [0.25, 0.5, 0.75],
+                _ => [0.5, f64::from(rng.gen_range(0..5u8)) / 4.0, rng.gen()],
+            };
+            (p, i)
+        })
+        .collect()
+}
+
+fn in_memory_bytes<T: bytemuck::Pod, const D: usize>(
+    entries: &[([f64; D], T)],
+    bucket: usize,
+    max_depth: Option<u8>,
+) -> Vec<u8> {
+    let mut b = PointTreeBuilder::new().bucket_size(bucket);
+    if let Some(d) = max_depth {
+        b = b.max_depth(d);
+    }
+    let tree: PointTree<f64, T, D> = b.build(entries).unwrap();
+    let mut bytes = Vec::new();
+    write_point_tree(&tree, &mut bytes).unwrap();
+    bytes
+}
+
+#[test]
+fn external_build_equals_the_in_memory_build_for_every_budget() {
+    let dir = folder("equal");
+    let file = dir.join("t.tree");
+    for (seed, n) in [(1u64, 0usize), (2, 1), (3, 65), (4, 600), (5, 20_000)] {
+        let pts = cloud(seed, n);
+        for (bucket, depth) in [(64, None), (1, None), (4, Some(3)), (8, Some(21))] {
+            let want = in_memory_bytes(&pts, bucket, depth);
+            // 44 bytes a point in 7/8 of the budget: runs of 1, 2, ~20, ~650 points and one run.
+            for budget in [1u64, 100, 1000, 1 << 15, 1 << 30] {
+                if n > 600 && budget < 1 << 15 {
+                    continue; // thousands of tiny runs: slow, and covered at n = 600
+                }
+                let mut b = ExternalBuild::new(budget).bucket_size(bucket);
+                if let Some(d) = depth {
+                    b = b.max_depth(d);
+                }
+                let report = b.write(|| pts.iter().copied(), &file).unwrap();
+                let got = std::fs::read(&file).unwrap();
+                assert_eq!(
+                    got.len(),
+                    want.len(),
+                    "seed {seed} n {n} bucket {bucket} depth {depth:?} budget {budget}"
+                );
+                assert!(
+                    got == want,
+                    "seed {seed} n {n} bucket {bucket} depth {depth:?} budget {budget}: bytes differ"
+                );
+                assert_eq!(report.points, n as u64);
+                assert_eq!(report.file_bytes, want.len() as u64);
+                let run = b.run_points::<f64, u32, 3>();
+                assert_eq!(report.runs, (n as u64).div_ceil(run));
+                // no temporary file is left
+                let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
+                assert_eq!(left.len(), 1, "temporary files left: {left:?}");
+            }
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn external_build_in_two_dimensions_with_f32_and_small_items() {
+    let dir = folder("2d");
+    let file = dir.join("t.tree");
+    let mut rng = SmallRng::seed_from_u64(9);
+    let pts: Vec<([f32; 2], u16)> = (0..3000u16)
+        .map(|i| {
+            let p = if i % 3 == 0 {
+                [0.5, 0.5]
+            } else {
+                [rng.gen_range(-10.0..10.0), rng.gen_range(0.0..1e-3)]
+            };
+            (p, i)
+        })
+        .collect();
+    let tree: PointTree<f32, u16, 2> = PointTreeBuilder::new().bucket_size(5).build(&pts).unwrap();
+    let mut want = Vec::new();
+    write_point_tree(&tree, &mut want).unwrap();
+    for budget in [1u64, 500, 1 << 20] {
+        ExternalBuild::new(budget)
+            .bucket_size(5)
+            .write(|| pts.iter().copied(), &file)
+            .unwrap();
+        assert!(std::fs::read(&file).unwrap() == want, "budget {budget}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn external_build_refuses_bad_points_and_a_changed_source() {
+    let dir = folder("refuse");
+    let file = dir.join("t.tree");
+    let pts = [([0.0, 0.0, 0.0], 0u32), ([1.0, f64::NAN, 0.0], 1)];
+    let err = ExternalBuild::new(1 << 20)
+        .write(|| pts.iter().copied(), &file)
+        .unwrap_err();
+    assert!(err.to_string().contains("point 1"), "{err}");
+    let mut calls = 0;
+    let err = ExternalBuild::new(1 << 20)
+        .write(
+            || {
+                calls += 1;
+                (0..if calls == 1 { 10u32 } else { 11 }).map(|i| ([f64::from(i), 0.0, 0.0], i))
+            },
+            &file,
+        )
+        .unwrap_err();
+    assert!(err.to_string().contains("10 points, then 11"), "{err}");
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0, "no file left");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Box queries through the map equal a scan of the points, on a tree built out of core; a
+/// damaged node section gives an error or an answer, never a panic.
+#[cfg(feature = "mmap")]
+#[test]
+fn mapped_box_queries_equal_a_scan() {
+    use orthtree::io::saved::mapped::MappedTree;
+    use orthtree::Aabb;
+    let dir = folder("mapped");
+    let file = dir.join("t.tree");
+    let pts = cloud(11, 30_000);
+    ExternalBuild::new(1 << 16)
+        .bucket_size(16)
+        .write(|| pts.iter().copied(), &file)
+        .unwrap();
+    let mapped = MappedTree::<f64, u32, 3>::open(&file).unwrap();
+    assert_eq!(mapped.len(), pts.len());
+    let mut rng = SmallRng::seed_from_u64(12);
+    for q in 0..200 {
+        let (a, b): ([f64; 3], [f64; 3]) = (rng.gen(), rng.gen());
+        let mut min: [f64; 3] = core::array::from_fn(|k| a[k].min(b[k]));
+        let mut max: [f64; 3] = core::array::from_fn(|k| a[k].max(b[k]));
+        if q % 4 == 0 {
+            // faces through the duplicates and the points on halving planes
+            min = [0.25, 0.25, 0.0];
+            max = [0.5, 0.5 + f64::from(q % 3) / 8.0, 0.75];
+        }
+        let query = Aabb::new(min, max).unwrap();
+        let mut got = Vec::new();
+        let count = mapped.query_box(&query, |_, &i| got.push(i)).unwrap();
+        got.sort_unstable();
+        let want: Vec<u32> = pts
+            .iter()
+            .filter(|(p, _)| (0..3).all(|k| min[k] <= p[k] && p[k] <= max[k]))
+            .map(|e| e.1)
+            .collect();
+        assert_eq!(count, want.len(), "query {q}");
+        assert_eq!(got, want, "query {q}");
+    }
+    drop(mapped);
+    let bytes = std::fs::read(&file).unwrap();
+    let everything = Aabb::new([-1.0; 3], [2.0; 3]).unwrap();
+    for k in 0..64 {
+        let mut damaged = bytes.clone();
+        let at = damaged.len() - 1 - (k * 7919) % (damaged.len() / 8);
+        damaged[at] ^= 0xa5;
+        std::fs::write(&file, &damaged).unwrap();
+        if let Ok(m) = MappedTree::<f64, u32, 3>::open(&file) {
+            let _ = m.query_box(&everything, |_, _| {});
+            assert!(m.to_tree().is_err() || m.query_box(&everything, |_, _| {}).is_ok());
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
