@@ -18,6 +18,7 @@ mod pairs;
 mod parallel;
 mod periodic;
 mod radius;
+mod scan;
 mod sparse;
 mod traverse;
 
@@ -263,6 +264,7 @@ fn pairs_of<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, Br, const D: usi
         r2,
         boundary,
         visit,
+        block: scan::Block::boxed(),
     };
     let start = traverse::roots(a.index(), b.index(), same, ());
     Ok(traverse::run(a.index(), b.index(), metric, start, &mut v))
@@ -288,6 +290,7 @@ fn count_of<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, const D: usize>(
         r2: &r2,
         boundary,
         diff: vec![0; r2.len() + 1],
+        block: scan::Block::boxed(),
     };
     let start = traverse::roots(a.index(), b.index(), same, (0, r2.len()));
     let _ = traverse::run(a.index(), b.index(), metric, start, &mut v);

@@ -9,6 +9,7 @@ use super::bounds::Euclid;
 use super::knn::{group_knn, groups, table, width, write_rows, KnnTable};
 use super::pairs::{CountWithin, PairsWithin};
 use super::radius::{squared_radii, squared_radius, Boundary};
+use super::scan::Block;
 use super::sparse::SparseDistances;
 use super::traverse::{roots, run, split_top};
 use super::Joins;
@@ -92,6 +93,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
                     triples.push((s, t, d));
                     ControlFlow::<Infallible>::Continue(())
                 },
+                block: Block::boxed(),
             };
             let _ = run(a.index(), b.index(), &Euclid, start, &mut v);
         };
@@ -108,6 +110,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
                     top.push((s, t, d));
                     ControlFlow::<Infallible>::Continue(())
                 },
+                block: Block::boxed(),
             };
             let want = rayon::current_num_threads() * PAIRS_PER_THREAD;
             let start = roots(a.index(), b.index(), false, ());
@@ -231,6 +234,7 @@ fn par_count<A: PointSet<D> + Sync, B: PointSet<D> + Sync, const D: usize>(
         r2: &r2,
         boundary,
         diff: vec![0; r2.len() + 1],
+        block: Block::boxed(),
     };
     let mut top = counter();
     let want = rayon::current_num_threads() * PAIRS_PER_THREAD;

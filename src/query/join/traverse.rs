@@ -55,12 +55,12 @@ pub(crate) trait PairVisitor<A: SpatialIndex<D>, B: SpatialIndex<D>, T, const D:
     /// Classifies a node pair from its boxes' distance range `(near, far)`; `pairs` is its
     /// number of point pairs (unordered, of distinct points, for a node with itself).
     fn classify(&mut self, state: &T, near: f64, far: f64, pairs: u64) -> Step<T>;
-    /// A pair of scanned nodes: their runs (the same run when `same`).
+    /// A pair of scanned nodes: their runs and closed boxes (the same node when `same`).
     fn leaves(
         &mut self,
         state: &T,
-        a: Range<usize>,
-        b: Range<usize>,
+        a: (Range<usize>, &Aabb<f64, D>),
+        b: (Range<usize>, &Aabb<f64, D>),
         same: bool,
     ) -> ControlFlow<Self::Break>;
 }
@@ -98,7 +98,7 @@ where
     if same {
         // One node with itself: the unordered pairs of its children, each child with itself.
         if ca.is_empty() {
-            return visitor.leaves(&state, a.run(sa.0), b.run(sb.0), true);
+            return visitor.leaves(&state, (a.run(sa.0), &sa.1), (b.run(sb.0), &sb.1), true);
         }
         // The same tree on both sides: the children's handles are both A's and B's.
         let cb = children(b, &sb);
@@ -111,7 +111,7 @@ where
     }
     let cb = children(b, &sb);
     match (ca.is_empty(), cb.is_empty()) {
-        (true, true) => visitor.leaves(&state, a.run(sa.0), b.run(sb.0), false),
+        (true, true) => visitor.leaves(&state, (a.run(sa.0), &sa.1), (b.run(sb.0), &sb.1), false),
         (false, true) => {
             for c in ca.into_iter().rev() {
                 stack.push((c, sb, false, state.clone()));
