@@ -266,7 +266,7 @@ fn pairs_of<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, Br, const D: usi
         visit,
         block: scan::Block::boxed(),
     };
-    let start = traverse::roots(a.index(), b.index(), same, ());
+    let start = traverse::roots((a.index(), b.index(), metric), same, (), &mut v);
     Ok(traverse::run(a.index(), b.index(), metric, start, &mut v))
 }
 
@@ -292,7 +292,7 @@ fn count_of<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, const D: usize>(
         diff: vec![0; r2.len() + 1],
         block: scan::Block::boxed(),
     };
-    let start = traverse::roots(a.index(), b.index(), same, (0, r2.len()));
+    let start = traverse::roots((a.index(), b.index(), metric), same, (0, r2.len()), &mut v);
     let _ = traverse::run(a.index(), b.index(), metric, start, &mut v);
     Ok(v.counts())
 }

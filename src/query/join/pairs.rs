@@ -12,7 +12,7 @@
 
 use super::bounds::PairDistance;
 use super::radius::Boundary;
-use super::scan::{scan_pairs, Block};
+use super::scan::{scan_counts, scan_pairs, Block};
 use super::traverse::{PairVisitor, Step};
 use crate::geom::Aabb;
 use crate::query::{PointSet, SpatialIndex};
@@ -156,30 +156,16 @@ where
     ) -> ControlFlow<Self::Break> {
         let c = self;
         let (pa, pb) = (c.a.index().points(), c.b.index().points());
-        // Every pair beyond radius `hi - 1` is left out, and each one within it is counted
-        // from the first radius that takes it in up to `hi`, where the counts above already
-        // hold it.
-        let last = c.r2[hi - 1];
-        let boundary = c.boundary;
-        let mut within = 0i128;
-        let diff = &mut c.diff;
-        let r2 = c.r2;
-        let _ = scan_pairs(
+        scan_counts(
             &mut c.block,
             (pa, ra, ba),
             (pb, rb, bb),
             same,
             c.metric,
-            last,
-            boundary,
-            |_, _, d| {
-                let at = lo + r2[lo..hi].partition_point(|&r| !boundary.admits(d, r));
-                diff[at] += 1;
-                within += 1;
-                ControlFlow::<core::convert::Infallible>::Continue(())
-            },
+            (c.r2, lo, hi),
+            c.boundary,
+            &mut c.diff,
         );
-        c.diff[hi] -= within;
         ControlFlow::Continue(())
     }
 }

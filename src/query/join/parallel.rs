@@ -113,7 +113,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
                 block: Block::boxed(),
             };
             let want = rayon::current_num_threads() * PAIRS_PER_THREAD;
-            let start = roots(a.index(), b.index(), false, ());
+            let start = roots((a.index(), b.index(), &Euclid), false, (), &mut v);
             split_top(a.index(), b.index(), &Euclid, start, want, &mut v)
         };
         let parts: Vec<Vec<(usize, usize, f64)>> = frontier
@@ -238,7 +238,12 @@ fn par_count<A: PointSet<D> + Sync, B: PointSet<D> + Sync, const D: usize>(
     };
     let mut top = counter();
     let want = rayon::current_num_threads() * PAIRS_PER_THREAD;
-    let start = roots(a.index(), b.index(), same, (0, r2.len()));
+    let start = roots(
+        (a.index(), b.index(), &Euclid),
+        same,
+        (0, r2.len()),
+        &mut top,
+    );
     let frontier = split_top(a.index(), b.index(), &Euclid, start, want, &mut top);
     let parts: Vec<Vec<i128>> = frontier
         .into_par_iter()

@@ -106,26 +106,14 @@ pub(crate) fn scan_pairs<SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D
     let admits = |d: f64| boundary.admits(d, r2);
     let mut next = rb.start;
     while next < rb.end {
-        block.len = 0;
-        let mut tight = Aabb::<f64, D>::empty();
-        while next < rb.end && block.len < BLOCK {
-            let p = point(pb, next);
-            if same || admits(metric.point_box(&p, box_a)) {
-                block.push(&p, next);
-                for k in 0..D {
-                    tight.min[k] = tight.min[k].min(p[k]);
-                    tight.max[k] = tight.max[k].max(p[k]);
-                }
-            }
-            next += 1;
-        }
-        if block.len == 0 {
+        let Some(tight) = gather(block, pb, &mut next, rb.end, |p| {
+            same || admits(metric.point_box(p, box_a))
+        }) else {
             continue;
-        }
+        };
         if same {
             // The block is the contiguous positions `first..`; point `i` pairs with the later ones.
-            let first = block.at[0];
-            let last = block.at[block.len - 1];
+            let (first, last) = (block.at[0], block.at[block.len - 1]);
             for i in ra.start..last {
                 let from = (i + 1).saturating_sub(first);
                 let m = block.mask(from, &point(pa, i), metric, admits);
@@ -143,6 +131,102 @@ pub(crate) fn scan_pairs<SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D
         }
     }
     ControlFlow::Continue(())
+}
+
+/// Fills `block` with the next points of `points[*next..end]` that `keep` takes (up to
+/// [`BLOCK`]), moving `next` past those looked at; their tight box, or `None` when none was
+/// kept.
+#[inline(always)]
+fn gather<S: Scalar, const D: usize>(
+    block: &mut Block<D>,
+    points: &[[S; D]],
+    next: &mut usize,
+    end: usize,
+    keep: impl Fn(&[f64; D]) -> bool,
+) -> Option<Aabb<f64, D>> {
+    block.len = 0;
+    let mut tight = Aabb::<f64, D>::empty();
+    while *next < end && block.len < BLOCK {
+        let p = point(points, *next);
+        if keep(&p) {
+            block.push(&p, *next);
+            for k in 0..D {
+                tight.min[k] = tight.min[k].min(p[k]);
+                tight.max[k] = tight.max[k].max(p[k]);
+            }
+        }
+        *next += 1;
+    }
+    (block.len > 0).then_some(tight)
+}
+
+/// The counts of [`scan_pairs`] over sorted squared radii `r2`, of which `lo..hi` are undecided
+/// for this pair of runs (radii below `lo` take in none of its pairs; those from `hi` on were
+/// given all of them already), added to the differences `diff` (see
+/// [`CountWithin`](super::pairs::CountWithin)).
+///
+/// Each point first bounds its distances to the whole block by the block's tight box: the radii
+/// beyond the far bound take in all its pairs with the block at once (one update of `diff`),
+/// the radii below the near bound none, and only the radii in between are found pair by pair,
+/// by a binary search among them.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+pub(crate) fn scan_counts<SA: Scalar, SB: Scalar, P: PairDistance<D>, const D: usize>(
+    block: &mut Block<D>,
+    (pa, ra, box_a): Run<'_, SA, D>,
+    (pb, rb, _): Run<'_, SB, D>,
+    same: bool,
+    metric: &P,
+    (r2, lo, hi): (&[f64], usize, usize),
+    boundary: Boundary,
+    diff: &mut [i128],
+) {
+    // The first radius of `range` that takes in distance `d` (the end if none).
+    let first = |range: Range<usize>, d: f64| {
+        range.start + r2[range].partition_point(|&r| !boundary.admits(d, r))
+    };
+    let last = r2[hi - 1];
+    let mut next = rb.start;
+    while next < rb.end {
+        let Some(tight) = gather(block, pb, &mut next, rb.end, |p| {
+            same || boundary.admits(metric.point_box(p, box_a), last)
+        }) else {
+            continue;
+        };
+        let (first_at, last_at) = (block.at[0], block.at[block.len - 1]);
+        let upto = if same { last_at } else { ra.end };
+        for i in ra.start..upto {
+            let q = point(pa, i);
+            let from = if same {
+                (i + 1).saturating_sub(first_at)
+            } else {
+                0
+            };
+            let (near, far) = metric.box_box(&Aabb { min: q, max: q }, &tight);
+            let l = first(lo..hi, near);
+            if l == hi {
+                continue;
+            }
+            let all = first(l..hi, far);
+            if all < hi {
+                let n = (block.len - from) as i128;
+                diff[all] += n;
+                diff[hi] -= n;
+            }
+            if l == all {
+                continue;
+            }
+            let edge = r2[all - 1];
+            let mut m = block.mask(from, &q, metric, |d| boundary.admits(d, edge));
+            let found = i128::from(m.count_ones());
+            while m != 0 {
+                let j = m.trailing_zeros() as usize;
+                m &= m - 1;
+                diff[first(l..all, block.dist[j])] += 1;
+            }
+            diff[all] -= found;
+        }
+    }
 }
 
 /// Hands the pairs of point `i` with the block's points of mask `m` to `each`.
