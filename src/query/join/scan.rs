@@ -150,10 +150,7 @@ fn gather<S: Scalar, const D: usize>(
         let p = point(points, *next);
         if keep(&p) {
             block.push(&p, *next);
-            for k in 0..D {
-                tight.min[k] = tight.min[k].min(p[k]);
-                tight.max[k] = tight.max[k].max(p[k]);
-            }
+            tight.add_point(&p);
         }
         *next += 1;
     }
