@@ -5,7 +5,9 @@
 //!
 //! Algorithm: the dual-tree traversal of Gray and Moore ("N-body problems in statistical
 //! learning", NIPS 2001) over the cells of both trees: node pairs are pruned, or counted whole,
-//! by the minimum and maximum distance between their boxes, on an explicit stack. Distances are
+//! by the minimum and maximum distance between their boxes, on an explicit stack; pairs of
+//! small nodes go to a leaf kernel that filters each run by the other node's box and tests one
+//! point against a block of the other's points at a time ([`scan`]). Distances are
 //! squared Euclidean in `f64`, as [`PointSet::k_nearest`] computes them (exact for integer
 //! coordinates whose squares `f64` holds); the only geometry the engines see is the small seam
 //! of [`bounds`], so another distance plugs in there: a periodic domain's minimum-image

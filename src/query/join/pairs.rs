@@ -9,6 +9,10 @@
 //! whole get its number of pairs at once, by multiplying the sizes of the two nodes, without
 //! visiting a point; only the radii still undecided go down to the points. The counts are kept
 //! as differences (`add c to radii lo..hi` is two updates) and summed at the end.
+//!
+//! Both hand their pairs of nodes to scan to the leaf kernel of [`scan`](super::scan), which
+//! filters each run by the other side's box and tests a point against a block of 64 at a time;
+//! the counts also decide, point by point, the radii that take in the whole block.
 
 use super::bounds::PairDistance;
 use super::radius::Boundary;
