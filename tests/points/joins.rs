@@ -401,6 +401,43 @@ fn many_duplicates_and_larger_sets() {
     check_counts(&a, &pa, &b, &pb, &radii, Boundary::Exclusive, false);
 }
 
+/// Leaves of duplicates far beyond the leaf kernel's block of 64 points (a run with itself and
+/// with another run, each in several blocks), next to clusters on the cells' faces.
+fn crowded<const D: usize>() -> impl Strategy<Value = Vec<[f64; D]>> {
+    let place = proptest::array::uniform::<_, D>((0u8..=4).prop_map(|j| f64::from(j) / 4.0));
+    prop::collection::vec((place, 1usize..150), 1..5).prop_map(|groups| {
+        groups
+            .into_iter()
+            .flat_map(|(p, n)| core::iter::repeat_n(p, n))
+            .collect()
+    })
+}
+
+proptest! {
+    #![proptest_config(config(24, 2113))]
+
+    #[test]
+    fn joins_over_runs_longer_than_a_block_equal_nested_loops(
+        pa in crowded::<3>(),
+        pb in crowded::<3>(),
+        r in prop_oneof![Just(0.0), Just(0.25), 0.0f64..1.0],
+    ) {
+        let (a, b) = (
+            PointTree::new(&entries(&pa)).unwrap(),
+            PointTree::builder().bucket_size(1).max_depth(2).build(&entries(&pb)).unwrap(),
+        );
+        let mut radii = [0.0, r.min(0.25), r, 0.5, 2.0];
+        radii.sort_by(f64::total_cmp);
+        for boundary in [Boundary::Inclusive, Boundary::Exclusive] {
+            check_pairs(&a, &pa, &a, &pa, r, boundary, true);
+            check_pairs(&b, &pb, &b, &pb, r, boundary, true);
+            check_pairs(&a, &pa, &b, &pb, r, boundary, false);
+            check_counts(&a, &pa, &a, &pa, &radii, boundary, true);
+            check_counts(&b, &pb, &a, &pa, &radii, boundary, false);
+        }
+    }
+}
+
 #[test]
 fn bad_radii_are_refused_with_what_is_wrong() {
     let pts = [([0.0, 0.0], 0usize), ([1.0, 1.0], 1)];

@@ -17,7 +17,7 @@
 //! The groups are independent, the unit of the parallel form.
 
 use super::bounds::PairDistance;
-use super::traverse::{children, Side};
+use super::traverse::{children, Side, SCAN};
 use crate::geom::{Aabb, Scalar};
 use crate::query::{PointSet, SpatialIndex};
 use core::ops::Range;
@@ -84,7 +84,7 @@ pub(crate) fn groups<I: SpatialIndex<D>, const D: usize>(index: &I) -> Vec<Group
     let mut stack: Vec<Side<I::Node, D>> = index.root().into_iter().collect();
     let points = index.points();
     while let Some(side) = stack.pop() {
-        let kids = children(index, &side);
+        let kids = children(index, &side, SCAN);
         if kids.is_empty() {
             let run = index.run(side.0);
             if let Some(first) = run.clone().next() {
@@ -151,7 +151,7 @@ pub(crate) fn group_knn<A, B, P, const D: usize>(
         if lower > group_bound {
             continue;
         }
-        let kids = children(b, &(node, nb));
+        let kids = children(b, &(node, nb), SCAN);
         if kids.is_empty() {
             let rb = b.run(node);
             for (qi, q) in qs.iter().enumerate() {

@@ -5,7 +5,9 @@
 //!
 //! Algorithm: the dual-tree traversal of Gray and Moore ("N-body problems in statistical
 //! learning", NIPS 2001) over the cells of both trees: node pairs are pruned, or counted whole,
-//! by the minimum and maximum distance between their boxes, on an explicit stack. Distances are
+//! by the minimum and maximum distance between their boxes, on an explicit stack; pairs of
+//! small nodes go to a leaf kernel that filters each run by the other node's box and tests one
+//! point against a block of the other's points at a time ([`scan`]). Distances are
 //! squared Euclidean in `f64`, as [`PointSet::k_nearest`] computes them (exact for integer
 //! coordinates whose squares `f64` holds); the only geometry the engines see is the small seam
 //! of [`bounds`], so another distance plugs in there: a periodic domain's minimum-image
@@ -18,6 +20,7 @@ mod pairs;
 mod parallel;
 mod periodic;
 mod radius;
+mod scan;
 mod sparse;
 mod traverse;
 
@@ -263,8 +266,9 @@ fn pairs_of<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, Br, const D: usi
         r2,
         boundary,
         visit,
+        block: scan::Block::boxed(),
     };
-    let start = traverse::roots(a.index(), b.index(), same, ());
+    let start = traverse::roots((a.index(), b.index(), metric), same, (), &mut v);
     Ok(traverse::run(a.index(), b.index(), metric, start, &mut v))
 }
 
@@ -288,8 +292,9 @@ fn count_of<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, const D: usize>(
         r2: &r2,
         boundary,
         diff: vec![0; r2.len() + 1],
+        block: scan::Block::boxed(),
     };
-    let start = traverse::roots(a.index(), b.index(), same, (0, r2.len()));
+    let start = traverse::roots((a.index(), b.index(), metric), same, (0, r2.len()), &mut v);
     let _ = traverse::run(a.index(), b.index(), metric, start, &mut v);
     Ok(v.counts())
 }

@@ -9,48 +9,23 @@
 //! whole get its number of pairs at once, by multiplying the sizes of the two nodes, without
 //! visiting a point; only the radii still undecided go down to the points. The counts are kept
 //! as differences (`add c to radii lo..hi` is two updates) and summed at the end.
+//!
+//! Both hand their pairs of nodes to scan to the leaf kernel of [`scan`](super::scan), which
+//! filters each run by the other side's box and tests a point against a block of 64 at a time;
+//! the counts also decide, point by point, the radii that take in the whole block.
 
 use super::bounds::PairDistance;
 use super::radius::Boundary;
+use super::scan::{scan_counts, scan_pairs, Block};
 use super::traverse::{PairVisitor, Step};
-use crate::geom::Scalar;
+use crate::geom::Aabb;
 use crate::query::{PointSet, SpatialIndex};
 use core::ops::{ControlFlow, Range};
-
-/// The points of a run as `f64`.
-#[inline(always)]
-fn point<S: Scalar, const D: usize>(points: &[[S; D]], i: usize) -> [f64; D] {
-    points[i].map(Scalar::to_f64)
-}
-
-/// Calls `each(i, j, d)` for every pair of positions of runs `a` and `b` (with `i < j` when
-/// `same`: one run with itself) whose distance `d` is within `r2`.
-#[inline(always)]
-fn scan_pairs<SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D: usize>(
-    (pa, a): (&[[SA; D]], Range<usize>),
-    (pb, b): (&[[SB; D]], Range<usize>),
-    same: bool,
-    metric: &P,
-    within: impl Fn(f64) -> bool,
-    mut each: impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
-) -> ControlFlow<Br> {
-    for i in a {
-        let p = point(pa, i);
-        let from = if same { i + 1 } else { b.start };
-        for j in from..b.end {
-            let d = metric.distance(&p, &point(pb, j));
-            if within(d) {
-                each(i, j, d)?;
-            }
-        }
-    }
-    ControlFlow::Continue(())
-}
 
 /// Every pair within `r2` between sets `a` and `b` (each unordered pair once, the smaller slot
 /// first, when `b` is `a` and `unordered`), handed to `visit(slot in a, slot in b, squared
 /// distance)`.
-pub(crate) struct PairsWithin<'s, A, B, P, F> {
+pub(crate) struct PairsWithin<'s, A, B, P, F, const D: usize> {
     pub(crate) metric: &'s P,
     pub(crate) unordered: bool,
     pub(crate) a: &'s A,
@@ -58,10 +33,12 @@ pub(crate) struct PairsWithin<'s, A, B, P, F> {
     pub(crate) r2: f64,
     pub(crate) boundary: Boundary,
     pub(crate) visit: F,
+    /// The leaf kernel's scratch.
+    pub(crate) block: Box<Block<D>>,
 }
 
 impl<'s, A, B, P, F, Br, const D: usize> PairVisitor<A::Index, B::Index, (), D>
-    for PairsWithin<'s, A, B, P, F>
+    for PairsWithin<'s, A, B, P, F, D>
 where
     A: PointSet<D>,
     B: PointSet<D>,
@@ -82,22 +59,22 @@ where
     fn leaves(
         &mut self,
         _: &(),
-        ra: Range<usize>,
-        rb: Range<usize>,
+        (ra, ba): (Range<usize>, &Aabb<f64, D>),
+        (rb, bb): (Range<usize>, &Aabb<f64, D>),
         same: bool,
     ) -> ControlFlow<Br> {
         let this = self;
-        let metric = this.metric;
         let (ia, ib) = (this.a.index(), this.b.index());
         let (qa, qb) = (ia.payloads(), ib.payloads());
-        let (r2, boundary) = (this.r2, this.boundary);
         let (a, b, visit, unordered) = (this.a, this.b, &mut this.visit, this.unordered);
         scan_pairs(
-            (ia.points(), ra),
-            (ib.points(), rb),
+            &mut this.block,
+            (ia.points(), ra, ba),
+            (ib.points(), rb, bb),
             same,
-            metric,
-            |d| boundary.admits(d, r2),
+            this.metric,
+            this.r2,
+            this.boundary,
             |i, j, d| {
                 let (s, t) = (a.slot_of(i, &qa[i]), b.slot_of(j, &qb[j]));
                 if unordered && t < s {
@@ -112,16 +89,18 @@ where
 
 /// The number of pairs within each of the sorted squared radii `r2`, as differences: radius `i`
 /// counts `diff[0] + .. + diff[i]`.
-pub(crate) struct CountWithin<'s, A, B, P> {
+pub(crate) struct CountWithin<'s, A, B, P, const D: usize> {
     pub(crate) metric: &'s P,
     pub(crate) a: &'s A,
     pub(crate) b: &'s B,
     pub(crate) r2: &'s [f64],
     pub(crate) boundary: Boundary,
     pub(crate) diff: Vec<i128>,
+    /// The leaf kernel's scratch.
+    pub(crate) block: Box<Block<D>>,
 }
 
-impl<'s, A, B, P> CountWithin<'s, A, B, P> {
+impl<'s, A, B, P, const D: usize> CountWithin<'s, A, B, P, D> {
     /// The first radius of `range` that takes in distance `d` (the end if none).
     #[inline(always)]
     fn first_admitting(&self, range: Range<usize>, d: f64) -> usize {
@@ -142,7 +121,7 @@ impl<'s, A, B, P> CountWithin<'s, A, B, P> {
 }
 
 impl<'s, A, B, P, const D: usize> PairVisitor<A::Index, B::Index, (usize, usize), D>
-    for CountWithin<'s, A, B, P>
+    for CountWithin<'s, A, B, P, D>
 where
     A: PointSet<D>,
     B: PointSet<D>,
@@ -175,35 +154,22 @@ where
     fn leaves(
         &mut self,
         &(lo, hi): &(usize, usize),
-        ra: Range<usize>,
-        rb: Range<usize>,
+        (ra, ba): (Range<usize>, &Aabb<f64, D>),
+        (rb, bb): (Range<usize>, &Aabb<f64, D>),
         same: bool,
     ) -> ControlFlow<Self::Break> {
         let c = self;
-        let metric = c.metric;
         let (pa, pb) = (c.a.index().points(), c.b.index().points());
-        // Every pair beyond radius `hi - 1` is left out, and each one within it is counted
-        // from the first radius that takes it in up to `hi`, where the counts above already
-        // hold it.
-        let last = c.r2[hi - 1];
-        let boundary = c.boundary;
-        let mut within = 0i128;
-        let diff = &mut c.diff;
-        let r2 = c.r2;
-        let _ = scan_pairs(
-            (pa, ra),
-            (pb, rb),
+        scan_counts(
+            &mut c.block,
+            (pa, ra, ba),
+            (pb, rb, bb),
             same,
-            metric,
-            |d| boundary.admits(d, last),
-            |_, _, d| {
-                let at = lo + r2[lo..hi].partition_point(|&r| !boundary.admits(d, r));
-                diff[at] += 1;
-                within += 1;
-                ControlFlow::<core::convert::Infallible>::Continue(())
-            },
+            c.metric,
+            (c.r2, lo, hi),
+            c.boundary,
+            &mut c.diff,
         );
-        c.diff[hi] -= within;
         ControlFlow::Continue(())
     }
 }

@@ -9,6 +9,7 @@ use super::bounds::Euclid;
 use super::knn::{group_knn, groups, table, width, write_rows, KnnTable};
 use super::pairs::{CountWithin, PairsWithin};
 use super::radius::{squared_radii, squared_radius, Boundary};
+use super::scan::Block;
 use super::sparse::SparseDistances;
 use super::traverse::{roots, run, split_top};
 use super::Joins;
@@ -92,6 +93,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
                     triples.push((s, t, d));
                     ControlFlow::<Infallible>::Continue(())
                 },
+                block: Block::boxed(),
             };
             let _ = run(a.index(), b.index(), &Euclid, start, &mut v);
         };
@@ -108,9 +110,10 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
                     top.push((s, t, d));
                     ControlFlow::<Infallible>::Continue(())
                 },
+                block: Block::boxed(),
             };
             let want = rayon::current_num_threads() * PAIRS_PER_THREAD;
-            let start = roots(a.index(), b.index(), false, ());
+            let start = roots((a.index(), b.index(), &Euclid), false, (), &mut v);
             split_top(a.index(), b.index(), &Euclid, start, want, &mut v)
         };
         let parts: Vec<Vec<(usize, usize, f64)>> = frontier
@@ -231,10 +234,16 @@ fn par_count<A: PointSet<D> + Sync, B: PointSet<D> + Sync, const D: usize>(
         r2: &r2,
         boundary,
         diff: vec![0; r2.len() + 1],
+        block: Block::boxed(),
     };
     let mut top = counter();
     let want = rayon::current_num_threads() * PAIRS_PER_THREAD;
-    let start = roots(a.index(), b.index(), same, (0, r2.len()));
+    let start = roots(
+        (a.index(), b.index(), &Euclid),
+        same,
+        (0, r2.len()),
+        &mut top,
+    );
     let frontier = split_top(a.index(), b.index(), &Euclid, start, want, &mut top);
     let parts: Vec<Vec<i128>> = frontier
         .into_par_iter()

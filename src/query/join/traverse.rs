@@ -2,11 +2,13 @@
 //! learning", NIPS 2001): the engine of the radius joins ([`pairs`](super::pairs), the counts
 //! and the sparse distance matrix).
 //!
-//! Start from the pair of roots. Pop a node pair from an explicit stack and let the caller
-//! classify it by the distance range between the two boxes ([`PairDistance::box_box`]) and its
-//! number of point pairs: skip it (no pair of its points is left to look at: none qualifies, or
-//! a count took every pair whole by multiplying the sizes), or split it. A pair is split on the side with more points (both sides at
-//! once for a node paired with itself, into the unordered pairs of its children); a pair of two
+//! Start from the pair of roots. Every node pair is classified by the caller when it is made,
+//! from the distance range between the two boxes ([`PairDistance::box_box`]) and its number of
+//! point pairs: skipped (no pair of its points is left to look at: none qualifies, or a count
+//! took every pair whole by multiplying the sizes), or kept on an explicit stack to be split,
+//! so that the stack holds only pairs left to look at. A kept pair is split on the side with
+//! more points (both sides at once for a node paired with itself, into the unordered pairs of
+//! its children); a pair of two
 //! leaves (or of nodes small enough to scan, whose runs are contiguous) is handed to the caller
 //! with both runs. A self-join starts from the root paired with itself, so each unordered pair
 //! of points lies in exactly one node pair handed over. The stack holds at most about
@@ -18,8 +20,12 @@ use crate::query::index::{scans_whole, SpatialIndex};
 use core::ops::{ControlFlow, Range};
 use smallvec::SmallVec;
 
-/// A node whose contiguous run holds at most this many points is scanned as if it were a leaf.
+/// A node whose contiguous run holds at most this many points is scanned as if it were a leaf
+/// by the k-nearest joins.
 pub(crate) const SCAN: usize = 32;
+
+/// The same for the radius joins, whose leaf kernel filters each run by the other node's box.
+pub(crate) const SCAN_RADIUS: usize = 128;
 
 /// What to do with a node pair, decided from its boxes.
 pub(crate) enum Step<T> {
@@ -36,13 +42,15 @@ pub(crate) type Side<N, const D: usize> = (N, Aabb<f64, D>);
 pub(crate) type Pair<A, B, T, const D: usize> = (Side<A, D>, Side<B, D>, bool, T);
 
 /// The children of a node with their boxes; empty for a node to scan (a leaf, or a node whose
-/// contiguous run holds at most [`SCAN`] points).
+/// contiguous run holds at most `scan` points).
+#[inline]
 pub(crate) fn children<I: SpatialIndex<D>, const D: usize>(
     index: &I,
     side: &Side<I::Node, D>,
+    scan: usize,
 ) -> SmallVec<[Side<I::Node, D>; 8]> {
     let mut out = SmallVec::new();
-    if !scans_whole(index, side.0, SCAN) {
+    if !scans_whole(index, side.0, scan) {
         index.for_each_child_in(side.0, &side.1, |c, cb| out.push((c, *cb)));
     }
     out
@@ -55,18 +63,47 @@ pub(crate) trait PairVisitor<A: SpatialIndex<D>, B: SpatialIndex<D>, T, const D:
     /// Classifies a node pair from its boxes' distance range `(near, far)`; `pairs` is its
     /// number of point pairs (unordered, of distinct points, for a node with itself).
     fn classify(&mut self, state: &T, near: f64, far: f64, pairs: u64) -> Step<T>;
-    /// A pair of scanned nodes: their runs (the same run when `same`).
+    /// A pair of scanned nodes: their runs and closed boxes (the same node when `same`).
     fn leaves(
         &mut self,
         state: &T,
-        a: Range<usize>,
-        b: Range<usize>,
+        a: (Range<usize>, &Aabb<f64, D>),
+        b: (Range<usize>, &Aabb<f64, D>),
         same: bool,
     ) -> ControlFlow<Self::Break>;
 }
 
-/// Expands one node pair: either hands it to the visitor (skip, whole, leaves) or pushes its
-/// children pairs on `stack`. `same`: `b` is `a`'s node paired with itself in the same tree.
+/// Classifies the node pair of `sa` and `sb` (`same`: one node with itself) by its boxes'
+/// distance range and number of point pairs, and pushes it on `stack` unless the visitor skips
+/// it: only pairs left to look at are held.
+#[inline(always)]
+fn offer<A, B, T, V, P, const D: usize>(
+    (a, b, metric): (&A, &B, &P),
+    (sa, sb, same): (Side<A::Node, D>, Side<B::Node, D>, bool),
+    state: &T,
+    visitor: &mut V,
+    stack: &mut Vec<Pair<A::Node, B::Node, T, D>>,
+) where
+    A: SpatialIndex<D>,
+    B: SpatialIndex<D>,
+    V: PairVisitor<A, B, T, D>,
+    P: PairDistance<D>,
+{
+    let (near, far) = metric.box_box(&sa.1, &sb.1);
+    let (na, nb) = (a.count(sa.0) as u64, b.count(sb.0) as u64);
+    let pairs = if same {
+        na * na.saturating_sub(1) / 2
+    } else {
+        na * nb
+    };
+    if let Step::Split(s) = visitor.classify(state, near, far, pairs) {
+        stack.push((sa, sb, same, s));
+    }
+}
+
+/// Expands one classified node pair: hands a pair of nodes to scan to the visitor, or
+/// classifies the pairs of its children ([`offer`]) and pushes those left to look at on
+/// `stack`. `same`: `b` is `a`'s node paired with itself in the same tree.
 pub(crate) fn step<A, B, T, V, P, const D: usize>(
     a: &A,
     b: &B,
@@ -78,68 +115,46 @@ pub(crate) fn step<A, B, T, V, P, const D: usize>(
 where
     A: SpatialIndex<D>,
     B: SpatialIndex<D>,
-    T: Clone,
     V: PairVisitor<A, B, T, D>,
     P: PairDistance<D>,
 {
     let (sa, sb, same, state) = pair;
-    let (near, far) = metric.box_box(&sa.1, &sb.1);
-    let (na, nb) = (a.count(sa.0) as u64, b.count(sb.0) as u64);
-    let pairs = if same {
-        na * na.saturating_sub(1) / 2
-    } else {
-        na * nb
-    };
-    let state = match visitor.classify(&state, near, far, pairs) {
-        Step::Skip => return ControlFlow::Continue(()),
-        Step::Split(s) => s,
-    };
-    let ca = children(a, &sa);
+    let ab = (a, b, metric);
+    let ca = children(a, &sa, SCAN_RADIUS);
     if same {
         // One node with itself: the unordered pairs of its children, each child with itself.
         if ca.is_empty() {
-            return visitor.leaves(&state, a.run(sa.0), b.run(sb.0), true);
+            return visitor.leaves(&state, (a.run(sa.0), &sa.1), (b.run(sb.0), &sb.1), true);
         }
         // The same tree on both sides: the children's handles are both A's and B's.
-        let cb = children(b, &sb);
+        let cb = children(b, &sb, SCAN_RADIUS);
         for i in (0..ca.len()).rev() {
             for j in (i..cb.len()).rev() {
-                stack.push((ca[i], cb[j], i == j, state.clone()));
+                offer(ab, (ca[i], cb[j], i == j), &state, visitor, stack);
             }
         }
         return ControlFlow::Continue(());
     }
-    let cb = children(b, &sb);
-    match (ca.is_empty(), cb.is_empty()) {
-        (true, true) => visitor.leaves(&state, a.run(sa.0), b.run(sb.0), false),
-        (false, true) => {
-            for c in ca.into_iter().rev() {
-                stack.push((c, sb, false, state.clone()));
-            }
-            ControlFlow::Continue(())
-        }
-        (true, false) => {
+    // Split the side with more points; look at `b`'s children only when they may be needed.
+    if ca.is_empty() || a.count(sa.0) < b.count(sb.0) {
+        let cb = children(b, &sb, SCAN_RADIUS);
+        if !cb.is_empty() {
             for c in cb.into_iter().rev() {
-                stack.push((sa, c, false, state.clone()));
+                offer(ab, (sa, c, false), &state, visitor, stack);
             }
-            ControlFlow::Continue(())
+            return ControlFlow::Continue(());
         }
-        (false, false) => {
-            if na >= nb {
-                for c in ca.into_iter().rev() {
-                    stack.push((c, sb, false, state.clone()));
-                }
-            } else {
-                for c in cb.into_iter().rev() {
-                    stack.push((sa, c, false, state.clone()));
-                }
-            }
-            ControlFlow::Continue(())
+        if ca.is_empty() {
+            return visitor.leaves(&state, (a.run(sa.0), &sa.1), (b.run(sb.0), &sb.1), false);
         }
     }
+    for c in ca.into_iter().rev() {
+        offer(ab, (c, sb, false), &state, visitor, stack);
+    }
+    ControlFlow::Continue(())
 }
 
-/// Runs the traversal from `start` to the end, or until the visitor breaks.
+/// Runs the traversal from the classified pairs `start` to the end, or until the visitor breaks.
 pub(crate) fn run<A, B, T, V, P, const D: usize>(
     a: &A,
     b: &B,
@@ -150,7 +165,6 @@ pub(crate) fn run<A, B, T, V, P, const D: usize>(
 where
     A: SpatialIndex<D>,
     B: SpatialIndex<D>,
-    T: Clone,
     V: PairVisitor<A, B, T, D>,
     P: PairDistance<D>,
 {
@@ -162,17 +176,25 @@ where
     ControlFlow::Continue(())
 }
 
-/// The root pair of `a` and `b` (`same`: `b` is `a`), or nothing when either is empty.
-pub(crate) fn roots<A: SpatialIndex<D>, B: SpatialIndex<D>, T, const D: usize>(
-    a: &A,
-    b: &B,
+/// The root pair of `a` and `b` (`same`: `b` is `a`) classified by `visitor` from `state`:
+/// nothing when either is empty or the visitor skips it.
+pub(crate) fn roots<A, B, T, V, P, const D: usize>(
+    (a, b, metric): (&A, &B, &P),
     same: bool,
     state: T,
-) -> Vec<Pair<A::Node, B::Node, T, D>> {
-    match (a.root(), b.root()) {
-        (Some(ra), Some(rb)) => vec![(ra, rb, same, state)],
-        _ => Vec::new(),
+    visitor: &mut V,
+) -> Vec<Pair<A::Node, B::Node, T, D>>
+where
+    A: SpatialIndex<D>,
+    B: SpatialIndex<D>,
+    V: PairVisitor<A, B, T, D>,
+    P: PairDistance<D>,
+{
+    let mut out = Vec::new();
+    if let (Some(ra), Some(rb)) = (a.root(), b.root()) {
+        offer((a, b, metric), (ra, rb, same), &state, visitor, &mut out);
     }
+    out
 }
 
 /// Splits the traversal's top into at least `want` independent node pairs (fewer when the trees
@@ -190,7 +212,6 @@ pub(crate) fn split_top<A, B, T, V, P, const D: usize>(
 where
     A: SpatialIndex<D>,
     B: SpatialIndex<D>,
-    T: Clone,
     V: PairVisitor<A, B, T, D, Break = core::convert::Infallible>,
     P: PairDistance<D>,
 {

@@ -1,0 +1,243 @@
+//! The leaf-against-leaf kernel of the radius joins: every pair of points of two runs within a
+//! squared radius, the brute-force base case of the dual-tree traversal (Gray and Moore,
+//! "N-body problems in statistical learning", NIPS 2001), made cheap in three ways.
+//!
+//! - Filter by boxes: a point of one run farther than the radius from the other node's box has
+//!   no pair there, so only the points of run `b` within the radius of `a`'s box are gathered,
+//!   and only the points of run `a` within the radius of the gathered points' tight box are
+//!   tested. Between two neighbouring cells this leaves the strips along their shared faces.
+//! - Columns: the gathered points of `b` (up to [`BLOCK`] at a time) are held one array per
+//!   axis, so that one point's distances to the whole block are a short loop of arithmetic
+//!   without branches, whose answers are compared into a bit mask.
+//! - Only the mask's set bits reach the caller, with the distance already computed.
+//!
+//! A run paired with itself is gathered whole (every point lies in its own box) and each point
+//! is tested against the later positions only, so each unordered pair is met once.
+//!
+//! Exactness: every distance is [`PairDistance::distance`] of the two points as `f64`, the one
+//! the rest of the query layer computes; the filters use [`PairDistance::point_box`], a lower
+//! bound of that distance over a closed box holding the points (see [`bounds`](super::bounds)),
+//! so a point filtered out has no pair within the radius there, at the boundary too.
+
+use super::bounds::PairDistance;
+use super::radius::Boundary;
+use crate::geom::{Aabb, Scalar};
+use core::ops::{ControlFlow, Range};
+
+/// The points of `b` gathered and tested at a time: the width of the bit mask.
+pub(crate) const BLOCK: usize = 64;
+
+/// The gathered points of one side, in columns, with their positions and the distances of the
+/// last point tested against them: the kernel's scratch, allocated once per traversal.
+pub(crate) struct Block<const D: usize> {
+    cols: [[f64; BLOCK]; D],
+    at: [usize; BLOCK],
+    dist: [f64; BLOCK],
+    len: usize,
+}
+
+impl<const D: usize> Block<D> {
+    /// An empty block on the heap (a few kilobytes: kept out of the traversal's frames).
+    pub(crate) fn boxed() -> Box<Self> {
+        Box::new(Block {
+            cols: [[0.0; BLOCK]; D],
+            at: [0; BLOCK],
+            dist: [0.0; BLOCK],
+            len: 0,
+        })
+    }
+
+    /// Adds point `p` at position `at` (the block must not be full).
+    #[inline(always)]
+    fn push(&mut self, p: &[f64; D], at: usize) {
+        let j = self.len;
+        for (col, &c) in self.cols.iter_mut().zip(p) {
+            col[j] = c;
+        }
+        self.at[j] = at;
+        self.len = j + 1;
+    }
+
+    /// The distances from `q` to the points `from..` of the block (kept in `dist`), and the
+    /// mask of those that `admits` takes in (bit `j` for point `j`).
+    #[inline(always)]
+    fn mask<P: PairDistance<D>>(
+        &mut self,
+        from: usize,
+        q: &[f64; D],
+        metric: &P,
+        admits: impl Fn(f64) -> bool,
+    ) -> u64 {
+        let mut m = 0u64;
+        for j in from..self.len {
+            let p: [f64; D] = core::array::from_fn(|k| self.cols[k][j]);
+            let d = metric.distance(q, &p);
+            self.dist[j] = d;
+            m |= u64::from(admits(d)) << j;
+        }
+        m
+    }
+}
+
+/// The point at position `i` of `points` as `f64`.
+#[inline(always)]
+fn point<S: Scalar, const D: usize>(points: &[[S; D]], i: usize) -> [f64; D] {
+    points[i].map(Scalar::to_f64)
+}
+
+/// One side of a leaf pair: the index's points, the run's positions, the node's closed box.
+pub(crate) type Run<'a, S, const D: usize> = (&'a [[S; D]], Range<usize>, &'a Aabb<f64, D>);
+
+/// Calls `each(i, j, d)` for every pair of positions `i` of run `a` and `j` of run `b` whose
+/// distance `d` is within `r2` (under `boundary`); with `same` (one run paired with itself),
+/// for every `i < j` of it. Stops at the first [`ControlFlow::Break`].
+#[allow(clippy::too_many_arguments)]
+#[inline]
+pub(crate) fn scan_pairs<SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D: usize>(
+    block: &mut Block<D>,
+    (pa, ra, box_a): Run<'_, SA, D>,
+    (pb, rb, _): Run<'_, SB, D>,
+    same: bool,
+    metric: &P,
+    r2: f64,
+    boundary: Boundary,
+    mut each: impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
+) -> ControlFlow<Br> {
+    let admits = |d: f64| boundary.admits(d, r2);
+    let mut next = rb.start;
+    while next < rb.end {
+        let Some(tight) = gather(block, pb, &mut next, rb.end, |p| {
+            same || admits(metric.point_box(p, box_a))
+        }) else {
+            continue;
+        };
+        if same {
+            // The block is the contiguous positions `first..`; point `i` pairs with the later ones.
+            let (first, last) = (block.at[0], block.at[block.len - 1]);
+            for i in ra.start..last {
+                let from = (i + 1).saturating_sub(first);
+                let m = block.mask(from, &point(pa, i), metric, admits);
+                report(block, i, m, &mut each)?;
+            }
+        } else {
+            for i in ra.clone() {
+                let q = point(pa, i);
+                if !admits(metric.point_box(&q, &tight)) {
+                    continue;
+                }
+                let m = block.mask(0, &q, metric, admits);
+                report(block, i, m, &mut each)?;
+            }
+        }
+    }
+    ControlFlow::Continue(())
+}
+
+/// Fills `block` with the next points of `points[*next..end]` that `keep` takes (up to
+/// [`BLOCK`]), moving `next` past those looked at; their tight box, or `None` when none was
+/// kept.
+#[inline(always)]
+fn gather<S: Scalar, const D: usize>(
+    block: &mut Block<D>,
+    points: &[[S; D]],
+    next: &mut usize,
+    end: usize,
+    keep: impl Fn(&[f64; D]) -> bool,
+) -> Option<Aabb<f64, D>> {
+    block.len = 0;
+    let mut tight = Aabb::<f64, D>::empty();
+    while *next < end && block.len < BLOCK {
+        let p = point(points, *next);
+        if keep(&p) {
+            block.push(&p, *next);
+            tight.add_point(&p);
+        }
+        *next += 1;
+    }
+    (block.len > 0).then_some(tight)
+}
+
+/// The counts of [`scan_pairs`] over sorted squared radii `r2`, of which `lo..hi` are undecided
+/// for this pair of runs (radii below `lo` take in none of its pairs; those from `hi` on were
+/// given all of them already), added to the differences `diff` (see
+/// [`CountWithin`](super::pairs::CountWithin)).
+///
+/// Each point first bounds its distances to the whole block by the block's tight box: the radii
+/// beyond the far bound take in all its pairs with the block at once (one update of `diff`),
+/// the radii below the near bound none, and only the radii in between are found pair by pair,
+/// by a binary search among them.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+pub(crate) fn scan_counts<SA: Scalar, SB: Scalar, P: PairDistance<D>, const D: usize>(
+    block: &mut Block<D>,
+    (pa, ra, box_a): Run<'_, SA, D>,
+    (pb, rb, _): Run<'_, SB, D>,
+    same: bool,
+    metric: &P,
+    (r2, lo, hi): (&[f64], usize, usize),
+    boundary: Boundary,
+    diff: &mut [i128],
+) {
+    // The first radius of `range` that takes in distance `d` (the end if none).
+    let first = |range: Range<usize>, d: f64| {
+        range.start + r2[range].partition_point(|&r| !boundary.admits(d, r))
+    };
+    let last = r2[hi - 1];
+    let mut next = rb.start;
+    while next < rb.end {
+        let Some(tight) = gather(block, pb, &mut next, rb.end, |p| {
+            same || boundary.admits(metric.point_box(p, box_a), last)
+        }) else {
+            continue;
+        };
+        let (first_at, last_at) = (block.at[0], block.at[block.len - 1]);
+        let upto = if same { last_at } else { ra.end };
+        for i in ra.start..upto {
+            let q = point(pa, i);
+            let from = if same {
+                (i + 1).saturating_sub(first_at)
+            } else {
+                0
+            };
+            let (near, far) = metric.box_box(&Aabb { min: q, max: q }, &tight);
+            let l = first(lo..hi, near);
+            if l == hi {
+                continue;
+            }
+            let all = first(l..hi, far);
+            if all < hi {
+                let n = (block.len - from) as i128;
+                diff[all] += n;
+                diff[hi] -= n;
+            }
+            if l == all {
+                continue;
+            }
+            let edge = r2[all - 1];
+            let mut m = block.mask(from, &q, metric, |d| boundary.admits(d, edge));
+            let found = i128::from(m.count_ones());
+            while m != 0 {
+                let j = m.trailing_zeros() as usize;
+                m &= m - 1;
+                diff[first(l..all, block.dist[j])] += 1;
+            }
+            diff[all] -= found;
+        }
+    }
+}
+
+/// Hands the pairs of point `i` with the block's points of mask `m` to `each`.
+#[inline(always)]
+fn report<Br, const D: usize>(
+    block: &Block<D>,
+    i: usize,
+    mut m: u64,
+    each: &mut impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
+) -> ControlFlow<Br> {
+    while m != 0 {
+        let j = m.trailing_zeros() as usize;
+        m &= m - 1;
+        each(i, block.at[j], block.dist[j])?;
+    }
+    ControlFlow::Continue(())
+}
