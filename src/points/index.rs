@@ -73,7 +73,7 @@ impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointTree<S, T, D> {
     /// and the first of those at 0 is the one the split convention gives `q` (a coordinate on a
     /// split line goes to the lower child): one comparison per axis instead of a box distance
     /// per child. Otherwise, or when that child is empty, the default.
-    #[inline]
+    #[inline(always)]
     fn nearest_child<M: Metric<D>>(
         &self,
         node: PointNode<D>,

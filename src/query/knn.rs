@@ -15,11 +15,15 @@
 //! scanned as a leaf (its run is contiguous), as kd-trees scan buckets; for k = 1 the scan keeps
 //! the run's nearest point without a branch per point.
 //!
+//! A minimum-image metric on a periodic domain ([`Metric::torus`]) runs the same search from the
+//! query's images, one after another into the same candidate list ([`super::knn_images`]).
+//!
 //! Ties are broken by position in [`SpatialIndex::points`] (Morton order): the answer is exactly the
 //! first `k` of all points within the maximum distance sorted by `(distance, index)`. A box whose
 //! bound equals the `k`-th distance is still searched, so a tie cannot be lost.
 
 use super::index::{scans_whole, SpatialIndex};
+use super::knn_images::Images;
 use super::metric::Metric;
 use crate::geom::{Aabb, Scalar};
 use crate::prefetch::prefetch_run;
@@ -78,17 +82,28 @@ impl<'a, S, T, const D: usize> Neighbor<'a, S, T, D> {
 /// The answer of [`k_nearest`]: held inline for k = 1, so that a nearest query allocates nothing.
 pub(crate) type Found = SmallVec<[(f64, usize); 1]>;
 
-/// The best `k` candidates so far, sorted by `(distance, index)`.
-struct Best {
+/// The best `k` candidates so far, sorted by `(distance, index)`, each index at most once
+/// (the image search may offer a point again, with the same distance).
+pub(super) struct Best {
     k: usize,
     max: f64,
     list: Found,
 }
 
 impl Best {
+    /// No candidate yet, for the `k` nearest within `max` among `n` points.
+    #[inline(always)]
+    fn new(k: usize, max: f64, n: usize) -> Self {
+        Best {
+            k,
+            max,
+            list: SmallVec::with_capacity(k.min(n)),
+        }
+    }
+
     /// The distance a candidate must not exceed.
     #[inline(always)]
-    fn bound(&self) -> f64 {
+    pub(super) fn bound(&self) -> f64 {
         if self.list.len() == self.k {
             self.list[self.k - 1].0
         } else {
@@ -99,7 +114,7 @@ impl Best {
     /// The bound node boxes are pruned by: `cut` of the `k`-th distance once `k` candidates are
     /// known, the maximum distance before.
     #[inline(always)]
-    fn prune(&self, cut: impl Fn(f64) -> f64) -> f64 {
+    pub(super) fn prune(&self, cut: impl Fn(f64) -> f64) -> f64 {
         if self.list.len() == self.k {
             cut(self.list[self.k - 1].0)
         } else {
@@ -109,18 +124,25 @@ impl Best {
 
     #[inline(always)]
     fn offer(&mut self, d: f64, i: usize) {
-        if self.list.len() == self.k {
+        let full = self.list.len() == self.k;
+        if full {
             let (wd, wi) = self.list[self.k - 1];
-            if d > wd || (d == wd && i > wi) {
+            // `i == wi` at `d == wd`: the last candidate offered again.
+            if d > wd || (d == wd && i >= wi) {
                 return;
             }
-            self.list.pop();
         } else if d > self.max {
             return;
         }
         let mut at = self.list.len();
         while at > 0 && (d, i) < self.list[at - 1] {
             at -= 1;
+        }
+        if at > 0 && self.list[at - 1] == (d, i) {
+            return;
+        }
+        if full {
+            self.list.pop();
         }
         self.list.insert(at, (d, i));
     }
@@ -180,7 +202,9 @@ pub(crate) fn k_nearest_approx<I: SpatialIndex<D>, M: Metric<D>, const D: usize>
 }
 
 /// The branch and bound of the module doc; `cut(kth)` is the bound node boxes are pruned by
-/// once `k` candidates are known (the `k`-th distance itself for the exact search).
+/// once `k` candidates are known (the `k`-th distance itself for the exact search). A metric
+/// with a [`Metric::torus`] is searched image by image ([`super::knn_images`]) when the index's
+/// root box allows it.
 #[inline(always)]
 fn search<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
     index: &I,
@@ -190,39 +214,37 @@ fn search<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
     metric: &M,
     cut: impl Fn(f64) -> f64,
 ) -> Found {
-    let mut best = Best {
-        k,
-        max,
-        list: SmallVec::with_capacity(k.min(index.points().len())),
-    };
+    let mut best = Best::new(k, max, index.points().len());
     if k == 0 {
         return best.list;
     }
     let Some((root, b)) = index.root() else {
         return best.list;
     };
+    if let Some(torus) = metric.torus() {
+        if let Some(images) = Images::new(torus, metric, q, &b) {
+            images.search(index, q, metric, &mut best, (root, b), &cut);
+            return best.list;
+        }
+    }
+    seeded(index, (q, metric), (q, metric), &mut best, (root, b), &cut);
+    best.list
+}
+
+/// One search of `index` into `best`, seeded by a walk down to the node around the query:
+/// points are measured from `qp` under `pm`, boxes bounded from `qb` under `bm` (the same
+/// point and metric for an ordinary search; an image of the query and its unwrapped bound in
+/// the image search).
+#[inline(always)]
+pub(super) fn seeded<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
+    index: &I,
+    (qp, pm): (&[f64; D], &P),
+    (qb, bm): (&[f64; D], &B),
+    best: &mut Best,
+    (root, b): (I::Node, Aabb<f64, D>),
+    cut: &impl Fn(f64) -> f64,
+) {
     let points = index.points();
-    // Scans a run, offering every point; returns the new bound.
-    let scan_run = |best: &mut Best, run: core::ops::Range<usize>, mut bound: f64| {
-        let start = run.start;
-        if k == 1 {
-            if let Some((near, at)) = nearest_in(&points[run.clone()], q, metric) {
-                if near <= bound {
-                    best.offer(near, start + at);
-                    bound = best.bound();
-                }
-            }
-            return bound;
-        }
-        for (j, p) in points[run].iter().enumerate() {
-            let d = metric.distance(q, &p.map(Scalar::to_f64));
-            if d <= bound {
-                best.offer(d, start + j);
-                bound = best.bound();
-            }
-        }
-        bound
-    };
     // Seed the bound: walk down to the nearest child at every level (the one holding `q` when
     // it lies in the root box) and scan the first node small enough. The nodes walked through
     // are kept: the rest of the search backtracks along them, as a kd-tree search does, instead
@@ -233,7 +255,7 @@ fn search<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
         loop {
             path.push((node, nb));
             let next = if !scans_whole(index, node, SCAN) {
-                index.nearest_child(node, &nb, q, metric)
+                index.nearest_child(node, &nb, qb, bm)
             } else {
                 None
             };
@@ -252,41 +274,129 @@ fn search<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
     let first = best.bound();
     // `bound`: what a candidate must not exceed; `prune`: what a node's box must not exceed
     // (the same for the exact search).
-    let mut bound = scan_run(&mut best, seeded, first);
-    let mut prune = best.prune(&cut);
+    let mut bound = scan_run(best, points, seeded, (qp, pm), first);
+    let mut prune = best.prune(cut);
     let mut stack: Pending<I::Node, D> = SmallVec::new();
     // Deepest first: the children of each path node beside the path, each searched in full
     // before going up, until the ball of the bound lies inside the path node's box (no point
     // outside it can then be within the bound).
     for level in (0..path.len() - 1).rev() {
         let (inner, inner_box) = path[level + 1];
-        if ball_inside(metric, q, prune, &inner_box) {
+        if ball_inside(bm, qb, prune, &inner_box) {
             break;
         }
         let (node, nb) = path[level];
         index.for_each_child_in(node, &nb, |child, cb| {
             if child != inner {
-                push_nearer(index, points, &mut stack, 0, q, metric, prune, child, cb);
+                push_nearer(index, points, &mut stack, 0, qb, bm, prune, child, cb);
             }
         });
-        while let Some((lower, node, b)) = stack.pop() {
-            if lower > prune {
-                continue;
-            }
-            let before = stack.len();
-            let internal = !scans_whole(index, node, SCAN)
-                && index.for_each_child_in(node, &b, |child, cb| {
-                    push_nearer(
-                        index, points, &mut stack, before, q, metric, prune, child, cb,
-                    );
-                });
-            if !internal {
-                bound = scan_run(&mut best, index.run(node), bound);
-                prune = best.prune(&cut);
-            }
+        (bound, prune) = drain(
+            index,
+            &mut stack,
+            (qp, pm),
+            (qb, bm),
+            best,
+            cut,
+            (bound, prune),
+        );
+    }
+}
+
+/// One search of `index` into `best` from its root, without a seeding walk (for a query image
+/// whose nearest box is rarely within the bound `best` already holds); `qp`, `pm`, `qb`, `bm`
+/// as in [`seeded`]. Kept out of line: it runs for few queries, and inlined beside [`seeded`]
+/// it made the compiler call the index's child visitor out of line in both.
+#[inline(never)]
+pub(super) fn descend<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
+    index: &I,
+    (qp, pm): (&[f64; D], &P),
+    (qb, bm): (&[f64; D], &B),
+    best: &mut Best,
+    (root, b): (I::Node, Aabb<f64, D>),
+    cut: &impl Fn(f64) -> f64,
+) {
+    let (bound, prune) = (best.bound(), best.prune(cut));
+    let mut stack: Pending<I::Node, D> = SmallVec::new();
+    push_nearer(
+        index,
+        index.points(),
+        &mut stack,
+        0,
+        qb,
+        bm,
+        prune,
+        root,
+        &b,
+    );
+    drain(
+        index,
+        &mut stack,
+        (qp, pm),
+        (qb, bm),
+        best,
+        cut,
+        (bound, prune),
+    );
+}
+
+/// Searches every node on `stack` in full, nearest first, scanning leaves (and nodes of at
+/// most [`SCAN`] points) into `best`; returns the final `(bound, prune)`.
+#[inline(always)]
+fn drain<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
+    index: &I,
+    stack: &mut Pending<I::Node, D>,
+    (qp, pm): (&[f64; D], &P),
+    (qb, bm): (&[f64; D], &B),
+    best: &mut Best,
+    cut: &impl Fn(f64) -> f64,
+    (mut bound, mut prune): (f64, f64),
+) -> (f64, f64) {
+    let points = index.points();
+    while let Some((lower, node, b)) = stack.pop() {
+        if lower > prune {
+            continue;
+        }
+        let before = stack.len();
+        let internal = !scans_whole(index, node, SCAN)
+            && index.for_each_child_in(node, &b, |child, cb| {
+                push_nearer(index, points, stack, before, qb, bm, prune, child, cb);
+            });
+        if !internal {
+            bound = scan_run(best, points, index.run(node), (qp, pm), bound);
+            prune = best.prune(cut);
         }
     }
-    best.list
+    (bound, prune)
+}
+
+/// Scans a run, offering every point within `bound` of `q` to `best`; returns the new bound.
+#[inline(always)]
+fn scan_run<S: Scalar, M: Metric<D>, const D: usize>(
+    best: &mut Best,
+    points: &[[S; D]],
+    run: core::ops::Range<usize>,
+    (q, metric): (&[f64; D], &M),
+    mut bound: f64,
+) -> f64 {
+    let start = run.start;
+    if best.k == 1 {
+        if let Some((near, at)) = nearest_in(&points[run.clone()], q, metric) {
+            if near <= bound {
+                best.offer(near, start + at);
+                bound = best.bound();
+            }
+        }
+        return bound;
+    }
+    for (j, p) in points[run].iter().enumerate() {
+        let d = metric.distance(q, &p.map(Scalar::to_f64));
+        if d <= bound {
+            best.offer(d, start + j);
+            bound = best.bound();
+        }
+    }
+    bound
 }
 
 /// The nearest of `points` to `q` (its distance and position), the first of equals; `None` for
@@ -346,6 +456,7 @@ fn push_nearer<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
 /// `true` when no point outside the closed box `b` can be within `bound` of `q` under `metric`:
 /// every such point lies in one of the 2D closed slabs beyond a face of `b` (a point on a face
 /// may belong to the neighbouring cell), and `box_distance` bounds each slab from below.
+#[inline(always)]
 fn ball_inside<M: Metric<D>, const D: usize>(
     metric: &M,
     q: &[f64; D],

@@ -11,6 +11,7 @@
 
 // Axis loops index several arrays in one fixed order, the order the exactness argument needs.
 
+use super::periodic::Torus;
 use crate::geom::Aabb;
 
 /// A distance between points, and a lower bound of it over a box.
@@ -49,12 +50,71 @@ pub trait Metric<const D: usize> {
     fn scale_distance(&self, d: f64, factor: f64) -> f64 {
         d * factor
     }
+
+    /// The periodic domain of a minimum-image metric ([`MinImage`](super::MinImage)); `None`
+    /// (the default) for a metric of ordinary space. When it is `Some`, the exact and
+    /// approximate k-nearest engines search the query's images across the period box one by
+    /// one, each as an ordinary search bounded by [`Metric::unwrapped_box_distance`], instead
+    /// of bounding every box by its nearest image.
+    ///
+    /// ```
+    /// use orthtree::query::{Metric, SquaredEuclidean, Torus};
+    /// let t = Torus::wrapping([0.0; 2], [1.0; 2]).unwrap();
+    /// assert_eq!(t.squared_euclidean().torus(), Some(&t));
+    /// assert_eq!(Metric::<2>::torus(&SquaredEuclidean), None);
+    /// ```
+    #[inline(always)]
+    fn torus(&self) -> Option<&Torus<D>> {
+        None
+    }
+
+    /// For a metric with a [`Metric::torus`]: the distance between `a` and `b` as in ordinary
+    /// space (no wrap), their offsets combined as [`Metric::distance`] combines the
+    /// minimum-image ones, so that the two are equal, bit for bit, when no offset along a
+    /// wrapping axis exceeds half its period. The default, for metrics without a torus, is
+    /// [`Metric::distance`].
+    ///
+    /// ```
+    /// use orthtree::query::{Metric, Torus};
+    /// let m = Torus::wrapping([0.0; 2], [1.0; 2]).unwrap().squared_euclidean();
+    /// assert_eq!(m.unwrapped_distance(&[0.0, 0.0], &[0.75, 0.0]), 0.5625);
+    /// assert_eq!(m.distance(&[0.0, 0.0], &[0.75, 0.0]), 0.0625);
+    /// ```
+    #[inline(always)]
+    fn unwrapped_distance(&self, a: &[f64; D], b: &[f64; D]) -> f64 {
+        self.distance(a, b)
+    }
+
+    /// For a metric with a [`Metric::torus`]: the offsets from `q` to the closed box `b` along
+    /// each axis as in ordinary space (no wrap), each lowered by `margin` on its axis (never
+    /// below 0), combined as [`Metric::distance`] combines the minimum-image offsets.
+    ///
+    /// Contract (relied on by the image search): when `q` is an image of a query point `p`
+    /// (shifted by whole periods along wrapping axes and wrapped into the period box) whose
+    /// rounding along each axis `margin` covers, the result is at most `distance(p, x)` for
+    /// every `x` of `b` whose nearest image to `p` is the one `q` stands for. The default,
+    /// for metrics without a torus, is [`Metric::box_distance`], ignoring `margin`.
+    ///
+    /// ```
+    /// use orthtree::query::{Metric, Torus};
+    /// use orthtree::Aabb;
+    /// let m = Torus::wrapping([0.0; 2], [1.0; 2]).unwrap().squared_euclidean();
+    /// let b = Aabb { min: [0.5, 0.0], max: [0.75, 0.25] };
+    /// assert_eq!(m.unwrapped_box_distance(&[0.0, 0.0], &b, &[0.0; 2]), 0.25);
+    /// let wrapped = m.box_distance(&[0.0, 0.0], &b); // through the face at 1: 0.25 away
+    /// assert!(0.0624 < wrapped && wrapped <= 0.0625);
+    /// ```
+    #[inline(always)]
+    fn unwrapped_box_distance(&self, q: &[f64; D], b: &Aabb<f64, D>, margin: &[f64; D]) -> f64 {
+        let _ = margin;
+        self.box_distance(q, b)
+    }
 }
 
 /// The offset from `q` to the nearest point of `[lo, hi]`, as `p - q` would round for that point
 /// (0 inside).
 #[inline(always)]
-fn axis_gap(q: f64, lo: f64, hi: f64) -> f64 {
+pub(crate) fn axis_gap(q: f64, lo: f64, hi: f64) -> f64 {
     if q < lo {
         lo - q
     } else if q > hi {

@@ -30,6 +30,7 @@ mod best_within;
 mod index;
 mod join;
 mod knn;
+mod knn_images;
 mod location;
 mod metric;
 mod nearest_iter;

@@ -40,6 +40,9 @@ pub struct Torus<const D: usize> {
     hi: [f64; D],
     period: [f64; D],
     wraps: [bool; D],
+    /// The period on wrapping axes, infinity on the others: `d.min(limit - d)` is the
+    /// minimum-image offset of a plain offset `d < limit` on every axis, without a branch.
+    limit: [f64; D],
 }
 
 /// What [`Torus::prepare`] does with a point outside the period box on a wrapping axis.
@@ -131,11 +134,13 @@ impl<const D: usize> Torus<D> {
                 });
             }
         }
+        let limit = core::array::from_fn(|a| if wraps[a] { period[a] } else { f64::INFINITY });
         Ok(Torus {
             lo,
             hi,
             period,
             wraps,
+            limit,
         })
     }
 
@@ -283,6 +288,12 @@ impl<const D: usize> Torus<D> {
         let d = if d >= l { d % l } else { d };
         // For d >= l / 2, l - d is exact (Sterbenz), so the result never exceeds l / 2.
         d.min(l - d)
+    }
+
+    /// The period on a wrapping `axis`, infinity on an ordinary one.
+    #[inline(always)]
+    pub(crate) fn limit(&self, axis: usize) -> f64 {
+        self.limit[axis]
     }
 
     /// A lower and an upper bound of [`Torus::offset`]`(axis, q, x)` over `x` in `[lo, hi]`.

@@ -7,7 +7,7 @@
 // Loops over axes index the point, the box's min and max together; an index reads best.
 #![allow(clippy::needless_range_loop)]
 
-use super::metric::{Chebyshev, Manhattan, Metric, SquaredEuclidean};
+use super::metric::{axis_gap, Chebyshev, Manhattan, Metric, SquaredEuclidean};
 use super::periodic::Torus;
 use crate::geom::Aabb;
 
@@ -88,6 +88,20 @@ pub struct MinImage<M, const D: usize> {
 impl<M: AxisMetric + Metric<D>, const D: usize> Metric<D> for MinImage<M, D> {
     #[inline(always)]
     fn distance(&self, a: &[f64; D], b: &[f64; D]) -> f64 {
+        // Without a branch while every plain offset is below its axis's limit (the period on a
+        // wrapping axis; a query in or near the period box), with the same operations as
+        // `Torus::offset` then; the reduction modulo the period otherwise.
+        let (mut s, mut far) = (0.0, false);
+        for i in 0..D {
+            let d = (a[i] - b[i]).abs();
+            let limit = self.torus.limit(i);
+            far |= d >= limit;
+            let e = limit - d;
+            s = M::combine(s, if e < d { e } else { d });
+        }
+        if !far {
+            return s;
+        }
         let mut s = 0.0;
         for i in 0..D {
             s = M::combine(s, self.torus.offset(i, a[i], b[i]));
@@ -105,5 +119,26 @@ impl<M: AxisMetric + Metric<D>, const D: usize> Metric<D> for MinImage<M, D> {
     #[inline(always)]
     fn scale_distance(&self, d: f64, factor: f64) -> f64 {
         self.metric.scale_distance(d, factor)
+    }
+    #[inline(always)]
+    fn torus(&self) -> Option<&Torus<D>> {
+        Some(&self.torus)
+    }
+    #[inline(always)]
+    fn unwrapped_distance(&self, a: &[f64; D], b: &[f64; D]) -> f64 {
+        let mut s = 0.0;
+        for i in 0..D {
+            s = M::combine(s, (a[i] - b[i]).abs());
+        }
+        s
+    }
+    #[inline(always)]
+    fn unwrapped_box_distance(&self, q: &[f64; D], b: &Aabb<f64, D>, margin: &[f64; D]) -> f64 {
+        let mut s = 0.0;
+        for i in 0..D {
+            let gap = axis_gap(q[i], b.min[i], b.max[i]);
+            s = M::combine(s, (gap - margin[i]).max(0.0));
+        }
+        s
     }
 }

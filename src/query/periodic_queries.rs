@@ -59,7 +59,9 @@ pub trait PeriodicQueries<const D: usize>: PointSet<D> {
     /// A NaN, infinite or inexact coordinate in `p`.
     ///
     /// # Complexity
-    /// As [`PointSet::k_nearest_by`]: the wrap only changes the box bound.
+    /// About that of [`PointSet::k_nearest`]: the query's image in the period box is searched
+    /// as in ordinary space, and its images across the faces only when the `k`-th distance
+    /// reaches them (the image search of [`Metric::torus`](super::Metric::torus)).
     #[inline]
     fn periodic_k_nearest(
         &self,
