@@ -145,19 +145,7 @@ pub(super) struct Levels {
 impl Levels {
     /// Lists the internal nodes of `tree` by level.
     pub(super) fn new<const D: usize>(tree: &Tree<D>, options: BalanceOptions) -> Levels {
-        let mut by_level: Vec<Vec<NodeId>> = vec![Vec::new(); Cell::<D>::MAX_LEVEL as usize + 1];
-        for i in 0..tree.node_count() as u32 {
-            let id = NodeId(i);
-            if !tree.is_leaf(id) {
-                by_level[tree.level(id) as usize].push(id);
-            }
-        }
-        Levels {
-            slack: options.max_level_difference() - 1,
-            level: by_level.len(),
-            by_level,
-            split: Vec::new(),
-        }
+        Self::of_nodes(tree, options, (0..tree.node_count() as u32).map(NodeId))
     }
 
     /// The internal nodes among `seeds` by level (the nodes split since the tree was balanced).
@@ -167,11 +155,18 @@ impl Levels {
         options: BalanceOptions,
         seeds: &[NodeId],
     ) -> Levels {
+        Self::of_nodes(tree, options, seeds.iter().copied())
+    }
+
+    /// The internal nodes among `nodes`, by level.
+    fn of_nodes<const D: usize>(
+        tree: &Tree<D>,
+        options: BalanceOptions,
+        nodes: impl Iterator<Item = NodeId>,
+    ) -> Levels {
         let mut by_level: Vec<Vec<NodeId>> = vec![Vec::new(); Cell::<D>::MAX_LEVEL as usize + 1];
-        for &id in seeds {
-            if !tree.is_leaf(id) {
-                by_level[tree.level(id) as usize].push(id);
-            }
+        for id in nodes.filter(|&id| !tree.is_leaf(id)) {
+            by_level[tree.level(id) as usize].push(id);
         }
         Levels {
             slack: options.max_level_difference() - 1,
