@@ -57,8 +57,10 @@ pub struct Voxel<const D: usize> {
 
 impl<const D: usize> VoxelGrid<D> {
     /// The grid of voxels of side `voxel` whose cube starts at the points' lowest corner and is
-    /// the smallest power-of-two multiple of `voxel` covering them (like Open3D's
-    /// `voxel_down_sample`, whose voxel `i` starts at `min + i * voxel`).
+    /// the smallest power-of-two multiple of `voxel` covering them: voxel `i` starts at
+    /// `min + i * voxel`. Open3D's `voxel_down_sample` starts its grid half a voxel lower
+    /// (`min - voxel / 2 + i * voxel`); [`VoxelGrid::for_box`] on a box with that corner gives
+    /// its voxels (a point on a voxel face goes to the lower voxel here, the upper in Open3D).
     ///
     /// # Errors
     /// [`CloudError::InvalidVoxelSize`] unless `voxel` is positive and finite;
