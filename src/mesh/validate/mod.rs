@@ -365,5 +365,6 @@ mod input;
 #[cfg(test)]
 mod tests;
 mod violation;
+mod violation_message;
 
 pub use violation::{BoardSide, MeshValidationError, RegionRule};
