@@ -17,6 +17,8 @@
 //!   balance, then only the insulation layer exchanged, then a local fix-up: Isaac, Burstedde
 //!   and Ghattas 2012); the [`GhostLayer`] (remote leaves adjacent to each rank's, and its
 //!   mirrors); repartition by counts.
+//! - [`workload`]: the benchmark workloads (p4est's fractal balanced, points built and
+//!   queried) shared by the examples and the command-line program.
 //!
 //! Every operation here is collective: every rank of the communicator calls it, in the same
 //! order. A bad input on one rank (a NaN coordinate, a bad query, leaves out of order) is
@@ -46,6 +48,7 @@ mod ghost;
 mod partition;
 mod queries;
 mod tree;
+pub mod workload;
 
 pub use balance::BalanceStats;
 pub use build::{DistPointTreeBuilder, MAX_TOTAL};
