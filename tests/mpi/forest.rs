@@ -26,7 +26,7 @@ pub const CHECKS: &[Check] = &[
 
 /// An unbalanced tree: the root refined toward `spikes` random cells, each at a random level up
 /// to `depth`.
-fn spiky<const D: usize>(seed: u64, spikes: usize, depth: u8) -> Tree<D> {
+pub(crate) fn spiky<const D: usize>(seed: u64, spikes: usize, depth: u8) -> Tree<D> {
     let mut rng = SmallRng::seed_from_u64(seed);
     let mut tree = Tree::<D>::new();
     for _ in 0..spikes {
@@ -44,7 +44,7 @@ fn spiky<const D: usize>(seed: u64, spikes: usize, depth: u8) -> Tree<D> {
 
 /// The first positions of `n` leaves over `size` ranks in split `how`: 0 even, 1 all on rank 0,
 /// 2 all on the last rank, 3 random cuts (some ranks empty).
-fn cuts(n: u64, size: usize, how: usize, seed: u64) -> Vec<u64> {
+pub(crate) fn cuts(n: u64, size: usize, how: usize, seed: u64) -> Vec<u64> {
     match how {
         0 => Partition::uniform(n, size),
         1 => (0..=size).map(|r| if r == 0 { 0 } else { n }).collect(),
@@ -59,7 +59,7 @@ fn cuts(n: u64, size: usize, how: usize, seed: u64) -> Vec<u64> {
 }
 
 /// Every rank's cells, in rank order (the union in Morton order).
-fn gather<const D: usize>(world: &SimpleCommunicator, mine: &[Cell<D>]) -> Vec<Cell<D>> {
+pub(crate) fn gather<const D: usize>(world: &SimpleCommunicator, mine: &[Cell<D>]) -> Vec<Cell<D>> {
     let words: Vec<u64> = mine
         .iter()
         .flat_map(|c| [c.aligned_key(), c.level() as u64])
@@ -83,7 +83,7 @@ fn gather<const D: usize>(world: &SimpleCommunicator, mine: &[Cell<D>]) -> Vec<C
 }
 
 /// This rank's slice of `leaves` under `first`.
-fn slice<const D: usize>(
+pub(crate) fn slice<const D: usize>(
     world: &SimpleCommunicator,
     leaves: &[Cell<D>],
     first: &[u64],
@@ -135,7 +135,7 @@ fn balance_equals_serial<const D: usize>(
 }
 
 /// The partition table agrees with every rank's leaves: counts, first positions, first keys.
-fn check_table<const D: usize>(world: &SimpleCommunicator, forest: &DistForest<D>) {
+pub(crate) fn check_table<const D: usize>(world: &SimpleCommunicator, forest: &DistForest<D>) {
     let p = forest.partition();
     let r = world.rank() as usize;
     assert_eq!(p.count(r), forest.leaves().len() as u64);
