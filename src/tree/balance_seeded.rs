@@ -10,8 +10,10 @@
 //! the seeds and the splits they force, not of the whole tree.
 
 use super::balance::{outward_directions, Levels};
+use super::arena::NONE;
 use super::{BalanceOptions, NodeId, Tree};
-use crate::geom::Cell;
+use crate::geom::{Cell, Dim};
+use smallvec::SmallVec;
 
 impl<const D: usize> Tree<D> {
     /// Refines the tree until `cell` is a node (splitting the leaves on its path, and calling
@@ -46,6 +48,59 @@ impl<const D: usize> Tree<D> {
                 v = self.child(v, c).expect("split above");
                 at = at.child(c);
                 path.push((v, at));
+            }
+        }
+    }
+
+    /// Appends to `out`, in Morton order, the cells of the leaves whose aligned keys
+    /// ([`Cell::aligned_key`]) lie in `lo..hi`, a range that no leaf straddles (a rank's range
+    /// of a forest). One walk with a frame per internal node on the path (its first child, its
+    /// cell, the next child to visit), so each leaf costs one step of a loop and one write;
+    /// subtrees wholly outside the range are skipped, and no key is computed below a node
+    /// wholly inside it.
+    pub(crate) fn leaf_cells_in(&self, (lo, hi): (u128, u128), out: &mut Vec<Cell<D>>) {
+        let span = |c: &Cell<D>| {
+            let a = c.aligned_key() as u128;
+            (a, a + (1u128 << (D * (Cell::<D>::MAX_LEVEL - c.level()) as usize)))
+        };
+        let root = Cell::<D>::root();
+        let (a, b) = span(&root);
+        if b <= lo || a >= hi {
+            return;
+        }
+        let whole = a >= lo && b <= hi;
+        if self.first_child[0] == NONE {
+            out.push(root);
+            return;
+        }
+        let n = Dim::<D>::CHILDREN as u32;
+        let mut stack: SmallVec<[(u32, Cell<D>, u32, bool); 64]> = SmallVec::new();
+        stack.push((self.first_child[0], root, 0, whole));
+        while let Some(top) = stack.last_mut() {
+            let (first, parent, i, inside) = *top;
+            if i == n {
+                stack.pop();
+                continue;
+            }
+            top.2 = i + 1;
+            let cell = parent.child(i as usize);
+            let mut within = inside;
+            if !inside {
+                let (a, b) = span(&cell);
+                if b <= lo {
+                    continue;
+                }
+                if a >= hi {
+                    stack.pop();
+                    continue;
+                }
+                within = a >= lo && b <= hi;
+            }
+            let f = self.first_child[(first + i) as usize];
+            if f == NONE {
+                out.push(cell);
+            } else {
+                stack.push((f, cell, 0, within));
             }
         }
     }
