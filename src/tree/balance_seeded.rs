@@ -9,8 +9,8 @@
 //! pass: the result is the coarsest balanced refinement of the refined tree. The cost is that of
 //! the seeds and the splits they force, not of the whole tree.
 
-use super::balance::{outward_directions, Levels};
 use super::arena::NONE;
+use super::balance::{outward_directions, Levels};
 use super::{BalanceOptions, NodeId, Tree};
 use crate::geom::{Cell, Dim};
 use smallvec::SmallVec;
@@ -61,7 +61,10 @@ impl<const D: usize> Tree<D> {
     pub(crate) fn leaf_cells_in(&self, (lo, hi): (u128, u128), out: &mut Vec<Cell<D>>) {
         let span = |c: &Cell<D>| {
             let a = c.aligned_key() as u128;
-            (a, a + (1u128 << (D * (Cell::<D>::MAX_LEVEL - c.level()) as usize)))
+            (
+                a,
+                a + (1u128 << (D * (Cell::<D>::MAX_LEVEL - c.level()) as usize)),
+            )
         };
         let root = Cell::<D>::root();
         let (a, b) = span(&root);
