@@ -85,7 +85,9 @@ impl<const D: usize> DistForest<D> {
 
         let mut tree = Tree::<D>::new();
         tree.reserve_splits(self.leaves.len() / ((1 << D) - 1) + 64);
-        tree.refine_to_sorted(&self.leaves);
+        // Each own leaf's node: the own leaves after balance are the leaves below them.
+        let mut nodes: Vec<NodeId> = Vec::with_capacity(self.leaves.len());
+        tree.refine_to_sorted(&self.leaves, |v| nodes.push(v));
         phases.push(("build", clock.elapsed().as_secs_f64()));
         let clock = Instant::now();
         tree.balance(options);
@@ -137,9 +139,16 @@ impl<const D: usize> DistForest<D> {
         phases.push(("exchange", exchange_s));
         phases.push(("fix-up", fixup_s));
         let clock = Instant::now();
-        self.leaves.clear();
-        self.leaves.reserve(tree.leaf_count());
-        tree.leaf_cells_in(mine, &mut self.leaves);
+        // The own leaves given are in Morton order and their nodes in the order the build
+        // made them, so this reads the arena mostly in order; only the subtrees balance added
+        // are walked.
+        let given = std::mem::take(&mut self.leaves);
+        let mut leaves = Vec::with_capacity(tree.leaf_count());
+        for (cell, &v) in given.iter().zip(&nodes) {
+            tree.leaf_cells_below(v, *cell, &mut leaves);
+        }
+        drop((given, nodes));
+        self.leaves = leaves;
         let first_key = self.leaves.first().map(Cell::aligned_key);
         self.partition = super::Partition::gather(comm, self.leaves.len(), first_key)?;
         phases.push(("collect", clock.elapsed().as_secs_f64()));

@@ -30,10 +30,11 @@ impl<const D: usize> Tree<D> {
         v
     }
 
-    /// [`Tree::refine_to`] for each of `cells`, in Morton order: the walk down starts from the
-    /// deepest node on the previous cell's path that contains the next cell, so a run of n
-    /// leaves costs O(n + depth) node visits rather than O(n depth).
-    pub(crate) fn refine_to_sorted(&mut self, cells: &[Cell<D>]) {
+    /// [`Tree::refine_to`] for each of `cells`, in Morton order, calling `at` with each cell's
+    /// node in turn: the walk down starts from the deepest node on the previous cell's path that
+    /// contains the next cell, so a run of n leaves costs O(n + depth) node visits rather than
+    /// O(n depth).
+    pub(crate) fn refine_to_sorted(&mut self, cells: &[Cell<D>], mut at_node: impl FnMut(NodeId)) {
         let mut path: Vec<(NodeId, Cell<D>)> = vec![(NodeId::ROOT, Cell::root())];
         for cell in cells {
             while path.len() > 1 && !path.last().expect("the root stays").1.contains(cell) {
@@ -49,61 +50,34 @@ impl<const D: usize> Tree<D> {
                 at = at.child(c);
                 path.push((v, at));
             }
+            at_node(v);
         }
     }
 
-    /// Appends to `out`, in Morton order, the cells of the leaves whose aligned keys
-    /// ([`Cell::aligned_key`]) lie in `lo..hi`, a range that no leaf straddles (a rank's range
-    /// of a forest). One walk with a frame per internal node on the path (its first child, its
-    /// cell, the next child to visit), so each leaf costs one step of a loop and one write;
-    /// subtrees wholly outside the range are skipped, and no key is computed below a node
-    /// wholly inside it.
-    pub(crate) fn leaf_cells_in(&self, (lo, hi): (u128, u128), out: &mut Vec<Cell<D>>) {
-        let span = |c: &Cell<D>| {
-            let a = c.aligned_key() as u128;
-            (
-                a,
-                a + (1u128 << (D * (Cell::<D>::MAX_LEVEL - c.level()) as usize)),
-            )
-        };
-        let root = Cell::<D>::root();
-        let (a, b) = span(&root);
-        if b <= lo || a >= hi {
-            return;
-        }
-        let whole = a >= lo && b <= hi;
-        if self.first_child[0] == NONE {
-            out.push(root);
+    /// Appends to `out` the cells of the leaves below node `v` (itself if a leaf), whose cell
+    /// is `cell`, in Morton order: one walk with a frame per internal node on the path (its first
+    /// child, its cell, the next child to visit), so each leaf costs one step of a loop and one
+    /// write.
+    pub(crate) fn leaf_cells_below(&self, v: NodeId, cell: Cell<D>, out: &mut Vec<Cell<D>>) {
+        let f = self.first_child[v.index()];
+        if f == NONE {
+            out.push(cell);
             return;
         }
         let n = Dim::<D>::CHILDREN as u32;
-        let mut stack: SmallVec<[(u32, Cell<D>, u32, bool); 64]> = SmallVec::new();
-        stack.push((self.first_child[0], root, 0, whole));
+        let mut stack: SmallVec<[(u32, Cell<D>, u32); 64]> = SmallVec::new();
+        stack.push((f, cell, 0));
         while let Some(top) = stack.last_mut() {
-            let (first, parent, i, inside) = *top;
+            let (first, parent, i) = *top;
             if i == n {
                 stack.pop();
                 continue;
             }
             top.2 = i + 1;
-            let cell = parent.child(i as usize);
-            let mut within = inside;
-            if !inside {
-                let (a, b) = span(&cell);
-                if b <= lo {
-                    continue;
-                }
-                if a >= hi {
-                    stack.pop();
-                    continue;
-                }
-                within = a >= lo && b <= hi;
-            }
-            let f = self.first_child[(first + i) as usize];
-            if f == NONE {
-                out.push(cell);
-            } else {
-                stack.push((f, cell, 0, within));
+            let child = parent.child(i as usize);
+            match self.first_child[(first + i) as usize] {
+                NONE => out.push(child),
+                f => stack.push((f, child, 0)),
             }
         }
     }
