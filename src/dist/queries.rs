@@ -105,8 +105,7 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
             &first,
             bytes,
             |q, w| write(q, f64::INFINITY, w),
-            answer,
-            |q, hits| search(&q64[q], k, f64::INFINITY, hits),
+            (answer, |q, hits| search(&q64[q], k, f64::INFINITY, hits)),
             Some(&keys),
             queries.len(),
         )?;
@@ -135,8 +134,7 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
             &second,
             bytes,
             |q, w| write(q, radius[q], w),
-            answer,
-            |q, hits| search(&q64[q], k, radius[q], hits),
+            (answer, |q, hits| search(&q64[q], k, radius[q], hits)),
             Some(&keys),
             queries.len(),
         )?;
@@ -268,11 +266,13 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
             &sends,
             bytes,
             write,
-            |r, hits| {
-                let (region, center) = read(r);
-                search(&region, center, hits);
-            },
-            |q, hits| search(&regions[q], center_of(&regions[q]), hits),
+            (
+                |r: &mut Reader<'_>, hits: &mut Vec<(f64, usize)>| {
+                    let (region, center) = read(r);
+                    search(&region, center, hits);
+                },
+                |q, hits: &mut Vec<(f64, usize)>| search(&regions[q], center_of(&regions[q]), hits),
+            ),
             None,
             regions.len(),
         )?;
@@ -323,16 +323,19 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
     /// (distance, local slot); the hits come back, grouped by query. A request to this rank
     /// itself is answered here by `local` (the query's number, the same hits), never packed.
     /// With `keys` (each query's Morton key), every rank answers in Morton order.
-    fn round(
+    fn round<A, L>(
         &self,
         sends: &[(usize, usize)],
         bytes: usize,
         write: impl Fn(usize, &mut Writer<'_>),
-        answer: impl Fn(&mut Reader<'_>, &mut Vec<(f64, usize)>),
-        local: impl Fn(usize, &mut Vec<(f64, usize)>),
+        (answer, local): (A, L),
         keys: Option<&[u64]>,
         queries: usize,
-    ) -> Result<Answers<S, T, D>, DistError> {
+    ) -> Result<Answers<S, T, D>, DistError>
+    where
+        A: Fn(&mut Reader<'_>, &mut Vec<(f64, usize)>),
+        L: Fn(usize, &mut Vec<(f64, usize)>),
+    {
         let ranks = self.partition.ranks();
         let me = self.rank();
         let key = |q: usize| keys.map_or(0, |k| k[q]);
