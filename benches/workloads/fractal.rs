@@ -1,5 +1,7 @@
-//! p4est's "timings" fractal refinement, shared by `cli/src/balance.rs`, `benches/balance.rs`,
-//! `examples/dist_balance.rs` and the tests.
+//! p4est's "timings" fractal refinement, shared by `cli/src/balance.rs`, `benches/balance.rs`
+//! and the tests (the distributed workload, `orthtree::dist::workload`, has its own copy of the
+//! rule behind the feature `mpi`; the MPI test `forest::fractal_parts_equal_the_fractal` checks
+//! that the two give the same leaves).
 //!
 //! The uniform tree at level L - 4 is refined; then a cell of level l, L - 4 <= l < L, is refined
 //! when its child id has an even number of set bits: 0 or 3 in 2D, 0, 3, 5 or 6 in 3D (p4est's

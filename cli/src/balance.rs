@@ -50,11 +50,24 @@ pub struct BalanceArgs {
 
 /// The connectivities on the command line.
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
-enum ConnectArg {
+pub enum ConnectArg {
+    /// Across faces.
     Face,
+    /// Across faces and edges.
     Edge,
+    /// Across faces, edges and corners.
     #[value(alias = "full")]
     Corner,
+}
+
+impl From<ConnectArg> for Connectivity {
+    fn from(c: ConnectArg) -> Self {
+        match c {
+            ConnectArg::Face => Connectivity::Face,
+            ConnectArg::Edge => Connectivity::Edge,
+            ConnectArg::Corner => Connectivity::Corner,
+        }
+    }
 }
 
 struct Args {
@@ -126,11 +139,7 @@ fn checked(args: &BalanceArgs) -> Result<Args, Failure> {
         leaves * PEAK_BYTES_PER_LEAF * copies,
     )
     .map_err(Failure::Usage)?;
-    let options = BalanceOptions::new(match args.connect {
-        ConnectArg::Face => Connectivity::Face,
-        ConnectArg::Edge => Connectivity::Edge,
-        ConnectArg::Corner => Connectivity::Corner,
-    });
+    let options = BalanceOptions::new(args.connect.into());
     Ok(Args {
         dim,
         level,

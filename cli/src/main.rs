@@ -4,6 +4,8 @@
 //! - `orthtree heat [BOARD]`: steady heat on the board's mesh (with the `heat` feature);
 //! - `orthtree image A [B] --op OP --out C`: Boolean operations on images with region trees;
 //! - `orthtree balance`: p4est's fractal refinement, then 2:1 balance;
+//! - `orthtree dist-balance`, `orthtree dist-points`: the forest and the point tree over MPI
+//!   ranks, run under `mpirun` (with the `mpi` feature);
 //! - `orthtree cloud info|downsample|outliers|diff|index`: point clouds (PLY, XYZ/CSV, LAS/LAZ).
 //!
 //! Every command answers `--help`. Exit codes: 0 success, 1 an input or processing error (a file
@@ -13,6 +15,8 @@
 
 mod balance;
 mod cloud;
+#[cfg(feature = "mpi")]
+mod dist;
 mod heat;
 mod image;
 mod limits;
@@ -47,6 +51,10 @@ enum Command {
     Image(image::ImageArgs),
     Balance(balance::BalanceArgs),
     Cloud(cloud::CloudArgs),
+    #[cfg(feature = "mpi")]
+    DistBalance(dist::DistBalanceArgs),
+    #[cfg(feature = "mpi")]
+    DistPoints(dist::DistPointsArgs),
 }
 
 /// Why a command stopped.
@@ -76,6 +84,10 @@ fn main() -> ExitCode {
         Command::Image(args) => ("image", image::run(args)),
         Command::Balance(args) => ("balance", balance::run(args)),
         Command::Cloud(args) => ("cloud", cloud::run(args)),
+        #[cfg(feature = "mpi")]
+        Command::DistBalance(args) => ("dist-balance", dist::run_balance(args)),
+        #[cfg(feature = "mpi")]
+        Command::DistPoints(args) => ("dist-points", dist::run_points(args)),
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,

@@ -85,7 +85,9 @@ impl<const D: usize> DistForest<D> {
 
         let mut tree = Tree::<D>::new();
         tree.reserve_splits(self.leaves.len() / ((1 << D) - 1) + 64);
-        tree.refine_to_sorted(&self.leaves);
+        // Each own leaf's node: the own leaves after balance are the leaves below them.
+        let mut nodes: Vec<NodeId> = Vec::with_capacity(self.leaves.len());
+        tree.refine_to_sorted(&self.leaves, |v| nodes.push(v));
         phases.push(("build", clock.elapsed().as_secs_f64()));
         let clock = Instant::now();
         tree.balance(options);
@@ -137,7 +139,16 @@ impl<const D: usize> DistForest<D> {
         phases.push(("exchange", exchange_s));
         phases.push(("fix-up", fixup_s));
         let clock = Instant::now();
-        self.leaves = own_leaves(&tree, mine);
+        // The own leaves given are in Morton order and their nodes in the order the build
+        // made them, so this reads the arena mostly in order; only the subtrees balance added
+        // are walked.
+        let given = std::mem::take(&mut self.leaves);
+        let mut leaves = Vec::with_capacity(tree.leaf_count());
+        for (cell, &v) in given.iter().zip(&nodes) {
+            tree.leaf_cells_below(v, *cell, &mut leaves);
+        }
+        drop((given, nodes));
+        self.leaves = leaves;
         let first_key = self.leaves.first().map(Cell::aligned_key);
         self.partition = super::Partition::gather(comm, self.leaves.len(), first_key)?;
         phases.push(("collect", clock.elapsed().as_secs_f64()));
@@ -148,31 +159,6 @@ impl<const D: usize> DistForest<D> {
             phases,
         })
     }
-}
-
-/// The leaves of `tree` whose keys lie in `mine`, in Morton order: the walk skips every subtree
-/// outside the range, and tests no key below a node inside it.
-fn own_leaves<const D: usize>(tree: &Tree<D>, mine: (u128, u128)) -> Vec<Cell<D>> {
-    let mut out = Vec::with_capacity(tree.leaf_count());
-    let mut stack: SmallVec<[(NodeId, Cell<D>, bool); 64]> = SmallVec::new();
-    stack.push((NodeId::ROOT, Cell::root(), false));
-    while let Some((v, cell, mut inside)) = stack.pop() {
-        if !inside {
-            let (lo, hi) = span(&cell);
-            if hi <= mine.0 || lo >= mine.1 {
-                continue;
-            }
-            inside = lo >= mine.0 && hi <= mine.1;
-        }
-        if tree.is_leaf(v) {
-            out.push(cell);
-            continue;
-        }
-        for (i, child) in tree.children(v).enumerate().rev() {
-            stack.push((child, cell.child(i), inside));
-        }
-    }
-    out
 }
 
 /// The own leaves (keys in `mine`) whose insulation layer may leave `mine`, in Morton order: the

@@ -2,12 +2,13 @@
 //! holding one contiguous run of them, with the replicated [`Partition`] table of each rank's
 //! first position and first key: p4est's linear forest (Burstedde, Wilcox and Ghattas 2011,
 //! section 2), one tree. Built from any runs that tile the root cube, checked by an agreement
-//! step; [`DistForest::repartition`] evens the counts. Balance is in `balance.rs`, the ghost
+//! step; [`DistForest::repartition`] evens the counts (keeping families of siblings together
+//! on request: `families.rs`). Balance is in `balance.rs`, the ghost
 //! layer in `ghost.rs`, the key ranges and the exchange of cells in `exchange.rs`.
 
 use super::comm;
 use super::error::LeafProblem;
-use super::{DistError, Partition};
+use super::{DistError, Partition, RepartitionOptions};
 use crate::geom::Cell;
 use mpi::traits::Communicator;
 
@@ -153,7 +154,8 @@ impl<const D: usize> DistForest<D> {
 
     /// The same leaves with counts evened over the ranks (collective): rank r gets the leaves
     /// from position floor(N r / P) on (p4est's uniform partition), moved by one all-to-all
-    /// exchange of contiguous runs.
+    /// exchange of contiguous runs. [`DistForest::repartition_with`] can keep families of
+    /// sibling leaves together.
     ///
     /// # Errors
     /// [`DistError::MessageTooLarge`] when one rank would send or receive more than MPI counts.
@@ -161,14 +163,54 @@ impl<const D: usize> DistForest<D> {
     /// # Panics
     /// When called on a communicator other than the forest's (its size differs).
     pub fn repartition(&self, comm: &impl Communicator) -> Result<Self, DistError> {
+        self.repartition_with(comm, RepartitionOptions::new())
+    }
+
+    /// [`DistForest::repartition`] with `options`: with
+    /// [`RepartitionOptions::keep_families`], every boundary of the uniform split that falls
+    /// inside a family of 2^D sibling leaves moves to the family's nearer end, so that no such
+    /// family is split across ranks (p4est's `partition_for_coarsening`).
+    ///
+    /// # Errors
+    /// [`DistError::MessageTooLarge`] when one rank would send or receive more than MPI counts.
+    ///
+    /// # Panics
+    /// When called on a communicator other than the forest's (its size differs).
+    ///
+    /// # Complexity
+    /// O(n) per rank for the n leaves it sends or receives, one all-to-all; keeping families
+    /// adds an allgather of (2^(D+1) - 2) (P - 1) cells of three words.
+    ///
+    /// ```
+    /// use orthtree::dist::{DistForest, RepartitionOptions};
+    /// use orthtree::Cell;
+    /// let universe = mpi::initialize().unwrap();
+    /// let world = universe.world();
+    /// let rank = mpi::traits::Communicator::rank(&world);
+    /// let leaves = if rank == 0 { (0..4).map(|c| Cell::<2>::root().child(c)).collect() } else { vec![] };
+    /// let forest = DistForest::new(&world, leaves).unwrap();
+    /// let kept = forest
+    ///     .repartition_with(&world, RepartitionOptions::new().keep_families(true))
+    ///     .unwrap();
+    /// // the root's four children are one family: on one rank whatever the rank count
+    /// assert!(kept.leaves().is_empty() || kept.leaves().len() == 4);
+    /// ```
+    pub fn repartition_with(
+        &self,
+        comm: &impl Communicator,
+        options: RepartitionOptions,
+    ) -> Result<Self, DistError> {
         let (_, size) = comm::rank_size(comm);
         assert_eq!(size, self.partition.ranks(), "the forest's communicator");
+        let mut targets = Partition::uniform(self.len(), size);
+        if options.keeps_families() {
+            targets = self.family_targets(comm, targets)?;
+        }
         let records: Vec<[u64; 2]> = self
             .leaves
             .iter()
             .map(|c| [c.aligned_key(), c.level() as u64])
             .collect();
-        let targets = Partition::uniform(self.len(), size);
         let (partition, moved) = self
             .partition
             .repartition(comm, &records, &targets, |r| r[0])?;

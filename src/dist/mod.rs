@@ -16,7 +16,10 @@
 //!   same leaves as the serial [`Tree::balance`](crate::Tree::balance) of the union (local
 //!   balance, then only the insulation layer exchanged, then a local fix-up: Isaac, Burstedde
 //!   and Ghattas 2012); the [`GhostLayer`] (remote leaves adjacent to each rank's, and its
-//!   mirrors); repartition by counts.
+//!   mirrors); repartition by counts, keeping families of sibling leaves on one rank when
+//!   asked ([`RepartitionOptions`]).
+//! - [`workload`]: the benchmark workloads (p4est's fractal balanced, points built and
+//!   queried) shared by the examples and the command-line program.
 //!
 //! Every operation here is collective: every rank of the communicator calls it, in the same
 //! order. A bad input on one rank (a NaN coordinate, a bad query, leaves out of order) is
@@ -41,15 +44,18 @@ mod build;
 mod comm;
 mod error;
 mod exchange;
+mod families;
 mod forest;
 mod ghost;
 mod partition;
 mod queries;
 mod tree;
+pub mod workload;
 
 pub use balance::BalanceStats;
 pub use build::{DistPointTreeBuilder, MAX_TOTAL};
 pub use error::{DistError, LeafProblem};
+pub use families::RepartitionOptions;
 pub use forest::DistForest;
 pub use ghost::GhostLayer;
 pub use partition::Partition;

@@ -15,7 +15,7 @@ use super::comm::{self, point_bytes, Reader, Words, Writer};
 use super::{DistError, DistPointTree};
 use crate::geom::{Aabb, Scalar};
 use crate::query::range::{for_each_in, scan_limit};
-use crate::query::SquaredEuclidean;
+use crate::query::{k_nearest, SquaredEuclidean};
 use crate::query::{query_box, query_point, Ball, Metric, PointSet, QueryError, Region, Relation};
 use bytemuck::Pod;
 
@@ -68,6 +68,8 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
             .iter()
             .map(|q| query_point(q).expect("checked"))
             .collect();
+        let geometry = self.local.geometry();
+        let keys: Vec<u64> = q64.iter().map(|q| geometry.key(q)).collect();
         let bound = |q: usize, r: usize| SquaredEuclidean.box_distance(&q64[q], &self.boxes[r]);
         let ranks = self.nonempty_ranks();
         let home: Vec<Option<usize>> = (0..queries.len())
@@ -82,11 +84,17 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
         let write = |q: usize, radius: f64, w: &mut Writer<'_>| {
             w.put(&(k as u64)).put(&radius).point(&queries[q]);
         };
+        let search = |q: &[f64; D], k: usize, max: f64, hits: &mut Vec<(f64, usize)>| {
+            hits.extend(k_nearest(self.local.index(), q, k, max, &SquaredEuclidean));
+        };
         let answer = |r: &mut Reader<'_>, hits: &mut Vec<(f64, usize)>| {
             let (k, max) = (r.get::<u64>() as usize, r.get::<f64>());
             let p: [S; D] = r.point();
-            if let Ok(found) = self.local.k_nearest_within(&p, k, max) {
-                hits.extend(found.iter().map(|n| (n.distance, n.index)));
+            // checked on its rank; a NaN bound is never sent
+            if let Ok(q) = query_point(&p) {
+                if !max.is_nan() {
+                    search(&q, k, max, hits);
+                }
             }
         };
         let first: Vec<(usize, usize)> = (0..queries.len())
@@ -97,7 +105,8 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
             &first,
             bytes,
             |q, w| write(q, f64::INFINITY, w),
-            answer,
+            (answer, |q, hits| search(&q64[q], k, f64::INFINITY, hits)),
+            Some(&keys),
             queries.len(),
         )?;
         let radius: Vec<f64> = found
@@ -125,10 +134,14 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
             &second,
             bytes,
             |q, w| write(q, radius[q], w),
-            answer,
+            (answer, |q, hits| search(&q64[q], k, radius[q], hits)),
+            Some(&keys),
             queries.len(),
         )?;
         for (f, m) in found.iter_mut().zip(more) {
+            if m.is_empty() {
+                continue; // one rank's answer, already sorted
+            }
             f.extend(m);
             f.sort_by(|a, b| a.distance.total_cmp(&b.distance).then(a.slot.cmp(&b.slot)));
             f.truncate(k);
@@ -174,6 +187,7 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
                 };
                 (check(&b).expect("checked on its rank"), None)
             },
+            |_| None,
         )
     }
 
@@ -212,17 +226,20 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
                 let center = b.center;
                 (b, Some(center))
             },
+            |b| Some(b.center),
         )
     }
 
     /// One round of range queries: each region to every non-empty rank whose box it does not
-    /// miss; `read` rebuilds a region there (with the centre to measure distances from).
+    /// miss; `read` rebuilds a region there (with the centre to measure distances from, which
+    /// `center_of` gives for a region answered on its own rank).
     fn range_round<R: Region<D>>(
         &self,
         regions: &[R],
         bytes: usize,
         write: impl Fn(usize, &mut Writer<'_>),
         read: impl Fn(&mut Reader<'_>) -> (R, Option<[f64; D]>),
+        center_of: impl Fn(&R) -> Option<[f64; D]>,
     ) -> Result<Answers<S, T, D>, DistError> {
         let ranks = self.nonempty_ranks();
         let sends: Vec<(usize, usize)> = regions
@@ -237,19 +254,26 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
             })
             .collect();
         let points = self.local.points();
+        let search = |region: &R, center: Option<[f64; D]>, hits: &mut Vec<(f64, usize)>| {
+            let _ = for_each_in(&self.local, region, scan_limit(D), true, |i| {
+                let d = center.map_or(0.0, |c| {
+                    SquaredEuclidean.distance(&c, &points[i].map(Scalar::to_f64))
+                });
+                hits.push((d, i));
+            });
+        };
         let mut found = self.round(
             &sends,
             bytes,
             write,
-            |r, hits| {
-                let (region, center) = read(r);
-                let _ = for_each_in(&self.local, &region, scan_limit(D), true, |i| {
-                    let d = center.map_or(0.0, |c| {
-                        SquaredEuclidean.distance(&c, &points[i].map(Scalar::to_f64))
-                    });
-                    hits.push((d, i));
-                });
-            },
+            (
+                |r: &mut Reader<'_>, hits: &mut Vec<(f64, usize)>| {
+                    let (region, center) = read(r);
+                    search(&region, center, hits);
+                },
+                |q, hits: &mut Vec<(f64, usize)>| search(&regions[q], center_of(&regions[q]), hits),
+            ),
+            None,
             regions.len(),
         )?;
         for f in &mut found {
@@ -296,18 +320,36 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
 
     /// One request-and-answer round: request `q` goes to rank `r` for each `(r, q)` of
     /// `sends` (`write` puts its `bytes`); there `answer` reads it and adds its hits
-    /// (distance, local slot); the hits come back, grouped by query.
-    fn round(
+    /// (distance, local slot); the hits come back, grouped by query. A request to this rank
+    /// itself is answered here by `local` (the query's number, the same hits), never packed.
+    /// With `keys` (each query's Morton key), every rank answers in Morton order.
+    fn round<A, L>(
         &self,
         sends: &[(usize, usize)],
         bytes: usize,
         write: impl Fn(usize, &mut Writer<'_>),
-        answer: impl Fn(&mut Reader<'_>, &mut Vec<(f64, usize)>),
+        (answer, local): (A, L),
+        keys: Option<&[u64]>,
         queries: usize,
-    ) -> Result<Answers<S, T, D>, DistError> {
+    ) -> Result<Answers<S, T, D>, DistError>
+    where
+        A: Fn(&mut Reader<'_>, &mut Vec<(f64, usize)>),
+        L: Fn(usize, &mut Vec<(f64, usize)>),
+    {
         let ranks = self.partition.ranks();
-        let mut order = sends.to_vec();
-        order.sort_by_key(|&(r, _)| r);
+        let me = self.rank();
+        let key = |q: usize| keys.map_or(0, |k| k[q]);
+        // By rank, then in Morton order of the queries: each rank searches its tree in that
+        // order, so that consecutive searches walk the same nodes and points (in cache).
+        let mut order: Vec<(usize, usize)> =
+            sends.iter().copied().filter(|&(r, _)| r != me).collect();
+        order.sort_by_key(|&(r, q)| (r, key(q)));
+        let mut mine: Vec<usize> = sends
+            .iter()
+            .filter(|&&(r, _)| r == me)
+            .map(|&(_, q)| q)
+            .collect();
+        mine.sort_by_key(|&q| key(q));
         let mut requests = Words::with_records(order.len(), 8 + bytes);
         let mut counts = vec![0usize; ranks];
         for (i, &(r, q)) in order.iter().enumerate() {
@@ -349,9 +391,21 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
                 .put(&items[s]);
         }
         let counts: Vec<usize> = reply_counts.iter().map(|c| c * out.per).collect();
+        drop((replies, incoming));
         let (back, _) = comm::exchange(&self.comm, &out.words, &counts)?;
+        drop(out);
         let back = Words::from_words(back, reply_bytes);
         let mut found: Answers<S, T, D> = vec![Vec::new(); queries];
+        for q in mine {
+            hits.clear();
+            local(q, &mut hits);
+            found[q].extend(hits.iter().map(|&(distance, s)| DistNeighbor {
+                point: points[s],
+                item: items[s],
+                distance,
+                slot: first + s as u64,
+            }));
+        }
         for i in 0..back.len() {
             let mut r = back.reader(i);
             let q = r.get::<u64>() as usize;

@@ -50,6 +50,8 @@ pub use index::SpatialIndex;
 #[cfg(feature = "rayon")]
 pub use join::ParallelJoins;
 pub use join::{Boundary, CsrDistances, Joins, KnnTable, PeriodicJoins, SparseDistances};
+#[cfg(feature = "mpi")]
+pub(crate) use knn::k_nearest;
 pub use knn::Neighbor;
 pub use location::Location;
 pub use metric::{Chebyshev, Manhattan, Metric, SquaredEuclidean};

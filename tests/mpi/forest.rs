@@ -2,13 +2,13 @@
 //! D = 2 and 3, every connectivity and the weak balance, from leaves split over the ranks in
 //! several ways (evenly, all on one rank, uneven with empty ranks); the ghost layer and its
 //! mirrors against a brute-force contact search over every leaf; the partition table after
-//! balance and repartition; the fractal's parts equal to the fractal.
+//! balance and repartition; the fractal's parts equal to the fractal (both copies of its rule).
 
 use super::Check;
 use mpi::datatype::PartitionMut;
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
-use orthtree::dist::{DistForest, Partition};
+use orthtree::dist::{workload, DistForest, Partition};
 use orthtree::tree::BalanceOptions;
 use orthtree::{Cell, Connectivity, Tree};
 use rand::{rngs::SmallRng, Rng, SeedableRng};
@@ -26,7 +26,7 @@ pub const CHECKS: &[Check] = &[
 
 /// An unbalanced tree: the root refined toward `spikes` random cells, each at a random level up
 /// to `depth`.
-fn spiky<const D: usize>(seed: u64, spikes: usize, depth: u8) -> Tree<D> {
+pub(crate) fn spiky<const D: usize>(seed: u64, spikes: usize, depth: u8) -> Tree<D> {
     let mut rng = SmallRng::seed_from_u64(seed);
     let mut tree = Tree::<D>::new();
     for _ in 0..spikes {
@@ -44,7 +44,7 @@ fn spiky<const D: usize>(seed: u64, spikes: usize, depth: u8) -> Tree<D> {
 
 /// The first positions of `n` leaves over `size` ranks in split `how`: 0 even, 1 all on rank 0,
 /// 2 all on the last rank, 3 random cuts (some ranks empty).
-fn cuts(n: u64, size: usize, how: usize, seed: u64) -> Vec<u64> {
+pub(crate) fn cuts(n: u64, size: usize, how: usize, seed: u64) -> Vec<u64> {
     match how {
         0 => Partition::uniform(n, size),
         1 => (0..=size).map(|r| if r == 0 { 0 } else { n }).collect(),
@@ -59,7 +59,7 @@ fn cuts(n: u64, size: usize, how: usize, seed: u64) -> Vec<u64> {
 }
 
 /// Every rank's cells, in rank order (the union in Morton order).
-fn gather<const D: usize>(world: &SimpleCommunicator, mine: &[Cell<D>]) -> Vec<Cell<D>> {
+pub(crate) fn gather<const D: usize>(world: &SimpleCommunicator, mine: &[Cell<D>]) -> Vec<Cell<D>> {
     let words: Vec<u64> = mine
         .iter()
         .flat_map(|c| [c.aligned_key(), c.level() as u64])
@@ -83,7 +83,7 @@ fn gather<const D: usize>(world: &SimpleCommunicator, mine: &[Cell<D>]) -> Vec<C
 }
 
 /// This rank's slice of `leaves` under `first`.
-fn slice<const D: usize>(
+pub(crate) fn slice<const D: usize>(
     world: &SimpleCommunicator,
     leaves: &[Cell<D>],
     first: &[u64],
@@ -135,7 +135,7 @@ fn balance_equals_serial<const D: usize>(
 }
 
 /// The partition table agrees with every rank's leaves: counts, first positions, first keys.
-fn check_table<const D: usize>(world: &SimpleCommunicator, forest: &DistForest<D>) {
+pub(crate) fn check_table<const D: usize>(world: &SimpleCommunicator, forest: &DistForest<D>) {
     let p = forest.partition();
     let r = world.rank() as usize;
     assert_eq!(p.count(r), forest.leaves().len() as u64);
@@ -281,6 +281,10 @@ fn fractal_parts(world: &SimpleCommunicator) {
             .collect();
         let cells = Partition::uniform(fractal::uniform_cells::<2>(level), size);
         let part = fractal::fractal_part::<2>(level, cells[rank], cells[rank + 1]);
+        // the distributed workload's copy of the rule gives the same part
+        let (first, end) = (cells[rank], cells[rank + 1]);
+        assert_eq!(workload::fractal_part::<2>(level, first, end), part);
+        assert_eq!(workload::uniform_cells::<2>(level), cells[size]);
         let mut forest = DistForest::new(world, part).unwrap();
         assert_eq!(gather(world, forest.leaves()), want);
         let mut serial = fractal::fractal::<2>(level);
@@ -294,4 +298,9 @@ fn fractal_parts(world: &SimpleCommunicator) {
         fractal::fractal_part::<3>(5, 0, fractal::uniform_cells::<3>(5)),
         want
     );
+    assert_eq!(
+        workload::fractal_part::<3>(5, 0, workload::uniform_cells::<3>(5)),
+        want
+    );
+    assert_eq!(workload::fractal_leaves(3, 5), want.len() as f64);
 }

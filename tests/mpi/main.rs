@@ -1,7 +1,8 @@
 //! The distributed point tree, the distributed forest and their partition, run under `mpirun
 //! -np P` (P = 1 to 4 in CI): partition invariants, the distributed tree and its batch queries
 //! against a single-process tree over the union of every rank's input, the forest's balance
-//! against the serial balance and its ghost layer against brute force, and bad input on one rank.
+//! against the serial balance and its ghost layer against brute force, repartition keeping
+//! sibling families together against a scan, and bad input on one rank.
 //!
 //! A plain `main` (no test harness): every rank runs every check in the same order, since
 //! each one is collective. A failed check panics, and the panic hook aborts the whole job, so
@@ -9,6 +10,7 @@
 //! count.
 
 mod bad_input;
+mod families;
 mod forest;
 mod forest_bad;
 mod partition;
@@ -37,6 +39,7 @@ fn main() {
         .chain(bad_input::CHECKS)
         .chain(forest::CHECKS)
         .chain(forest_bad::CHECKS)
+        .chain(families::CHECKS)
         .copied()
         .filter(|(name, _)| filter.as_ref().is_none_or(|f| name.contains(f.as_str())))
         .collect();
