@@ -64,15 +64,53 @@ pub(crate) fn cell_bounds<const D: usize>(
     (lo, hi)
 }
 
+/// Coordinates per block of [`all_within`]'s unrolled loop: whole points, at most this many.
+const BLOCK: usize = 24;
+
+/// Whether the conversion to `f64` of coordinates of `S` must be checked apart from the bounds:
+/// only for 64-bit integers (a float that is not finite fails the finite bounds, and `f32` and
+/// the smaller integers always convert exactly). Constant after inlining.
+#[inline(always)]
+fn needs_exactness<S: Scalar>() -> bool {
+    core::mem::size_of::<S>() == 8 && S::zero().integer_value().is_some()
+}
+
 /// Whether every point of `points` lies within `lo..=hi` on every axis and converts exactly:
-/// one branch-free pass.
+/// branch-free passes over blocks of whole points (the bounds repeated to the block's length,
+/// so that the comparisons run in vector lanes whatever D), then the remaining points.
 #[inline]
 fn all_within<S: Scalar, const D: usize>(points: &[[S; D]], lo: &[f64; D], hi: &[f64; D]) -> bool {
+    let exact = needs_exactness::<S>();
+    let per_block = (BLOCK / D).max(1);
+    let len = per_block * D;
+    if D <= BLOCK && points.len() >= per_block {
+        let lo_rep: [f64; BLOCK] = core::array::from_fn(|i| lo[i % D]);
+        let hi_rep: [f64; BLOCK] = core::array::from_fn(|i| hi[i % D]);
+        let (lo_rep, hi_rep) = (&lo_rep[..len], &hi_rep[..len]);
+        let flat = points.as_flattened();
+        let mut ok = true;
+        let mut blocks = flat.chunks_exact(len);
+        for block in &mut blocks {
+            for i in 0..len {
+                let x = block[i].to_f64();
+                ok &= (x >= lo_rep[i]) & (x <= hi_rep[i]);
+            }
+            if exact {
+                ok &= block.iter().all(|&x| Scalar::converts_exactly(x));
+            }
+        }
+        let rest = blocks.remainder();
+        for (i, x) in rest.iter().enumerate() {
+            let y = Scalar::to_f64(*x);
+            ok &= (y >= lo[i % D]) & (y <= hi[i % D]) & (!exact || Scalar::converts_exactly(*x));
+        }
+        return ok;
+    }
     let mut ok = true;
     for p in points {
         for a in 0..D {
             let x = p[a].to_f64();
-            ok &= (x >= lo[a]) & (x <= hi[a]) & p[a].converts_exactly();
+            ok &= (x >= lo[a]) & (x <= hi[a]) & (!exact || p[a].converts_exactly());
         }
     }
     ok
