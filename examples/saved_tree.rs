@@ -7,9 +7,7 @@
 //! cargo run --release --features saved --example saved_tree -- --n 10000000 [--file t.bin]
 //! ```
 
-use orthtree::io::saved::{
-    read_point_tree, read_point_tree_file, write_point_tree, PointTreeView,
-};
+use orthtree::io::saved::{read_point_tree, read_point_tree_file, write_point_tree, PointTreeView};
 use orthtree::prelude::*;
 use orthtree::PointTree;
 use rand::rngs::SmallRng;
@@ -146,7 +144,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     println!("  build           {:9.1} ms", build * 1e3);
     if !par_builds.is_empty() {
-        println!("  par_build       {:9.1} ms", median(par_builds.clone()) * 1e3);
+        println!(
+            "  par_build       {:9.1} ms",
+            median(par_builds.clone()) * 1e3
+        );
     }
     println!(
         "  save to memory  {:9.1} ms, {:.1} MB ({:.2} bytes a point)",

@@ -153,10 +153,12 @@ fn explain<S: Scalar, const D: usize>(
                     .detail(format!("coordinate {a} is {:?}, not exact as f64", p[a]));
             }
             if !(domain.min[a] <= x && x <= domain.max[a]) {
-                return ValidationError::new(Invariant::InDomain).point(at).detail(format!(
-                    "coordinate {a} is {x}, the domain spans [{}, {}]",
-                    domain.min[a], domain.max[a]
-                ));
+                return ValidationError::new(Invariant::InDomain)
+                    .point(at)
+                    .detail(format!(
+                        "coordinate {a} is {x}, the domain spans [{}, {}]",
+                        domain.min[a], domain.max[a]
+                    ));
             }
             if !(lo[a] <= x && x <= hi[a]) {
                 return ValidationError::new(Invariant::InLeaf)
@@ -219,26 +221,29 @@ fn first_unordered<S: Scalar, const D: usize>(
     points: &[[S; D]],
     leaves: &[LeafRun<D>],
 ) -> Option<ValidationError> {
-    leaves.iter().filter(|l| l.end - l.start > 1).find_map(|leaf| {
-        let run = &points[leaf.start as usize..leaf.end as usize];
-        let (mut previous, mut unordered) = (0u64, None);
-        geometry.keys_into(
-            run.len(),
-            |i| &run[i],
-            |i, key| {
-                if key < previous && unordered.is_none() {
-                    unordered = Some(i);
-                }
-                previous = key;
-            },
-        );
-        unordered.map(|i| {
-            ValidationError::new(Invariant::InLeaf)
-                .node(leaf.node)
-                .point(leaf.start as usize + i)
-                .detail("out of Morton order in its leaf")
+    leaves
+        .iter()
+        .filter(|l| l.end - l.start > 1)
+        .find_map(|leaf| {
+            let run = &points[leaf.start as usize..leaf.end as usize];
+            let (mut previous, mut unordered) = (0u64, None);
+            geometry.keys_into(
+                run.len(),
+                |i| &run[i],
+                |i, key| {
+                    if key < previous && unordered.is_none() {
+                        unordered = Some(i);
+                    }
+                    previous = key;
+                },
+            );
+            unordered.map(|i| {
+                ValidationError::new(Invariant::InLeaf)
+                    .node(leaf.node)
+                    .point(leaf.start as usize + i)
+                    .detail("out of Morton order in its leaf")
+            })
         })
-    })
 }
 
 /// Checks that the points of every leaf are in Morton order (the owned tree's updates find a

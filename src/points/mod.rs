@@ -33,7 +33,7 @@ use crate::tree::{BalanceOptions, NodeId, Tree};
 #[cfg(any(feature = "saved", feature = "mpi"))]
 pub(crate) use build::settle;
 #[cfg(any(feature = "saved", feature = "serde"))]
-pub(crate) use raw::{PointTreeParts, PointTreeArrays};
+pub(crate) use raw::{PointTreeArrays, PointTreeParts};
 pub(crate) use runs::Runs;
 #[cfg(feature = "mpi")]
 pub(crate) use {

@@ -99,7 +99,10 @@ pub(crate) fn walk_runs<const D: usize>(
         let level = cell.level();
         if arrays.level[at] != level {
             let found = arrays.level[at];
-            return Err(topology(v, format!("its level is {found}, its depth {level}")));
+            return Err(topology(
+                v,
+                format!("its level is {found}, its depth {level}"),
+            ));
         }
         let count = (e - s) as usize;
         let first = arrays.first_child[at];
@@ -120,7 +123,10 @@ pub(crate) fn walk_runs<const D: usize>(
         if level >= Cell::<D>::MAX_LEVEL {
             return Err(topology(
                 v,
-                format!("has children below the deepest level {}", Cell::<D>::MAX_LEVEL),
+                format!(
+                    "has children below the deepest level {}",
+                    Cell::<D>::MAX_LEVEL
+                ),
             ));
         }
         let f = first as usize;

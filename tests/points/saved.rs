@@ -159,7 +159,8 @@ fn view_equals_tree<S, T, const D: usize>(
     assert_eq!(view.k_nearest_join(t, 2), t.k_nearest_join(t, 2));
     let radii = [0.0, 0.5, 2.0];
     assert_eq!(
-        view.count_pairs_within(&radii, Boundary::Inclusive).unwrap(),
+        view.count_pairs_within(&radii, Boundary::Inclusive)
+            .unwrap(),
         t.count_pairs_within(&radii, Boundary::Inclusive).unwrap()
     );
     #[cfg(feature = "rayon")]
@@ -393,7 +394,12 @@ fn refusal(e: SavedError) -> (Invariant, Option<u64>, Option<usize>) {
 #[test]
 fn points_on_split_lines_follow_the_lower_cell_convention() {
     let pts: Vec<([f64; 2], u32)> = (0..64u32)
-        .map(|i| ([f64::from(i % 8) / 4.0 + 0.1, f64::from(i / 8) / 4.0 + 0.1], i))
+        .map(|i| {
+            (
+                [f64::from(i % 8) / 4.0 + 0.1, f64::from(i / 8) / 4.0 + 0.1],
+                i,
+            )
+        })
         .collect();
     let t = PointTreeBuilder::new().bucket_size(2).build(&pts).unwrap();
     let bytes = save(&t);
@@ -409,9 +415,19 @@ fn points_on_split_lines_follow_the_lower_cell_convention() {
         let at = points_offset::<2>() + i * 16;
         let mut b = bytes.clone();
         b[at..at + 8].copy_from_slice(&line.to_le_bytes());
-        let want = (Invariant::InLeaf, Some(u64::from(leaf.id.index() as u32)), Some(i));
-        assert_eq!(refusal(PointTreeView::<f64, u32, 2>::open(&b).unwrap_err()), want);
-        assert_eq!(refusal(read_point_tree::<f64, u32, 2>(&b).unwrap_err()), want);
+        let want = (
+            Invariant::InLeaf,
+            Some(u64::from(leaf.id.index() as u32)),
+            Some(i),
+        );
+        assert_eq!(
+            refusal(PointTreeView::<f64, u32, 2>::open(&b).unwrap_err()),
+            want
+        );
+        assert_eq!(
+            refusal(read_point_tree::<f64, u32, 2>(&b).unwrap_err()),
+            want
+        );
         b[at..at + 8].copy_from_slice(&line.next_up().to_le_bytes());
         let view = PointTreeView::<f64, u32, 2>::open(&b).unwrap();
         assert_eq!(view.point(i)[0], line.next_up());

@@ -74,7 +74,7 @@ pub use error::SavedError;
 pub use header::{ALIGN, MAGIC, VERSION};
 pub use view::PointTreeView;
 
-use crate::points::{PointTreeParts, PointTreeArrays};
+use crate::points::{PointTreeArrays, PointTreeParts};
 use crate::tree::raw::OwnedRawTree;
 use crate::{PointTree, Scalar};
 use bytemuck::Pod;
@@ -108,7 +108,9 @@ saved_scalar!(f32 => 1, f64 => 2, i8 => 3, i16 => 4, i32 => 5, i64 => 6, u8 => 7
     u32 => 9, u64 => 10);
 
 /// The header of `tree`.
-fn header_of<S: SavedScalar, T: Pod, const D: usize>(v: &PointTreeArrays<'_, S, T, D>) -> Header<D> {
+fn header_of<S: SavedScalar, T: Pod, const D: usize>(
+    v: &PointTreeArrays<'_, S, T, D>,
+) -> Header<D> {
     Header {
         max_depth: v.max_depth,
         depth: v.tree.depth,

@@ -229,13 +229,15 @@ impl<'a, S: SavedScalar, T: Pod, const D: usize> PointTreeView<'a, S, T, D> {
 
     /// Heap bytes the view owns: none when every section is borrowed, else the copied ones.
     pub fn heap_bytes(&self) -> usize {
-        fn owned<V: Clone>(c: &Cow<'_, [V]>) -> usize {
-            match c {
-                Cow::Borrowed(_) => 0,
-                Cow::Owned(v) => v.capacity() * core::mem::size_of::<V>(),
-            }
+        macro_rules! owned {
+            ($c:expr) => {
+                match &$c {
+                    Cow::Borrowed(_) => 0,
+                    Cow::Owned(v) => v.capacity() * element_size(v),
+                }
+            };
         }
-        owned(&self.points) + owned(&self.items) + owned(&self.run_ends) + owned(&self.first_child)
+        owned!(self.points) + owned!(self.items) + owned!(self.run_ends) + owned!(self.first_child)
     }
 
     /// The tree copied into an owned [`PointTree`] with every check of
@@ -249,6 +251,11 @@ impl<'a, S: SavedScalar, T: Pod, const D: usize> PointTreeView<'a, S, T, D> {
     pub fn to_tree(&self) -> Result<PointTree<S, T, D>, SavedError> {
         super::read_point_tree(self.bytes)
     }
+}
+
+/// The size of one element of `slice`.
+fn element_size<V>(_: &[V]) -> usize {
+    core::mem::size_of::<V>()
 }
 
 fn settings(detail: String) -> SavedError {

@@ -188,8 +188,9 @@ impl<S: SavedScalar, T: Pod, const D: usize> PointSet<D> for PointTreeView<'_, S
         match Self::open_unchecked(self.bytes()) {
             Ok((_, leaves)) => self.check_points(&leaves, true),
             Err(super::SavedError::Invalid(e)) => Err(e),
-            Err(e) => Err(ValidationError::new(crate::error::Invariant::Settings)
-                .detail(e.to_string())),
+            Err(e) => {
+                Err(ValidationError::new(crate::error::Invariant::Settings).detail(e.to_string()))
+            }
         }
     }
 
