@@ -91,9 +91,9 @@ fn all_within<S: Scalar, const D: usize>(points: &[[S; D]], lo: &[f64; D], hi: &
         let mut ok = true;
         let mut blocks = flat.chunks_exact(len);
         for block in &mut blocks {
-            for i in 0..len {
-                let x = block[i].to_f64();
-                ok &= (x >= lo_rep[i]) & (x <= hi_rep[i]);
+            for ((&x, &l), &h) in block.iter().zip(lo_rep).zip(hi_rep) {
+                let x = x.to_f64();
+                ok &= (x >= l) & (x <= h);
             }
             if exact {
                 ok &= block.iter().all(|&x| Scalar::converts_exactly(x));
