@@ -67,20 +67,26 @@ pub(crate) fn cell_bounds<const D: usize>(
 /// Coordinates per block of [`all_within`]'s unrolled loop: whole points, at most this many.
 const BLOCK: usize = 24;
 
-/// Whether the conversion to `f64` of coordinates of `S` must be checked apart from the bounds:
-/// only for 64-bit integers (a float that is not finite fails the finite bounds, and `f32` and
-/// the smaller integers always convert exactly). Constant after inlining.
+/// Whether the conversion to `f64` of coordinates of `S` must be checked apart from the bounds
+/// of `domain`: for 64-bit integers, and for floats when the domain is not finite (a built
+/// root cube's far side can round to infinity; a float that is not finite fails finite bounds,
+/// and `f32` and the smaller integers always convert exactly).
 #[inline(always)]
-fn needs_exactness<S: Scalar>() -> bool {
-    core::mem::size_of::<S>() == 8 && S::zero().integer_value().is_some()
+fn needs_exactness<S: Scalar, const D: usize>(domain: &Aabb<f64, D>) -> bool {
+    let finite = (0..D).all(|a| domain.min[a].is_finite() && domain.max[a].is_finite());
+    (core::mem::size_of::<S>() == 8 && S::zero().integer_value().is_some()) || !finite
 }
 
 /// Whether every point of `points` lies within `lo..=hi` on every axis and converts exactly:
 /// branch-free passes over blocks of whole points (the bounds repeated to the block's length,
 /// so that the comparisons run in vector lanes whatever D), then the remaining points.
 #[inline]
-fn all_within<S: Scalar, const D: usize>(points: &[[S; D]], lo: &[f64; D], hi: &[f64; D]) -> bool {
-    let exact = needs_exactness::<S>();
+fn all_within<S: Scalar, const D: usize>(
+    points: &[[S; D]],
+    lo: &[f64; D],
+    hi: &[f64; D],
+    exact: bool,
+) -> bool {
     let per_block = (BLOCK / D).max(1);
     let len = per_block * D;
     if D <= BLOCK && points.len() >= per_block {
@@ -124,10 +130,11 @@ fn first_bad<S: Scalar, const D: usize>(
     points: &[[S; D]],
     leaves: &[LeafRun<D>],
 ) -> Option<ValidationError> {
+    let exact = needs_exactness::<S, D>(domain);
     leaves.iter().find_map(|leaf| {
         let (lo, hi) = cell_bounds(geometry, domain, &leaf.cell);
         let run = &points[leaf.start as usize..leaf.end as usize];
-        if all_within(run, &lo, &hi) {
+        if all_within(run, &lo, &hi, exact) {
             return None;
         }
         Some(explain(domain, leaf, run, &lo, &hi))

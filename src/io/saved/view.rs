@@ -54,8 +54,8 @@ use std::borrow::Cow;
 /// assert_eq!(view.k_nearest(&q, 5).unwrap(), tree.k_nearest(&q, 5).unwrap());
 /// let b = Aabb::new([2.0, 3.0, 0.5], [5.0, 3.0, 7.0]).unwrap();
 /// assert_eq!(view.query_count(&b).unwrap(), tree.query_count(&b).unwrap());
-/// // the points start after the 240 bytes of a 3D header: point 100's x, multiplied by 2^64,
-/// // leaves its leaf's cell and is refused
+/// // the points start after the 240 bytes of a 3D header: point 100's x, its exponent changed
+/// // by 64, leaves its leaf's cell and is refused
 /// bytes[240 + 24 * 100 + 7] ^= 0x04;
 /// assert!(PointTreeView::<f64, u32, 3>::open(&bytes).is_err());
 /// ```
