@@ -9,6 +9,7 @@ mod batch_update;
 mod build;
 mod dynamic;
 mod index;
+pub(crate) mod leaf_bounds;
 pub(crate) mod leaves;
 mod network;
 #[cfg(feature = "rayon")]
@@ -16,6 +17,7 @@ mod parallel;
 mod radix;
 #[cfg(any(feature = "saved", feature = "serde"))]
 mod raw;
+pub(crate) mod run_walk;
 mod runs;
 mod update;
 
@@ -31,7 +33,7 @@ use crate::tree::{BalanceOptions, NodeId, Tree};
 #[cfg(any(feature = "saved", feature = "mpi"))]
 pub(crate) use build::settle;
 #[cfg(any(feature = "saved", feature = "serde"))]
-pub(crate) use raw::{PointTreeParts, PointTreeView};
+pub(crate) use raw::{PointTreeArrays, PointTreeParts};
 pub(crate) use runs::Runs;
 #[cfg(feature = "mpi")]
 pub(crate) use {
@@ -328,20 +330,28 @@ fn partition_children<const D: usize>(
 
 impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// [`PointSet::validate`](crate::query::PointSet::validate): checks every invariant and
-    /// names the first one broken: node runs nest and partition their
-    /// parent's; every point lies in its leaf's cell under the split convention and inside the
-    /// domain, with coordinates `f64` holds exactly; the points are in Morton order (so only
-    /// each leaf's first and last point need a look at its cell); a leaf holds more than the bucket size only at the
-    /// maximum depth; an internal node holds more than the bucket size unless balance split it,
-    /// and then the tree is balanced.
+    /// names the first one broken: the arena's ([`Tree::validate`]); node runs nest and
+    /// partition their parent's; every point lies in its leaf's cell under the split convention
+    /// and inside the domain, with coordinates `f64` holds exactly; within each leaf the points
+    /// are in Morton order (with the cells in pre-order, that is Morton order throughout); a
+    /// leaf holds more than the bucket size only at the maximum depth; an internal node holds
+    /// more than the bucket size unless balance split it, and then the tree is balanced.
     fn check_invariants(&self) -> Result<(), ValidationError> {
         use crate::error::Invariant as I;
-        let fail = |e: ValidationError| Err(e);
         if let Err(e) = self.tree.validate() {
-            return fail(ValidationError::new(I::Topology).detail(e.to_string()));
+            return Err(ValidationError::new(I::Topology).detail(e.to_string()));
         }
+        self.check_points_and_runs()
+    }
+
+    /// [`PointTree::check_invariants`] after [`Tree::validate`]: the run walk
+    /// (`run_walk.rs`), the per-leaf bound check (`leaf_bounds.rs`, no keys), the Morton order
+    /// within each leaf and balance. Both point passes run on rayon's threads with feature
+    /// `rayon`.
+    pub(crate) fn check_points_and_runs(&self) -> Result<(), ValidationError> {
+        use crate::error::Invariant as I;
         if self.runs.len() != self.tree.node_count() || self.items.len() != self.len() {
-            return fail(ValidationError::new(I::Lengths).detail(format!(
+            return Err(ValidationError::new(I::Lengths).detail(format!(
                 "{} runs for {} nodes, {} items for {} points",
                 self.runs.len(),
                 self.tree.node_count(),
@@ -349,100 +359,25 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
                 self.len()
             )));
         }
-        if self.runs.total() != self.len() as u32 {
-            return fail(
-                ValidationError::new(I::Counts).detail("the root does not own every point"),
-            );
-        }
-        // Every point exact and in the domain, then all in Morton order: two passes over the
-        // points, the keys computed in vector lanes (`keys_into`).
-        if let Some(i) = self.points.iter().position(|p| {
-            !p.iter().all(|x| x.converts_exactly()) || !self.domain.contains(&p.map(Scalar::to_f64))
-        }) {
-            return fail(ValidationError::new(I::InDomain).point(i));
-        }
-        let (mut previous_key, mut unordered) = (0u64, None);
-        let points = &self.points;
-        self.geometry.keys_into(
-            points.len(),
-            |i| &points[i],
-            |i, key| {
-                if key < previous_key && unordered.is_none() {
-                    unordered = Some(i);
-                }
-                previous_key = key;
-            },
-        );
-        if let Some(i) = unordered {
-            return fail(
-                ValidationError::new(I::InLeaf)
-                    .point(i)
-                    .detail("out of Morton order"),
-            );
-        }
-        // Absolute runs, filled parent first by the pre-order walk.
-        let mut runs = vec![(0u32, 0u32); self.tree.node_count()];
-        runs[0] = (0, self.len() as u32);
-        for (id, cell) in self.tree.pre_order() {
-            let (s, e) = runs[id.index()];
-            if self.runs.run(&self.tree, id) != (s, e) {
-                return fail(
-                    ValidationError::new(I::Counts)
-                        .node(id.0)
-                        .detail("its run found upwards differs"),
-                );
-            }
-            let count = (e - s) as usize;
-            if self.tree.is_leaf(id) {
-                if count > self.bucket_size && cell.level() < self.max_depth {
-                    return fail(
-                        ValidationError::new(I::LeafSize)
-                            .node(id.0)
-                            .detail(format!("holds {count} points")),
-                    );
-                }
-                // The keys are in order and a cell's keys are one range: when the leaf's first
-                // and last points lie in its cell, all do.
-                for i in [s, e.wrapping_sub(1)].into_iter().filter(|_| count > 0) {
-                    let key = self.geometry.scalar_key(&self.points[i as usize]);
-                    if Cell::from_aligned_key(key, cell.level()) != cell {
-                        return fail(ValidationError::new(I::InLeaf).node(id.0).point(i as usize));
-                    }
-                }
-            } else {
-                let mut at = s;
-                let first = self.tree.child(id, 0).expect("an internal node");
-                for (child, &end) in self.tree.children(id).zip(self.runs.block::<D>(first)) {
-                    let ce = s.wrapping_add(end);
-                    if ce < at || ce > e {
-                        return fail(
-                            ValidationError::new(I::Counts)
-                                .node(id.0)
-                                .detail("its children do not partition its run"),
-                        );
-                    }
-                    runs[child.index()] = (at, ce);
-                    at = ce;
-                }
-                if at != e {
-                    return fail(
-                        ValidationError::new(I::Counts)
-                            .node(id.0)
-                            .detail("its children do not cover its run"),
-                    );
-                }
-                if count <= self.bucket_size && self.balanced.is_none() {
-                    return fail(
-                        ValidationError::new(I::SplitNeeded)
-                            .node(id.0)
-                            .detail(format!("holds {count} points")),
-                    );
-                }
-            }
-        }
+        let (first_child, level, block_parent) = self.tree.link_arrays();
+        let arrays = run_walk::RunArrays {
+            first_child,
+            level,
+            block_parent,
+            run_ends: self.runs.ends(),
+        };
+        let sizes = run_walk::Sizes {
+            points: self.points.len(),
+            bucket_size: self.bucket_size,
+            max_depth: self.max_depth,
+            balanced: self.balanced.is_some(),
+        };
+        let leaves = run_walk::walk_runs::<D>(arrays, sizes)?;
+        leaf_bounds::check_leaves(&self.geometry, &self.domain, &self.points, &leaves, true)?;
+        leaf_bounds::check_leaf_order(&self.geometry, &self.points, &leaves, true)?;
         if let Some(options) = self.balanced {
             if !self.tree.is_balanced(options) {
-                return fail(ValidationError::new(I::Balanced));
+                return Err(ValidationError::new(I::Balanced));
             }
         }
         Ok(())

@@ -2,22 +2,21 @@
 //! view ([`PointTree::view`]) and the checked constructor that takes owned parts back
 //! ([`PointTree::from_parts`]) without sorting or subdividing anything.
 //!
-//! The check is the settings' ranges, [`Tree::from_raw_parts`] for the topology, then the tree's
-//! own `validate` (node runs nest and partition their parents', every point lies in its leaf's
-//! cell in Morton order and in the domain, leaf sizes, balance): linear in the points and nodes,
+//! The check is the settings' ranges, [`Tree::from_raw_parts`] for the topology, then the rest of
+//! the tree's own `validate` (node runs nest and partition their parents', every point lies in
+//! its leaf's cell and in the domain, Morton order within each leaf, leaf sizes, balance): linear in the points and nodes,
 //! so a tree read from untrusted bytes answers every query as the tree that was written would, or
 //! is refused.
 
 use super::{PointTree, Runs};
 use crate::error::{Invariant, ValidationError};
 use crate::geom::{Aabb, Cell, RootGeometry, Scalar};
-use crate::query::PointSet;
 use crate::tree::raw::{OwnedRawTree, RawTree};
 use crate::tree::{BalanceOptions, Tree};
 
 /// Everything a [`PointTree`] stores, by reference.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct PointTreeView<'a, S, T, const D: usize> {
+pub(crate) struct PointTreeArrays<'a, S, T, const D: usize> {
     pub tree: RawTree<'a>,
     /// The root cube's lower corner halved (rounded down) and half its side.
     pub half_lo: [f64; D],
@@ -32,7 +31,7 @@ pub(crate) struct PointTreeView<'a, S, T, const D: usize> {
     pub balanced: Option<BalanceOptions>,
 }
 
-/// The owned form of [`PointTreeView`], which [`PointTree::from_parts`] checks.
+/// The owned form of [`PointTreeArrays`], which [`PointTree::from_parts`] checks.
 #[derive(Clone, Debug)]
 pub(crate) struct PointTreeParts<S, T, const D: usize> {
     pub tree: OwnedRawTree,
@@ -49,9 +48,9 @@ pub(crate) struct PointTreeParts<S, T, const D: usize> {
 
 impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// The stored arrays and settings.
-    pub(crate) fn view(&self) -> PointTreeView<'_, S, T, D> {
+    pub(crate) fn view(&self) -> PointTreeArrays<'_, S, T, D> {
         let (half_lo, half_side) = self.geometry.halves();
-        PointTreeView {
+        PointTreeArrays {
             tree: self.tree.raw_parts(),
             half_lo,
             half_side,
@@ -121,7 +120,8 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
             max_depth: parts.max_depth,
             balanced: parts.balanced,
         };
-        tree.validate()?;
+        // The arena was validated just above: the runs, points and balance remain.
+        tree.check_points_and_runs()?;
         Ok(tree)
     }
 }

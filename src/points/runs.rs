@@ -41,7 +41,6 @@ impl Runs {
     }
 
     /// The relative end of every node slot's run.
-    #[cfg(any(feature = "saved", feature = "serde"))]
     pub(crate) fn ends(&self) -> &[u32] {
         &self.ends
     }

@@ -243,6 +243,12 @@ impl<const D: usize> Tree<D> {
         &self.block_parent
     }
 
+    /// The first children, levels and block parents as stored, for the point trees' run walk.
+    #[inline]
+    pub(crate) fn link_arrays(&self) -> (&[u32], &[u8], &[u32]) {
+        (&self.first_child, &self.level, &self.block_parent)
+    }
+
     /// `true` when child block `b` is in use: a block freed by [`Tree::merge`] keeps its last
     /// parent, which no longer points to it (only checked once something was merged).
     #[inline]

@@ -2,14 +2,20 @@
 //! f64, f32 and integer coordinates, zero-sized and array items, empty trees, duplicates, balanced
 //! trees and trees with freed blocks (after removals); the loaded tree validates, equals the one
 //! written array for array, answers every query as it did and as brute force does, and takes
-//! updates. Files read from disk equal slices. Wrong types are refused by name.
+//! updates. Files read from disk equal slices. Wrong types are refused by name. The borrowed
+//! view of the same bytes (`PointTreeView`, also from a misaligned slice, which copies) answers
+//! every query kind (regions, nearest, k-nearest, the nearest iterator, joins, batches) as the
+//! owned tree and as brute force do; points moved off their leaf's cell, onto a split line or to
+//! an inexact 64-bit integer are refused by name.
 
 use crate::common::points::config;
+use orthtree::error::Invariant;
 use orthtree::io::saved::{
-    read_point_tree, read_point_tree_file, saved_len, write_point_tree, SavedError, SavedScalar,
+    read_point_tree, read_point_tree_file, saved_len, write_point_tree, PointTreeView, SavedError,
+    SavedScalar,
 };
 use orthtree::prelude::*;
-use orthtree::query::SquaredEuclidean;
+use orthtree::query::{Boundary, HalfSpace, SquaredEuclidean};
 use orthtree::{points::PointTreeBuilder, Aabb, Connectivity, Metric, PointTree, Scalar};
 use proptest::prelude::*;
 
@@ -27,10 +33,12 @@ fn f<S: Scalar, const D: usize>(p: &[S; D]) -> [f64; D] {
 
 /// Checks `t`'s box and nearest queries against a scan of its own points and items, at the
 /// query points `qs`.
-pub fn check_against_brute<S: Scalar, T: Copy + Ord + core::fmt::Debug, const D: usize>(
-    t: &PointTree<S, T, D>,
-    qs: &[[S; D]],
-) {
+pub fn check_against_brute<P, S, T, const D: usize>(t: &P, qs: &[[S; D]])
+where
+    P: PointSet<D, Scalar = S, Item = T>,
+    S: Scalar,
+    T: Copy + Ord + core::fmt::Debug,
+{
     for (j, q) in qs.iter().enumerate() {
         let qf = f(q);
         let r = (j % 4) as f64 * 0.75;
@@ -46,9 +54,8 @@ pub fn check_against_brute<S: Scalar, T: Copy + Ord + core::fmt::Debug, const D:
         assert_eq!(got, want, "box around {qf:?}");
         let k = 1 + j % 7;
         let mut all: Vec<f64> = t
-            .points()
             .iter()
-            .map(|p| SquaredEuclidean.distance(&qf, &f(p)))
+            .map(|(p, _)| SquaredEuclidean.distance(&qf, &f(p)))
             .collect();
         all.sort_by(f64::total_cmp);
         let near: Vec<f64> = t
@@ -66,7 +73,7 @@ pub fn check_against_brute<S: Scalar, T: Copy + Ord + core::fmt::Debug, const D:
 fn round_trip<S, T, const D: usize>(t: &PointTree<S, T, D>, qs: &[[S; D]]) -> PointTree<S, T, D>
 where
     S: SavedScalar,
-    T: bytemuck::Pod + Ord + core::fmt::Debug,
+    T: bytemuck::Pod + Ord + core::fmt::Debug + Sync,
 {
     t.validate().unwrap();
     let bytes = save(t);
@@ -103,7 +110,93 @@ where
     assert_eq!(from_file.tree(), t.tree());
     // And the copy saves to the same bytes.
     assert_eq!(save(&back), bytes);
+    check_view(t, &bytes, qs);
     back
+}
+
+/// Every query kind on `view` equals the owned tree `t`'s answer (same traversal, so the same
+/// order) and a scan of the points.
+fn view_equals_tree<S, T, const D: usize>(
+    view: &PointTreeView<'_, S, T, D>,
+    t: &PointTree<S, T, D>,
+    qs: &[[S; D]],
+) where
+    S: SavedScalar,
+    T: bytemuck::Pod + Ord + core::fmt::Debug + Sync,
+{
+    view.validate().unwrap();
+    assert_eq!(view.points(), t.points());
+    assert_eq!(view.items(), t.items());
+    assert_eq!(view.domain(), t.domain());
+    assert_eq!((view.len(), view.leaf_count()), (t.len(), t.leaf_count()));
+    for (j, q) in qs.iter().enumerate() {
+        let qf = f(q);
+        let r = 0.5 + (j % 3) as f64;
+        let b = Aabb::new(qf.map(|x| x - r), qf.map(|x| x + r)).unwrap();
+        let got: Vec<(&[S; D], &T)> = view.query(b).unwrap().collect();
+        assert_eq!(got, t.query(b).unwrap().collect::<Vec<_>>());
+        let ball: Vec<T> = view.in_ball(q, r).unwrap().map(|(_, &i)| i).collect();
+        let want: Vec<T> = t.in_ball(q, r).unwrap().map(|(_, &i)| i).collect();
+        assert_eq!(ball, want, "ball around {qf:?}");
+        let mut brute: Vec<T> = t
+            .iter()
+            .filter(|(p, _)| SquaredEuclidean.distance(&qf, &f(p)) <= r * r)
+            .map(|(_, &i)| i)
+            .collect();
+        brute.sort_unstable();
+        let mut ball = ball;
+        ball.sort_unstable();
+        assert_eq!(ball, brute, "ball around {qf:?} against a scan");
+        let normal: [f64; D] = core::array::from_fn(|a| if a % 2 == 0 { 1.0 } else { -0.5 });
+        let h = HalfSpace::new(normal, qf[0]).unwrap();
+        assert_eq!(view.query_count(h).unwrap(), t.query_count(h).unwrap());
+        assert_eq!(view.nearest(q).unwrap(), t.nearest(q).unwrap());
+        assert_eq!(view.k_nearest(q, 4).unwrap(), t.k_nearest(q, 4).unwrap());
+        let it: Vec<_> = view.nearest_iter(q).unwrap().take(6).collect();
+        assert_eq!(it, t.nearest_iter(q).unwrap().take(6).collect::<Vec<_>>());
+    }
+    assert_eq!(view.k_nearest_self(3), t.k_nearest_self(3));
+    assert_eq!(view.k_nearest_join(t, 2), t.k_nearest_join(t, 2));
+    let radii = [0.0, 0.5, 2.0];
+    assert_eq!(
+        view.count_pairs_within(&radii, Boundary::Inclusive)
+            .unwrap(),
+        t.count_pairs_within(&radii, Boundary::Inclusive).unwrap()
+    );
+    #[cfg(feature = "rayon")]
+    {
+        let want: Vec<_> = qs.iter().map(|q| t.k_nearest(q, 3).unwrap()).collect();
+        assert_eq!(view.par_k_nearest(qs, 3).unwrap(), want);
+        assert_eq!(view.par_k_nearest_self(2), t.k_nearest_self(2));
+    }
+    check_against_brute(view, qs);
+}
+
+/// The view of `bytes` (the save of `t`) from the slice as it is, checked serially and in
+/// parallel, and from a slice one byte off alignment (copied), answers as `t` does.
+fn check_view<S, T, const D: usize>(t: &PointTree<S, T, D>, bytes: &[u8], qs: &[[S; D]])
+where
+    S: SavedScalar,
+    T: bytemuck::Pod + Ord + core::fmt::Debug + Sync,
+{
+    let view = PointTreeView::<S, T, D>::open(bytes).unwrap();
+    view_equals_tree(&view, t, qs);
+    view_equals_tree(&PointTreeView::open_serial(bytes).unwrap(), t, qs);
+    assert_eq!(view.to_tree().unwrap().tree(), t.tree());
+    // A buffer of 16-byte words is aligned for every section; one byte in, nothing wider than
+    // a byte is.
+    let mut words = vec![0u128; bytes.len() / 16 + 1];
+    let buf: &mut [u8] = bytemuck::cast_slice_mut(&mut words);
+    buf[..bytes.len()].copy_from_slice(bytes);
+    let aligned = PointTreeView::<S, T, D>::open(&buf[..bytes.len()]).unwrap();
+    assert!(aligned.is_borrowed());
+    assert_eq!(aligned.heap_bytes(), 0);
+    buf.copy_within(..bytes.len(), 1);
+    let off = PointTreeView::<S, T, D>::open(&buf[1..=bytes.len()]).unwrap();
+    if core::mem::align_of::<S>() > 1 && !t.is_empty() {
+        assert!(!off.is_borrowed());
+    }
+    view_equals_tree(&off, t, qs);
 }
 
 fn grid<const D: usize>(seed: u64, n: usize, side: u32) -> Vec<([f64; D], u32)> {
@@ -280,6 +373,96 @@ fn another_type_than_the_one_saved_is_refused_by_name() {
         read_point_tree_file::<f64, u32, 2>("/nonexistent/orthtree.bin"),
         Err(SavedError::Io(_))
     ));
+}
+
+/// The first byte of the points section: the header, padded to 16 bytes.
+fn points_offset<const D: usize>() -> usize {
+    (72 + 24 * D + 4 * (orthtree::Cell::<D>::MAX_LEVEL as usize + 1)).div_ceil(16) * 16
+}
+
+/// The error's invariant, node and point, for a refusal by the check of the arrays.
+fn refusal(e: SavedError) -> (Invariant, Option<u64>, Option<usize>) {
+    match e {
+        SavedError::Invalid(v) => (v.invariant, v.node, v.point),
+        e => panic!("refused for another reason: {e}"),
+    }
+}
+
+/// A point set exactly on its leaf's lower split line belongs to the cell below and is refused
+/// by the view and the owned loader, naming the leaf and the point; one ulp above the line it is
+/// in its cell, and the view answers as a scan of its points.
+#[test]
+fn points_on_split_lines_follow_the_lower_cell_convention() {
+    let pts: Vec<([f64; 2], u32)> = (0..64u32)
+        .map(|i| {
+            (
+                [f64::from(i % 8) / 4.0 + 0.1, f64::from(i / 8) / 4.0 + 0.1],
+                i,
+            )
+        })
+        .collect();
+    let t = PointTreeBuilder::new().bucket_size(2).build(&pts).unwrap();
+    let bytes = save(&t);
+    let g = *t.geometry();
+    let mut tried = 0;
+    for leaf in t.leaves().filter(|l| !l.points.is_empty()) {
+        let c = leaf.cell.coords()[0];
+        if c == 0 {
+            continue;
+        }
+        let line = g.boundary(0, u64::from(c), leaf.cell.level());
+        let i = t.node_run(leaf.id).start;
+        let at = points_offset::<2>() + i * 16;
+        let mut b = bytes.clone();
+        b[at..at + 8].copy_from_slice(&line.to_le_bytes());
+        let want = (
+            Invariant::InLeaf,
+            Some(u64::from(leaf.id.index() as u32)),
+            Some(i),
+        );
+        assert_eq!(
+            refusal(PointTreeView::<f64, u32, 2>::open(&b).unwrap_err()),
+            want
+        );
+        assert_eq!(
+            refusal(read_point_tree::<f64, u32, 2>(&b).unwrap_err()),
+            want
+        );
+        b[at..at + 8].copy_from_slice(&line.next_up().to_le_bytes());
+        let view = PointTreeView::<f64, u32, 2>::open(&b).unwrap();
+        assert_eq!(view.point(i)[0], line.next_up());
+        check_against_brute(&view, &[[line, 0.3], [line.next_up(), leaf.points[0][1]]]);
+        tried += 1;
+    }
+    assert!(tried > 10, "{tried} leaves off the first column");
+}
+
+/// Points swapped between leaves, and a 64-bit integer coordinate `f64` cannot hold, are
+/// refused by name.
+#[test]
+fn points_out_of_place_or_inexact_are_refused_by_name() {
+    let pts = grid::<3>(9, 500, 40);
+    let t = PointTreeBuilder::new().bucket_size(4).build(&pts).unwrap();
+    let mut b = save(&t);
+    let (first, last) = (points_offset::<3>(), points_offset::<3>() + 499 * 24);
+    let saved_first: Vec<u8> = b[first..first + 24].to_vec();
+    b.copy_within(last..last + 24, first);
+    b[last..last + 24].copy_from_slice(&saved_first);
+    let (invariant, node, point) = refusal(PointTreeView::<f64, u32, 3>::open(&b).unwrap_err());
+    assert_eq!((invariant, point), (Invariant::InLeaf, Some(0)));
+    assert!(node.is_some());
+    let pu: Vec<([u64; 2], u32)> = (0..100u64)
+        .map(|i| ([(i % 13) << 60, (i % 7) << 58], i as u32))
+        .collect();
+    let t = PointTreeBuilder::new().bucket_size(4).build(&pu).unwrap();
+    let mut b = save(&t);
+    let at = points_offset::<2>() + 17 * 16;
+    let x = u64::from_le_bytes(b[at..at + 8].try_into().unwrap());
+    b[at..at + 8].copy_from_slice(&(x | 1 << 60 | 1).to_le_bytes());
+    let e = PointTreeView::<u64, u32, 2>::open(&b).unwrap_err();
+    assert!(e.to_string().contains("not exact as f64"), "{e}");
+    assert_eq!(refusal(e).2, Some(17));
+    assert!(read_point_tree::<u64, u32, 2>(&b).is_err());
 }
 
 proptest! {

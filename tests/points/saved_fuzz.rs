@@ -1,12 +1,16 @@
 //! The saved-tree loader under corrupt input: every truncation of small files, and random byte
 //! mutations (single bytes, runs of bytes, counts and words set to extremes) give an error or a
 //! tree that validates and answers box and nearest queries as brute force over its own points
-//! does; never a panic, never a wrong answer. Headers claiming huge counts are refused before
-//! anything is allocated.
+//! does; never a panic, never a wrong answer. The same for the borrowed view
+//! (`PointTreeView`), which must open whenever the owned loader accepts (it checks a subset of
+//! the owned tree's invariants: what the queries rely on). Headers claiming huge counts are
+//! refused before anything is allocated.
 
 use super::saved::check_against_brute;
 use crate::common::points::config;
-use orthtree::io::saved::{read_point_tree, read_point_tree_file, write_point_tree, SavedError};
+use orthtree::io::saved::{
+    read_point_tree, read_point_tree_file, write_point_tree, PointTreeView, SavedError,
+};
 use orthtree::prelude::*;
 use orthtree::{points::PointTreeBuilder, Connectivity, PointTree};
 use proptest::prelude::*;
@@ -31,11 +35,25 @@ fn small_file(balanced: bool) -> (Vec<u8>, Vec<[f64; 2]>) {
     (bytes, qs)
 }
 
-/// Loads `bytes`; a tree that loads must validate and agree with brute force.
+/// Opens `bytes` as a view; a view that opens must validate and agree with brute force over its
+/// own points.
+fn view_and_check(bytes: &[u8], qs: &[[f64; 2]]) -> Result<(), SavedError> {
+    let v = PointTreeView::<f64, u16, 2>::open(bytes)?;
+    v.validate().unwrap();
+    check_against_brute(&v, qs);
+    let serial = PointTreeView::<f64, u16, 2>::open_serial(bytes).map(|s| s.len());
+    assert_eq!(serial.ok(), Some(v.len()));
+    Ok(())
+}
+
+/// Loads `bytes`; a tree that loads must validate and agree with brute force, and so must the
+/// view, which opens whenever the tree loads. Returns the owned load's outcome.
 fn load_and_check(bytes: &[u8], qs: &[[f64; 2]]) -> Result<(), SavedError> {
+    let view = view_and_check(bytes, qs);
     let t: PointTree<f64, u16, 2> = read_point_tree(bytes)?;
     t.validate().unwrap();
     check_against_brute(&t, qs);
+    assert!(view.is_ok(), "the tree loads, the view refuses: {view:?}");
     Ok(())
 }
 
@@ -49,6 +67,12 @@ fn every_truncation_is_refused() {
                     assert_eq!(available, len as u64)
                 }
                 other => panic!("length {len}: {other:?}"),
+            }
+            match PointTreeView::<f64, u16, 2>::open(&bytes[..len]) {
+                Err(SavedError::Truncated { available, .. }) => {
+                    assert_eq!(available, len as u64)
+                }
+                other => panic!("view, length {len}: {other:?}"),
             }
         }
     }
@@ -88,6 +112,10 @@ fn huge_counts_are_refused_before_allocation() {
             match read_point_tree::<f64, u16, 2>(&b) {
                 Err(SavedError::Truncated { .. } | SavedError::Field { .. }) => {}
                 other => panic!("{field} = {value}: {other:?}"),
+            }
+            match PointTreeView::<f64, u16, 2>::open(&b) {
+                Err(SavedError::Truncated { .. } | SavedError::Field { .. }) => {}
+                other => panic!("view, {field} = {value}: {other:?}"),
             }
         }
     }

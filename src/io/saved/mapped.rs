@@ -9,15 +9,21 @@
 //! [`MappedTree::open`]. Everything after the map is safe: the header is checked as
 //! [`read_point_tree`](super::read_point_tree) checks it (counts against the file's length
 //! before anything is read), and the sections are borrowed from the map by `bytemuck`'s checked
-//! casts (the format aligns every section to 16 bytes, the map to a page). A
-//! [`PointTree`] owns its arrays, so the queries here walk the saved arrays
-//! themselves instead of building one: they check every index they follow and return
-//! [`SavedError::Corrupt`] rather than panic on a damaged file. `open` does not read the arrays
-//! (that would page in the whole file); [`MappedTree::to_tree`] copies them into an owned tree
-//! with the full check of the loader.
+//! casts (the format aligns every section to 16 bytes, the map to a page).
+//!
+//! Two ways to query. [`MappedTree::view`] checks the node structure and every point (as
+//! [`PointTreeView::open`]: one pass over the points, which pages in the whole points section)
+//! and hands out a [`PointTreeView`] borrowing the map, with every query of the crate and
+//! answers equal to a scan of the file's points whatever its bytes. [`MappedTree::query_box`]
+//! reads nothing up front (`open` is O(1)) and walks the arrays a query touches, checking every
+//! index it follows ([`SavedError::Corrupt`] rather than a panic on a damaged file) and testing
+//! every point it reports, so it never reports a point outside the box; on a file damaged after
+//! it was written it may miss points lying outside their leaf's cell, which only the view's
+//! check rules out. [`MappedTree::to_tree`] copies into an owned tree with the loader's full
+//! check.
 
 use super::header::{padded, Header};
-use super::{read_header, SavedError, SavedScalar};
+use super::{read_header, PointTreeView, SavedError, SavedScalar};
 use crate::geom::{Aabb, Cell, Dim, RootGeometry};
 use crate::{PointTree, Scalar};
 use bytemuck::Pod;
@@ -43,6 +49,10 @@ use std::path::Path;
 /// want.sort_unstable();
 /// assert_eq!(found, want);
 /// assert_eq!(mapped.to_tree().unwrap().points(), tree.points());
+/// // every query, after the check of the whole file
+/// let view = mapped.view().unwrap();
+/// assert_eq!(view.k_nearest(&[3.5, 2.0, 9.0], 4).unwrap(), tree.k_nearest(&[3.5, 2.0, 9.0], 4).unwrap());
+/// drop(view);
 /// std::fs::remove_file(&file).unwrap();
 /// ```
 pub struct MappedTree<S, T, const D: usize> {
@@ -137,8 +147,9 @@ impl<S: SavedScalar, T: Pod, const D: usize> MappedTree<S, T, D> {
     }
 
     /// Calls `visit(point, item)` for every point in the closed box `query`; returns how many.
-    /// Nodes outside the box are skipped, nodes inside it reported without a test, and the
-    /// points of the leaves it cuts are tested exactly.
+    /// Nodes outside the box are skipped and the points of the others tested exactly (so a
+    /// point outside the box is never reported; see the module doc for what a damaged file
+    /// can still do, and [`MappedTree::view`] for the checked queries).
     ///
     /// # Errors
     /// [`SavedError::Corrupt`] naming the node whose links or runs leave the arrays (a file
@@ -181,7 +192,7 @@ impl<S: SavedScalar, T: Pod, const D: usize> MappedTree<S, T, D> {
             if inside || first == u32::MAX {
                 for (i, p) in points[s..e].iter().enumerate() {
                     let i = s + i;
-                    if inside || query.contains(&p.map(Scalar::to_f64)) {
+                    if query.contains(&p.map(Scalar::to_f64)) {
                         visit(p, item(i));
                         found += 1;
                     }
@@ -203,6 +214,20 @@ impl<S: SavedScalar, T: Pod, const D: usize> MappedTree<S, T, D> {
             }
         }
         Ok(found)
+    }
+
+    /// A [`PointTreeView`] borrowing the map, after the check of [`PointTreeView::open`] (the
+    /// structure and every point, on rayon's threads with feature `rayon`): every query of the
+    /// crate, on the mapped file.
+    ///
+    /// # Errors
+    /// Those of [`PointTreeView::open`].
+    ///
+    /// # Complexity
+    /// O(n D + m) for n points and m node slots: the points and node sections are read once
+    /// (paged in); the items are paged in as queries read them.
+    pub fn view(&self) -> Result<PointTreeView<'_, S, T, D>, SavedError> {
+        PointTreeView::open(&self.map)
     }
 
     /// The tree copied out of the map into an owned [`PointTree`], with every check of

@@ -2,24 +2,31 @@
 //! node runs, topology) written as they are, read back without a sort or a rebuild (feature
 //! `saved`).
 //!
-//! [`write_point_tree`] streams a tree to any [`Write`]; [`read_point_tree`] takes it back from
-//! a byte slice (a file read whole, or a memory map the caller holds), [`read_point_tree_file`]
-//! from a file, reading each array straight into its place. Points and items are plain data
-//! cast to and from bytes by `bytemuck` ([`SavedScalar`] for the coordinates, `bytemuck::Pod`
-//! for the items): a loaded tree costs one copy of its arrays and one linear check, where a build
-//! sorts.
+//! [`write_point_tree`] streams a tree to any [`Write`]. Three ways back:
+//! - [`PointTreeView::open`] borrows the sections of a byte slice in place (a file read into
+//!   memory, or a memory map: `mapped::MappedTree::view` with feature `mmap`) and answers every
+//!   query of [`PointSet`](crate::PointSet) on them: no copy, one linear check;
+//! - [`read_point_tree`] copies them from a byte slice into an owned tree, which also takes
+//!   updates, [`read_point_tree_file`] from a file, reading each array straight into its place.
+//!
+//! Points and items are plain data cast to and from bytes by `bytemuck` ([`SavedScalar`] for
+//! the coordinates, `bytemuck::Pod` for the items).
 //!
 //! # The check on load
 //! Nothing in the input is trusted. The header's fields are checked first (magic, version, tree
 //! kind, dimension, scalar, item size and alignment, each count against its range) and the
 //! sections' lengths computed from the counts are compared with the bytes available before
-//! anything is allocated. The arrays then pass the tree's own `validate` (the topology's links,
-//! levels and free list; node runs that nest and partition their parents'; every point in its
-//! leaf's cell, in Morton order and inside a finite domain that lies in a finite root cube; leaf
-//! sizes; balance): linear time, no recursion. Corrupt or hostile bytes therefore give a
-//! [`SavedError`] naming the field and byte offset, or the broken invariant, never a panic, and a
-//! tree that loads answers every query as the brute force over its points would. Item bytes are
-//! not checked: any bytes are a valid `Pod` value.
+//! anything is allocated. Then one walk of the nodes from the root checks the links, levels,
+//! runs (they nest and partition their parents') and leaf sizes (`points/run_walk.rs`), and
+//! every point is compared with its leaf cell's bounds under the split convention and the
+//! domain's, its coordinates exact in `f64` (`points/leaf_bounds.rs`: two comparisons per axis
+//! and point, no Morton keys, on rayon's threads with feature `rayon`). That is all the view
+//! needs: its queries rely on nothing else. The owned tree also checks what its updates rely on:
+//! the arena's free list and live-block counts ([`crate::Tree::validate`]), Morton order within
+//! each leaf, balance. Corrupt or hostile bytes therefore give a [`SavedError`] naming the field
+//! and byte offset, or the broken invariant with its node and point, never a panic, and a tree
+//! or view that loads answers every query as the brute force over its points would. Item bytes
+//! are not checked: any bytes are a valid `Pod` value.
 //!
 //! # Format, version 1 (little-endian)
 //! | bytes | field |
@@ -67,11 +74,14 @@ mod header;
 pub mod mapped;
 mod runs;
 mod topology;
+mod view;
+mod view_index;
 
 pub use error::SavedError;
 pub use header::{ALIGN, MAGIC, VERSION};
+pub use view::PointTreeView;
 
-use crate::points::{PointTreeParts, PointTreeView};
+use crate::points::{PointTreeArrays, PointTreeParts};
 use crate::tree::raw::OwnedRawTree;
 use crate::{PointTree, Scalar};
 use bytemuck::Pod;
@@ -105,7 +115,9 @@ saved_scalar!(f32 => 1, f64 => 2, i8 => 3, i16 => 4, i32 => 5, i64 => 6, u8 => 7
     u32 => 9, u64 => 10);
 
 /// The header of `tree`.
-fn header_of<S: SavedScalar, T: Pod, const D: usize>(v: &PointTreeView<'_, S, T, D>) -> Header<D> {
+fn header_of<S: SavedScalar, T: Pod, const D: usize>(
+    v: &PointTreeArrays<'_, S, T, D>,
+) -> Header<D> {
     Header {
         max_depth: v.max_depth,
         depth: v.tree.depth,
