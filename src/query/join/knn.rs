@@ -159,9 +159,12 @@ pub(crate) fn fill<A, B, P, const D: usize>(
         same,
     );
     let qb = b.index().payloads();
-    for ((&(d, j), s), t) in search.lists().iter().zip(slots).zip(distances) {
-        *s = b.slot_of(j, &qb[j]);
-        *t = d;
+    let rows = slots.chunks_mut(k).zip(distances.chunks_mut(k));
+    for (qi, (rs, rd)) in rows.enumerate() {
+        for ((&(d, j), s), t) in search.list(qi, k).iter().zip(rs).zip(rd) {
+            *s = b.slot_of(j, &qb[j]);
+            *t = d;
+        }
     }
 }
 

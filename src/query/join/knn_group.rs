@@ -12,11 +12,15 @@
 //! [`Block`] of up to 64; between neighbouring cells this keeps the strip along their shared
 //! faces), then each point of the group whose own bound reaches the gathered points' tight box
 //! computes its distances to the whole block at once into a bit mask of those within its bound,
-//! and offers only those to its sorted list of `k` candidates.
+//! and appends only those to its buffer of candidates. A buffer holds up to `2k` candidates in
+//! no order: when it first holds `k`, the point's bound becomes their largest distance; when it
+//! is full, a selection keeps the `k` first by `(distance, position)` and the bound becomes the
+//! `k`-th distance (a constant cost per candidate, where keeping a sorted list costs up to `k`
+//! moves and a mispredicted branch per insertion); at the end the `k` kept are sorted.
 //!
 //! Exactness: a node or point is skipped only when a lower bound of its distance exceeds the
-//! bound strictly, so every point at exactly the `k`-th distance is offered, and a list keeps
-//! the first `k` by `(distance, position)`: each row is exactly what
+//! bound strictly, so every point at exactly the `k`-th distance is offered, and a selection
+//! keeps the first `k` by `(distance, position)`: each row is exactly what
 //! [`PointSet::k_nearest`](crate::query::PointSet::k_nearest) answers, ties included.
 //!
 //! All the buffers live in a [`Search`] made once per thread and reused for every group:
@@ -35,10 +39,13 @@ pub(crate) struct Search<N, const D: usize> {
     qs: Vec<[f64; D]>,
     /// Per point of the group: its `k`-th distance so far (infinite while it holds fewer).
     bounds: Vec<f64>,
-    /// Per point of the group: how many candidates its list holds.
+    /// Per point of the group: how many candidates its buffer holds.
     held: Vec<usize>,
-    /// Per point of the group, `k` entries each: candidates sorted by `(distance, position)`.
+    /// Per point of the group, [`Search::cap`] entries each: its candidates, unordered while
+    /// the search runs; the first `k`, sorted by `(distance, position)`, at the end.
     lists: Vec<(f64, usize)>,
+    /// The entries of each point's buffer: twice `k`.
+    cap: usize,
     /// The nodes of the other tree left to look at, with their lower bounds and boxes.
     stack: Vec<(f64, N, Aabb<f64, D>)>,
     /// The gathered points of the node being scanned.
@@ -53,19 +60,20 @@ impl<N: Copy, const D: usize> Search<N, D> {
             bounds: Vec::new(),
             held: Vec::new(),
             lists: Vec::new(),
+            cap: 0,
             stack: Vec::new(),
             block: Block::boxed(),
         }
     }
 
-    /// The lists of the last group searched: `k` entries of (distance, position in the other
-    /// tree) per point of the group, in the group's order.
-    pub(crate) fn lists(&self) -> &[(f64, usize)] {
-        &self.lists
+    /// The list of point `qi` of the last group searched: its `k` nearest as (distance,
+    /// position in the other tree), sorted by `(distance, position)`.
+    pub(crate) fn list(&self, qi: usize, k: usize) -> &[(f64, usize)] {
+        &self.lists[qi * self.cap..qi * self.cap + k]
     }
 
     /// Finds the `k` nearest points of `b` to every point of the group `run` of `a` (whose
-    /// points lie in the closed box `gbox`), into [`Search::lists`]. `same`: `b` is `a`, and a
+    /// points lie in the closed box `gbox`), into the lists of [`Search::list`]. `same`: `b` is `a`, and a
     /// point skips its own position. `k` must be at least 1 and at most what `b` holds (others,
     /// when `same`).
     #[allow(clippy::too_many_arguments)]
@@ -93,8 +101,9 @@ impl<N: Copy, const D: usize> Search<N, D> {
         self.bounds.resize(m, f64::INFINITY);
         self.held.clear();
         self.held.resize(m, 0);
+        self.cap = 2 * k;
         self.lists.clear();
-        self.lists.resize(m * k, (f64::INFINITY, usize::MAX));
+        self.lists.resize(m * self.cap, (f64::INFINITY, usize::MAX));
         self.stack.clear();
         let Some((root, rbox)) = b.root() else { return };
         let mut gbound = f64::INFINITY;
@@ -131,6 +140,13 @@ impl<N: Copy, const D: usize> Search<N, D> {
                     at -= 1;
                 }
             }
+        }
+        for qi in 0..m {
+            let buf = &mut self.lists[qi * self.cap..qi * self.cap + self.held[qi]];
+            if buf.len() > k {
+                buf.select_nth_unstable_by(k - 1, order);
+            }
+            buf[..k].sort_unstable_by(order);
         }
     }
 
@@ -179,42 +195,36 @@ impl<N: Copy, const D: usize> Search<N, D> {
                 continue;
             }
             let mut mask = self.block.mask(0, q, metric, |d| d <= bound);
-            let list = &mut self.lists[qi * k..(qi + 1) * k];
+            let cap = self.cap;
+            let buf = &mut self.lists[qi * cap..(qi + 1) * cap];
             let held = &mut self.held[qi];
+            let mut bound = bound;
             let me = first + qi;
             while mask != 0 {
                 let j = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
-                let at = self.block.at(j);
-                if same && at == me {
+                let (at, d) = (self.block.at(j), self.block.dist(j));
+                if (same && at == me) || d > bound {
                     continue;
                 }
-                if offer(list, held, self.block.dist(j), at) {
-                    self.bounds[qi] = list[k - 1].0;
+                buf[*held] = (d, at);
+                *held += 1;
+                if *held == k {
+                    bound = buf[..k].iter().fold(0.0, |b, c| c.0.max(b));
+                } else if *held == cap {
+                    buf.select_nth_unstable_by(k - 1, order);
+                    *held = k;
+                    bound = buf[k - 1].0;
                 }
             }
+            self.bounds[qi] = bound;
         }
     }
 }
 
-/// Offers `(d, j)` to the sorted `list`, of which `held` entries are filled; `true` when the list
-/// is full afterwards (its last distance is then the point's bound).
+/// The order of candidates: by distance, then by position (the order
+/// [`PointSet::k_nearest`](crate::query::PointSet::k_nearest) breaks ties in).
 #[inline(always)]
-fn offer(list: &mut [(f64, usize)], held: &mut usize, d: f64, j: usize) -> bool {
-    let k = list.len();
-    if *held == k {
-        let (wd, wj) = list[k - 1];
-        if d > wd || (d == wd && j > wj) {
-            return true;
-        }
-    } else {
-        *held += 1;
-    }
-    let mut at = *held - 1;
-    while at > 0 && (d, j) < list[at - 1] {
-        list[at] = list[at - 1];
-        at -= 1;
-    }
-    list[at] = (d, j);
-    *held == k
+fn order(a: &(f64, usize), b: &(f64, usize)) -> core::cmp::Ordering {
+    a.0.total_cmp(&b.0).then(a.1.cmp(&b.1))
 }

@@ -197,6 +197,10 @@ where
     out
 }
 
+/// The node pairs a traversal's top is split into, or the visitor's break met on the way.
+#[cfg(feature = "rayon")]
+pub(crate) type Frontier<A, B, T, Br, const D: usize> = ControlFlow<Br, Vec<Pair<A, B, T, D>>>;
+
 /// Splits the traversal's top into at least `want` independent node pairs (fewer when the trees
 /// are small), in traversal order: the pairs a parallel join hands to separate threads. Pairs
 /// the visitor skips, and leaf pairs met on the way, are given to `visitor`, whose break ends
@@ -209,7 +213,7 @@ pub(crate) fn split_top<A, B, T, V, P, const D: usize>(
     start: Vec<Pair<A::Node, B::Node, T, D>>,
     want: usize,
     visitor: &mut V,
-) -> ControlFlow<V::Break, Vec<Pair<A::Node, B::Node, T, D>>>
+) -> Frontier<A::Node, B::Node, T, V::Break, D>
 where
     A: SpatialIndex<D>,
     B: SpatialIndex<D>,
