@@ -93,10 +93,10 @@ pub mod iter {
 /// ```
 pub mod prelude {
     #[cfg(feature = "rayon")]
-    pub use crate::query::ParallelJoins;
-    #[cfg(feature = "rayon")]
     pub use crate::query::ParallelQueries;
     pub use crate::query::{Joins, PeriodicJoins, PeriodicQueries, PointSet, PointSetMut};
+    #[cfg(feature = "rayon")]
+    pub use crate::query::{ParallelJoins, ParallelPeriodicJoins};
 }
 
 /// The README's examples, compiled and run as doctests.

@@ -47,11 +47,11 @@ use crate::geom::FloatBits;
 pub use batch::{BatchError, ParallelQueries};
 pub(crate) use index::nearest_child_by_boxes;
 pub use index::SpatialIndex;
-#[cfg(feature = "rayon")]
-pub use join::ParallelJoins;
 pub use join::{Boundary, CsrDistances, Joins, KnnTable, PeriodicJoins, SparseDistances};
 #[cfg(feature = "mpi")]
 pub(crate) use knn::k_nearest;
+#[cfg(feature = "rayon")]
+pub use join::{ParallelJoins, ParallelPeriodicJoins};
 pub use knn::Neighbor;
 pub use location::Location;
 pub use metric::{Chebyshev, Manhattan, Metric, SquaredEuclidean};

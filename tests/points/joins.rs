@@ -4,7 +4,8 @@
 //! included), the self-join without the point itself, all pairs within a radius (of one tree,
 //! each unordered pair once, and between two), the counts over sorted radii, the sparse distance
 //! matrix and its CSR form, both boundaries, early stop, the parameter errors, and the parallel
-//! forms equal to the serial ones. Inputs: grid points (split lines, faces, many duplicates),
+//! forms equal to the serial ones (the tables, counts and matrices exactly; the pairs of the
+//! parallel visitor and fold once each, order-normalised; a parallel break one of the pairs). Inputs: grid points (split lines, faces, many duplicates),
 //! arbitrary points with extreme values, empty sets, `k` beyond the size, `r = 0` and radii
 //! beyond the domain.
 
@@ -137,6 +138,7 @@ fn check_pairs<A: Set<D>, B: Set<D>, const D: usize>(
         }
     }
     assert_eq!(got, sorted(want.into_iter()));
+    check_par_pairs(a, b, r, boundary, same, &got);
     // The visitor's break stops the traversal at once and is returned.
     let mut calls = 0;
     let stop = |_: usize, _: usize, _: f64| {
@@ -154,6 +156,84 @@ fn check_pairs<A: Set<D>, B: Set<D>, const D: usize>(
         ControlFlow::Break(7)
     };
     assert_eq!((flow, calls), (Ok(expected), usize::from(!got.is_empty())));
+}
+
+/// The parallel pairs visitor and fold: the serial form's pairs `want` (input positions,
+/// sorted), each once, and a break returned.
+#[cfg(feature = "rayon")]
+fn check_par_pairs<A: Set<D>, B: Set<D>, const D: usize>(
+    a: &A,
+    b: &B,
+    r: f64,
+    boundary: Boundary,
+    same: bool,
+    want: &[(usize, usize, f64)],
+) {
+    use std::sync::Mutex;
+    let key = |s: usize, t: usize, d: f64| {
+        if same {
+            assert!(s < t, "each unordered pair once, the smaller slot first");
+        }
+        assert_eq!(d, dist(a.point(s), b.point(t)));
+        let (i, j) = (a.items()[s], b.items()[t]);
+        if same && j < i {
+            (j, i, d)
+        } else {
+            (i, j, d)
+        }
+    };
+    let seen = Mutex::new(Vec::new());
+    let visit = |s: usize, t: usize, d: f64| {
+        seen.lock().unwrap().push(key(s, t, d));
+        ControlFlow::<()>::Continue(())
+    };
+    let flow = if same {
+        a.par_pairs_within(r, boundary, visit)
+    } else {
+        a.par_pairs_within_other(b, r, boundary, visit)
+    };
+    assert_eq!(flow, Ok(ControlFlow::Continue(())));
+    assert_eq!(sorted(seen.into_inner().unwrap().into_iter()), want);
+    let identity = Vec::new;
+    let fold =
+        |acc: &mut Vec<(usize, usize, f64)>, s: usize, t: usize, d: f64| acc.push(key(s, t, d));
+    let reduce = |mut x: Vec<_>, y: Vec<_>| {
+        x.extend(y);
+        x
+    };
+    let folded = if same {
+        a.par_fold_pairs_within(r, boundary, identity, fold, reduce)
+    } else {
+        a.par_fold_pairs_within_other(b, r, boundary, identity, fold, reduce)
+    };
+    assert_eq!(sorted(folded.unwrap().into_iter()), want);
+    // a break is returned, one of the pairs, and stops the visits
+    let calls = std::sync::atomic::AtomicUsize::new(0);
+    let stop = |s: usize, t: usize, d: f64| {
+        calls.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        ControlFlow::Break(key(s, t, d))
+    };
+    let flow = if same {
+        a.par_pairs_within(r, boundary, stop)
+    } else {
+        a.par_pairs_within_other(b, r, boundary, stop)
+    };
+    match flow.unwrap() {
+        ControlFlow::Break(p) => assert!(want.contains(&p), "the break of a pair within r"),
+        ControlFlow::Continue(()) => assert!(want.is_empty(), "no pair: no break"),
+    }
+    assert!(calls.into_inner() <= want.len().min(rayon::current_num_threads()));
+}
+
+#[cfg(not(feature = "rayon"))]
+fn check_par_pairs<A: Set<D>, B: Set<D>, const D: usize>(
+    _: &A,
+    _: &B,
+    _: f64,
+    _: Boundary,
+    _: bool,
+    _: &[(usize, usize, f64)],
+) {
 }
 
 fn sorted(it: impl Iterator<Item = (usize, usize, f64)>) -> Vec<(usize, usize, f64)> {
@@ -428,6 +508,16 @@ proptest! {
         );
         let mut radii = [0.0, r.min(0.25), r, 0.5, 2.0];
         radii.sort_by(f64::total_cmp);
+        // k-nearest over leaves of more than a block of 64 duplicates
+        for k in [1, 17, 70] {
+            check_knn(&a, &pa, &b, &pb, k, false);
+            check_knn(&b, &pb, &b, &pb, k, true);
+            #[cfg(feature = "rayon")]
+            {
+                assert_eq!(b.par_k_nearest_join(&a, k), b.k_nearest_join(&a, k));
+                assert_eq!(b.par_k_nearest_self(k), b.k_nearest_self(k));
+            }
+        }
         for boundary in [Boundary::Inclusive, Boundary::Exclusive] {
             check_pairs(&a, &pa, &a, &pa, r, boundary, true);
             check_pairs(&b, &pb, &b, &pb, r, boundary, true);
@@ -460,6 +550,29 @@ fn bad_radii_are_refused_with_what_is_wrong() {
             t.count_pairs_within(&[0.0, r], Boundary::Inclusive),
             Err(QueryError::InvalidRadius { .. })
         ));
+        #[cfg(feature = "rayon")]
+        {
+            let never = |_: usize, _: usize, _: f64| -> ControlFlow<()> { panic!("not called") };
+            assert!(matches!(
+                t.par_pairs_within(r, Boundary::Inclusive, never),
+                Err(QueryError::InvalidRadius { .. })
+            ));
+            assert!(matches!(
+                t.par_fold_pairs_within_other(
+                    &t,
+                    r,
+                    Boundary::Inclusive,
+                    || (),
+                    |_, _, _, _| (),
+                    |_, _| ()
+                ),
+                Err(QueryError::InvalidRadius { .. })
+            ));
+            assert!(matches!(
+                t.par_count_pairs_within(&[0.0, r], Boundary::Inclusive),
+                Err(QueryError::InvalidRadius { .. })
+            ));
+        }
     }
     let err = t.count_neighbors(&t, &[0.0, 1.0, 2.0, 1.5, 3.0], Boundary::Inclusive);
     assert_eq!(err, Err(QueryError::UnsortedRadii { index: 3 }));
@@ -492,4 +605,21 @@ fn empty_sets_join_to_nothing() {
         .sparse_distance_matrix(&t, 1.0, Boundary::Inclusive)
         .unwrap()
         .is_empty());
+    #[cfg(feature = "rayon")]
+    {
+        let never = |_: usize, _: usize, _: f64| -> ControlFlow<()> { panic!("not called") };
+        assert_eq!(
+            e.par_pairs_within(1.0, Boundary::Inclusive, never),
+            Ok(ControlFlow::Continue(()))
+        );
+        assert_eq!(
+            t.par_pairs_within_other(&e, 1.0, Boundary::Inclusive, never),
+            Ok(ControlFlow::Continue(()))
+        );
+        assert_eq!(t.par_k_nearest_join(&e, 3), table);
+        assert_eq!(
+            t.par_count_neighbors(&e, &[1.0], Boundary::Inclusive),
+            Ok(vec![0])
+        );
+    }
 }

@@ -2,7 +2,9 @@
 //! images of the `k` wrapping axes, on every point tree: the k-nearest join (each row exactly
 //! the single-tree `periodic_k_nearest`, ties included) and the self-join without the point
 //! itself, all pairs within a radius (each unordered pair once), the counts over sorted radii,
-//! the sparse distance matrix, both boundaries, early stop, bad radii, empty trees.
+//! the sparse distance matrix, both boundaries, early stop, bad radii, empty trees; and under the
+//! `rayon` feature every parallel form ([`ParallelPeriodicJoins`]) equal to the serial one (the
+//! pairs of the visitor and the fold order-normalised).
 //!
 //! Points lie on a dyadic grid over the period box `[-1/2, 3/4)` (period 5/4), both faces
 //! included (a point on the upper face is its image on the lower one, prepared or not), with
@@ -30,8 +32,8 @@ fn admits(boundary: Boundary, d: f64, r: f64) -> bool {
 }
 
 /// Every set here stores the input position of each point as its item.
-trait Set<const D: usize>: PointSet<D, Scalar = f64, Item = usize> {}
-impl<P: PointSet<D, Scalar = f64, Item = usize>, const D: usize> Set<D> for P {}
+trait Set<const D: usize>: PointSet<D, Scalar = f64, Item = usize> + Sync {}
+impl<P: PointSet<D, Scalar = f64, Item = usize> + Sync, const D: usize> Set<D> for P {}
 
 /// The pairs (input positions, distance) within `r` by nested loops (`same`: `i < j` once).
 fn brute_pairs<const D: usize>(
@@ -96,6 +98,15 @@ fn check_knn<A: Set<D>, B: Set<D>, const D: usize>(
         want.truncate(k);
         assert_eq!(dists, &want[..], "row {s} against all images");
     }
+    #[cfg(feature = "rayon")]
+    {
+        let par = if same {
+            a.par_periodic_k_nearest_self(torus, k)
+        } else {
+            a.par_periodic_k_nearest_join(torus, b, k)
+        };
+        assert_eq!(par, table, "the parallel table is the serial one");
+    }
 }
 
 /// The pairs within `r` (of `a` with itself when `same`), the early stop, the sparse matrix.
@@ -143,6 +154,8 @@ fn check_pairs<A: Set<D>, B: Set<D>, const D: usize>(
         ControlFlow::Break(3)
     };
     assert_eq!((flow, calls), (Ok(expected), usize::from(!want.is_empty())));
+    #[cfg(feature = "rayon")]
+    check_par_pairs(torus, (a, b), r, boundary, same, &want);
     if !same {
         let m = a
             .periodic_sparse_distance_matrix(torus, b, r, boundary)
@@ -159,6 +172,76 @@ fn check_pairs<A: Set<D>, B: Set<D>, const D: usize>(
             .collect();
         by_input.sort_by_key(|x| (x.0, x.1));
         assert_eq!(by_input, want);
+        #[cfg(feature = "rayon")]
+        assert_eq!(
+            a.par_periodic_sparse_distance_matrix(torus, b, r, boundary)
+                .unwrap(),
+            m
+        );
+    }
+}
+
+/// The parallel pairs visitor (and, within one set, the fold): the pairs `want` of nested loops
+/// (input positions, sorted), each once, and a break returned.
+#[cfg(feature = "rayon")]
+fn check_par_pairs<A: Set<D>, B: Set<D>, const D: usize>(
+    torus: &Torus<D>,
+    (a, b): (&A, &B),
+    r: f64,
+    boundary: Boundary,
+    same: bool,
+    want: &[(usize, usize, f64)],
+) {
+    use std::sync::Mutex;
+    let key = |s: usize, t: usize, d: f64| {
+        assert!(!same || s < t, "each unordered pair once");
+        let (i, j) = (a.items()[s], b.items()[t]);
+        if same && j < i {
+            (j, i, d)
+        } else {
+            (i, j, d)
+        }
+    };
+    let seen = Mutex::new(Vec::new());
+    let visit = |s: usize, t: usize, d: f64| {
+        seen.lock().unwrap().push(key(s, t, d));
+        ControlFlow::<()>::Continue(())
+    };
+    let flow = if same {
+        a.par_periodic_pairs_within(torus, r, boundary, visit)
+    } else {
+        a.par_periodic_pairs_within_other(torus, b, r, boundary, visit)
+    };
+    assert_eq!(flow, Ok(ControlFlow::Continue(())));
+    let mut got = seen.into_inner().unwrap();
+    got.sort_by_key(|x| (x.0, x.1));
+    assert_eq!(got, want);
+    if same {
+        let mut folded = a
+            .par_periodic_fold_pairs_within(
+                torus,
+                r,
+                boundary,
+                Vec::new,
+                |acc: &mut Vec<_>, s, t, d| acc.push(key(s, t, d)),
+                |mut x, y| {
+                    x.extend(y);
+                    x
+                },
+            )
+            .unwrap();
+        folded.sort_by_key(|x| (x.0, x.1));
+        assert_eq!(folded, want);
+    }
+    let stop = |s: usize, t: usize, d: f64| ControlFlow::Break(key(s, t, d));
+    let flow = if same {
+        a.par_periodic_pairs_within(torus, r, boundary, stop)
+    } else {
+        a.par_periodic_pairs_within_other(torus, b, r, boundary, stop)
+    };
+    match flow.unwrap() {
+        ControlFlow::Break(p) => assert!(want.contains(&p), "the break of a pair within r"),
+        ControlFlow::Continue(()) => assert!(want.is_empty(), "no pair: no break"),
     }
 }
 
@@ -180,7 +263,17 @@ fn check_counts<A: Set<D>, B: Set<D>, const D: usize>(
         .iter()
         .map(|&r| brute_pairs(torus.wraps(), pa, pb, r, boundary, same).len() as u64)
         .collect();
-    assert_eq!(got.unwrap(), want, "radii {radii:?}");
+    let got = got.unwrap();
+    assert_eq!(got, want, "radii {radii:?}");
+    #[cfg(feature = "rayon")]
+    {
+        let par = if same {
+            a.par_periodic_count_pairs_within(torus, radii, boundary)
+        } else {
+            a.par_periodic_count_neighbors(torus, b, radii, boundary)
+        };
+        assert_eq!(par.unwrap(), got, "the parallel counts are the serial ones");
+    }
 }
 
 /// Every periodic join of `a` with itself and with `b`.
@@ -345,4 +438,31 @@ fn bad_radii_and_empty_trees() {
         t.periodic_pairs_within_other(&torus, &e, 10.0, Boundary::Inclusive, never),
         Ok(ControlFlow::Continue(()))
     );
+    #[cfg(feature = "rayon")]
+    {
+        for r in [-1.0, f64::NAN] {
+            assert!(matches!(
+                t.par_periodic_pairs_within(&torus, r, Boundary::Inclusive, never),
+                Err(QueryError::InvalidRadius { .. })
+            ));
+            assert!(matches!(
+                t.par_periodic_sparse_distance_matrix(&torus, &t, r, Boundary::Inclusive),
+                Err(QueryError::InvalidRadius { .. })
+            ));
+        }
+        assert_eq!(
+            t.par_periodic_count_neighbors(&torus, &t, &[1.0, 0.5], Boundary::Inclusive),
+            Err(QueryError::UnsortedRadii { index: 1 })
+        );
+        assert_eq!(t.par_periodic_k_nearest_join(&torus, &e, 2).k(), 0);
+        assert_eq!(e.par_periodic_k_nearest_self(&torus, 2).rows(), 0);
+        assert_eq!(
+            e.par_periodic_count_pairs_within(&torus, &[0.0, 10.0], Boundary::Inclusive),
+            Ok(vec![0, 0])
+        );
+        assert_eq!(
+            e.par_periodic_pairs_within(&torus, 10.0, Boundary::Inclusive, never),
+            Ok(ControlFlow::Continue(()))
+        );
+    }
 }

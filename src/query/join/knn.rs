@@ -3,20 +3,20 @@
 //! groups of nearby points, each group searching the other tree once for all its points.
 //!
 //! A group is a leaf of the query tree, or a node whose contiguous run is small enough to scan
-//! (at most 32 points), with the tight box of its points. Each of its points keeps its best `k`
-//! candidates, sorted by `(distance, position)`; the group's bound is the largest of their `k`-th
-//! distances (infinite while one has fewer). The group pops nodes of the other tree from an
-//! explicit stack, nearest box first, and skips a node whose box-to-box lower bound exceeds the
-//! group's bound; at a node to scan, each point skips it when its own point-to-box bound exceeds
-//! its own `k`-th distance, and offers the node's points otherwise. A node at exactly the bound
-//! is still searched, so the answer is, for each point, exactly the first `k` of all points of
-//! the other tree sorted by `(distance, position)`: what [`PointSet::k_nearest`] answers, ties
-//! included. In the self-join a point skips its own position; its duplicates are other points
-//! at distance 0.
+//! (at most 32 points), with the tight box of its points; the search of one group is in
+//! [`knn_group`](super::knn_group). Each point keeps its best `k` candidates sorted by
+//! `(distance, position)`, so the answer is, for each point, exactly the first `k` of all
+//! points of the other tree in that order: what [`PointSet::k_nearest`] answers, ties included.
+//! In the self-join a point skips its own position; its duplicates are other points at
+//! distance 0.
 //!
-//! The groups are independent, the unit of the parallel form.
+//! The groups are independent, the unit of the parallel form: each writes its own rows of one
+//! table laid out in group order ([`parts`]), which is the table itself when the rows of the
+//! groups are the slots in order (a [`PointTree`](crate::PointTree)), and is otherwise permuted
+//! into slot order at the end.
 
 use super::bounds::PairDistance;
+use super::knn_group::Search;
 use super::traverse::{children, Side, SCAN};
 use crate::geom::{Aabb, Scalar};
 use crate::query::{PointSet, SpatialIndex};
@@ -114,131 +114,92 @@ pub(crate) fn width(k: usize, len: usize, same: bool) -> usize {
     k.min(if same { len.saturating_sub(1) } else { len })
 }
 
-/// The `k` nearest points of `b` to every point of `group` of `a`, as (distance, position in `b`)
-/// lists, `k` per point of the group, appended to `out`. `same`: `b` is `a`, and a point skips
-/// its own position. `k` must not exceed what `b` holds (others, when `same`).
-pub(crate) fn group_knn<A, B, P, const D: usize>(
-    a: &A,
-    b: &B,
-    metric: &P,
-    (run, gbox): &Group<D>,
+/// One group's share of a join: the group and its rows of the table in group order (slots
+/// of the other set and distances, `k` per point).
+pub(crate) type Part<'t, const D: usize> = (&'t Group<D>, &'t mut [usize], &'t mut [f64]);
+
+/// The rows of a table of `k` per point cut into the parts of `groups`, in group order.
+pub(crate) fn parts<'t, const D: usize>(
+    groups: &'t [Group<D>],
+    k: usize,
+    mut slots: &'t mut [usize],
+    mut distances: &'t mut [f64],
+) -> Vec<Part<'t, D>> {
+    let mut out = Vec::with_capacity(groups.len());
+    for g in groups {
+        let n = g.0.len() * k;
+        let (s, rest_s) = core::mem::take(&mut slots).split_at_mut(n);
+        let (d, rest_d) = core::mem::take(&mut distances).split_at_mut(n);
+        slots = rest_s;
+        distances = rest_d;
+        out.push((g, s, d));
+    }
+    out
+}
+
+/// Searches one part's group ([`Search::group`]) and writes its rows: the neighbours' slots in
+/// `b` and their distances. `k` is at least 1.
+pub(crate) fn fill<A, B, P, const D: usize>(
+    search: &mut Search<<B::Index as SpatialIndex<D>>::Node, D>,
+    (a, b, metric): (&A, &B, &P),
+    (group, slots, distances): Part<'_, D>,
     k: usize,
     same: bool,
-    out: &mut Vec<(f64, usize)>,
 ) where
-    A: SpatialIndex<D>,
-    B: SpatialIndex<D>,
+    A: PointSet<D>,
+    B: PointSet<D>,
     P: PairDistance<D>,
 {
-    let Some(root) = b.root() else { return };
-    if k == 0 {
-        return;
-    }
-    let qs: Vec<[f64; D]> = a.points()[run.clone()]
-        .iter()
-        .map(|p| p.map(Scalar::to_f64))
-        .collect();
-    let base = out.len();
-    out.resize(base + qs.len() * k, (f64::INFINITY, usize::MAX));
-    let lists = &mut out[base..];
-    let mut held = vec![0usize; qs.len()];
-    let mut bounds = vec![f64::INFINITY; qs.len()];
-    let mut group_bound = f64::INFINITY;
-    let pb = b.points();
-    let mut stack: Vec<(f64, B::Node, Aabb<f64, D>)> = Vec::new();
-    stack.push((metric.box_box(gbox, &root.1).0, root.0, root.1));
-    while let Some((lower, node, nb)) = stack.pop() {
-        if lower > group_bound {
-            continue;
-        }
-        let kids = children(b, &(node, nb), SCAN);
-        if kids.is_empty() {
-            let rb = b.run(node);
-            for (qi, q) in qs.iter().enumerate() {
-                if metric.point_box(q, &nb) > bounds[qi] {
-                    continue;
-                }
-                let me = run.start + qi;
-                let list = &mut lists[qi * k..(qi + 1) * k];
-                for j in rb.clone() {
-                    if same && j == me {
-                        continue;
-                    }
-                    let d = metric.distance(q, &pb[j].map(Scalar::to_f64));
-                    if d <= bounds[qi] && offer(list, &mut held[qi], d, j) {
-                        bounds[qi] = list[k - 1].0;
-                    }
-                }
-            }
-            group_bound = bounds.iter().copied().fold(0.0, f64::max);
-            continue;
-        }
-        // Farthest first, so that the nearest child is popped next.
-        let before = stack.len();
-        for (c, cb) in kids {
-            let d = metric.box_box(gbox, &cb).0;
-            if d > group_bound {
-                continue;
-            }
-            let mut at = stack.len();
-            stack.push((d, c, cb));
-            while at > before && stack[at - 1].0 < d {
-                stack.swap(at - 1, at);
-                at -= 1;
-            }
+    search.group(
+        a.index(),
+        b.index(),
+        metric,
+        (group.0.clone(), &group.1),
+        k,
+        same,
+    );
+    let qb = b.index().payloads();
+    let rows = slots.chunks_mut(k).zip(distances.chunks_mut(k));
+    for (qi, (rs, rd)) in rows.enumerate() {
+        for ((&(d, j), s), t) in search.list(qi, k).iter().zip(rs).zip(rd) {
+            *s = b.slot_of(j, &qb[j]);
+            *t = d;
         }
     }
 }
 
-/// Offers `(d, j)` to the sorted `list`, of which `held` entries are filled; `true` when the list
-/// is full afterwards (its last distance is then the point's bound).
-#[inline(always)]
-fn offer(list: &mut [(f64, usize)], held: &mut usize, d: f64, j: usize) -> bool {
-    let k = list.len();
-    if *held == k {
-        let (wd, wj) = list[k - 1];
-        if d > wd || (d == wd && j > wj) {
-            return true;
-        }
-    } else {
-        *held += 1;
-    }
-    let mut at = *held - 1;
-    while at > 0 && (d, j) < list[at - 1] {
-        list[at] = list[at - 1];
-        at -= 1;
-    }
-    list[at] = (d, j);
-    *held == k
-}
-
-/// Writes the lists of `group` (as [`group_knn`] leaves them, `k` per point) into `table`, in
-/// the rows of the points' slots in `a`, as slots of `b`.
-pub(crate) fn write_rows<A: PointSet<D>, B: PointSet<D>, const D: usize>(
+/// The slot in `a` of each row of a table in the order of `groups`; `None` when that is the
+/// identity (row `i` is slot `i`, as in a [`PointTree`](crate::PointTree)).
+pub(crate) fn row_slots<A: PointSet<D>, const D: usize>(
     a: &A,
-    b: &B,
-    run: Range<usize>,
-    lists: &[(f64, usize)],
-    table: &mut KnnTable,
-) {
-    let k = table.k;
-    let (qa, qb) = (a.index().payloads(), b.index().payloads());
-    for (qi, i) in run.enumerate() {
-        let row = a.slot_of(i, &qa[i]);
-        for (t, &(d, j)) in lists[qi * k..(qi + 1) * k].iter().enumerate() {
-            table.slots[row * k + t] = b.slot_of(j, &qb[j]);
-            table.distances[row * k + t] = d;
-        }
-    }
+    groups: &[Group<D>],
+) -> Option<Vec<usize>> {
+    let qa = a.index().payloads();
+    let order: Vec<usize> = groups
+        .iter()
+        .flat_map(|g| g.0.clone())
+        .map(|i| a.slot_of(i, &qa[i]))
+        .collect();
+    (!order.iter().enumerate().all(|(r, &s)| r == s)).then_some(order)
 }
 
-/// An empty table of `rows` rows of `k` entries, to be filled by [`write_rows`].
-pub(crate) fn table(rows: usize, k: usize) -> KnnTable {
+/// The row of the table in group order that holds slot `s`, for every slot: the inverse of
+/// [`row_slots`].
+pub(crate) fn inverse(order: &[usize]) -> Vec<usize> {
+    let mut inv = vec![0; order.len()];
+    for (r, &s) in order.iter().enumerate() {
+        inv[s] = r;
+    }
+    inv
+}
+
+/// A table of `rows` rows of `k` entries from its entries row after row.
+pub(crate) fn table(k: usize, rows: usize, slots: Vec<usize>, distances: Vec<f64>) -> KnnTable {
     KnnTable {
         k,
         rows,
-        slots: vec![0; rows * k],
-        distances: vec![0.0; rows * k],
+        slots,
+        distances,
     }
 }
 
@@ -250,16 +211,30 @@ pub(crate) fn knn_join<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, const
     k: usize,
     same: bool,
 ) -> KnnTable {
-    let w = width(k, b.len(), same);
-    let mut t = table(a.len(), w);
+    let (n, w) = (a.len(), width(k, b.len(), same));
     if w == 0 {
-        return t;
+        return table(0, n, Vec::new(), Vec::new());
     }
-    let mut lists = Vec::new();
-    for g in groups(a.index()) {
-        lists.clear();
-        group_knn(a.index(), b.index(), metric, &g, w, same, &mut lists);
-        write_rows(a, b, g.0, &lists, &mut t);
+    let gs = groups(a.index());
+    let (mut slots, mut distances) = (vec![0; n * w], vec![0.0; n * w]);
+    let mut search = Search::new();
+    for part in parts(&gs, w, &mut slots, &mut distances) {
+        fill(&mut search, (a, b, metric), part, w, same);
+    }
+    let Some(order) = row_slots(a, &gs) else {
+        return table(w, n, slots, distances);
+    };
+    let inv = inverse(&order);
+    let mut t = table(w, n, vec![0; n * w], vec![0.0; n * w]);
+    for (s, (ts, td)) in t
+        .slots
+        .chunks_mut(w)
+        .zip(t.distances.chunks_mut(w))
+        .enumerate()
+    {
+        let at = inv[s] * w..(inv[s] + 1) * w;
+        ts.copy_from_slice(&slots[at.clone()]);
+        td.copy_from_slice(&distances[at]);
     }
     t
 }

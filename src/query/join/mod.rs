@@ -1,7 +1,7 @@
 //! Tree-against-tree queries (joins), written once for every [`PointSet`]: all k-nearest
 //! neighbours between two sets or within one, all pairs within a radius, the number of pairs
 //! within each of a list of radii, and the sparse distance matrix ([`Joins`]; their parallel
-//! forms in [`ParallelJoins`] under the `rayon` feature).
+//! forms in `ParallelJoins` and `ParallelPeriodicJoins` under the `rayon` feature).
 //!
 //! Algorithm: the dual-tree traversal of Gray and Moore ("N-body problems in statistical
 //! learning", NIPS 2001) over the cells of both trees: node pairs are pruned, or counted whole,
@@ -15,10 +15,15 @@
 
 mod bounds;
 mod knn;
+mod knn_group;
 mod pairs;
+#[cfg(feature = "rayon")]
+mod par_engines;
 #[cfg(feature = "rayon")]
 mod parallel;
 mod periodic;
+#[cfg(feature = "rayon")]
+mod periodic_parallel;
 mod radius;
 mod scan;
 mod sparse;
@@ -28,6 +33,8 @@ pub use knn::KnnTable;
 #[cfg(feature = "rayon")]
 pub use parallel::ParallelJoins;
 pub use periodic::PeriodicJoins;
+#[cfg(feature = "rayon")]
+pub use periodic_parallel::ParallelPeriodicJoins;
 pub use radius::Boundary;
 pub use sparse::{CsrDistances, SparseDistances};
 

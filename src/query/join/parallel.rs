@@ -1,26 +1,18 @@
-//! The joins on rayon's threads (feature `rayon`): the same answers as [`Joins`]' serial forms,
-//! the work split into independent parts. The k-nearest joins hand the querying tree's groups
-//! (see [`knn`](super::knn)) to the threads; the sparse distance matrix and the counts split the
-//! top of the dual-tree traversal into independent node pairs ([`split_top`]) and traverse each
-//! on a thread (the counts of the parts are summed). Results are put in the serial forms' order,
-//! so they are equal to them.
+//! The joins on rayon's threads (feature `rayon`): [`ParallelJoins`], the same answers as
+//! [`Joins`]' serial forms, the work split into independent parts by the engines of
+//! [`par_engines`](super::par_engines) (the querying tree's groups for the k-nearest joins, the
+//! top node pairs of the dual-tree traversal for the radius joins). Tables, counts and matrices
+//! are put in the serial forms' order, so they are equal to them; the pairs visitors see the
+//! pairs of the serial forms in an order that varies from run to run.
 
 use super::bounds::Euclid;
-use super::knn::{group_knn, groups, table, width, write_rows, KnnTable};
-use super::pairs::{CountWithin, PairsWithin};
-use super::radius::{squared_radii, squared_radius, Boundary};
-use super::scan::Block;
+use super::knn::KnnTable;
+use super::par_engines::{par_count, par_fold_pairs, par_knn, par_pairs, par_sparse};
+use super::radius::Boundary;
 use super::sparse::SparseDistances;
-use super::traverse::{roots, run, split_top};
 use super::Joins;
 use crate::query::{PointSet, QueryError};
-use core::convert::Infallible;
 use core::ops::ControlFlow;
-use rayon::prelude::*;
-
-/// Node pairs per thread that the top of a parallel traversal is split into: enough for the
-/// threads to even out the uneven parts.
-const PAIRS_PER_THREAD: usize = 16;
 
 /// The parallel forms of [`Joins`], for every point set that can be shared between threads
 /// (implemented for all of them; in the prelude under the `rayon` feature).
@@ -38,7 +30,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        par_knn(self, other, k, false)
+        par_knn(self, other, &Euclid, k, false)
     }
 
     /// [`Joins::k_nearest_self`] on rayon's threads; the same table.
@@ -54,7 +46,172 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        par_knn(self, self, k, true)
+        par_knn(self, self, &Euclid, k, true)
+    }
+
+    /// [`Joins::pairs_within`] on rayon's threads: calls `visit(s, t, d)` for every unordered
+    /// pair of distinct slots `s < t` within `r` (squared distance `d`), each once, from several
+    /// threads at once and in no particular order. The first [`ControlFlow::Break`] stops every
+    /// thread (calls already under way on other threads finish, and may break too) and is
+    /// returned; when several threads break, which break is returned is not decided. Nothing is
+    /// collected: each thread holds its traversal's stack only.
+    ///
+    /// # Errors
+    /// A negative or NaN `r` ([`QueryError::InvalidRadius`]); then `visit` is not called.
+    ///
+    /// # Complexity
+    /// That of [`Joins::pairs_within`], shared among the threads.
+    ///
+    /// ```
+    /// use core::ops::ControlFlow;
+    /// use core::sync::atomic::{AtomicU64, Ordering};
+    /// use orthtree::prelude::*;
+    /// use orthtree::{query::Boundary, Quadtree};
+    /// let pts: Vec<([f64; 2], ())> = (0..500).map(|i| ([(i % 25) as f64, (i / 25) as f64], ())).collect();
+    /// let t = Quadtree::new(&pts).unwrap();
+    /// let n = AtomicU64::new(0);
+    /// let flow = t.par_pairs_within(1.0, Boundary::Inclusive, |s, u, d| {
+    ///     assert!(s < u && d == 1.0);
+    ///     n.fetch_add(1, Ordering::Relaxed);
+    ///     ControlFlow::<()>::Continue(())
+    /// });
+    /// assert_eq!(flow, Ok(ControlFlow::Continue(())));
+    /// assert_eq!(n.into_inner(), 24 * 20 + 25 * 19); // the grid's edges
+    /// // stop at a pair
+    /// let far = t.par_pairs_within(1.0, Boundary::Inclusive, |s, u, _| {
+    ///     if s.max(u) > 250 { ControlFlow::Break((s, u)) } else { ControlFlow::Continue(()) }
+    /// });
+    /// assert!(matches!(far, Ok(ControlFlow::Break((s, u))) if s.max(u) > 250));
+    /// ```
+    fn par_pairs_within<Br: Send>(
+        &self,
+        r: f64,
+        boundary: Boundary,
+        visit: impl Fn(usize, usize, f64) -> ControlFlow<Br> + Sync,
+    ) -> Result<ControlFlow<Br>, QueryError>
+    where
+        Self: Sized,
+    {
+        par_pairs(self, self, &Euclid, true, r, boundary, visit)
+    }
+
+    /// [`Joins::pairs_within_other`] on rayon's threads: calls `visit(s, t, d)` for every slot
+    /// `s` of this set and `t` of `other` within `r`, from several threads at once, stopping as
+    /// [`ParallelJoins::par_pairs_within`] does.
+    ///
+    /// # Errors
+    /// A negative or NaN `r` ([`QueryError::InvalidRadius`]); then `visit` is not called.
+    ///
+    /// ```
+    /// use core::ops::ControlFlow;
+    /// use core::sync::atomic::{AtomicU64, Ordering};
+    /// use orthtree::prelude::*;
+    /// use orthtree::{query::Boundary, Quadtree};
+    /// let pts: Vec<([f64; 2], ())> = (0..500).map(|i| ([(i % 25) as f64, (i / 25) as f64], ())).collect();
+    /// let (a, b) = (Quadtree::new(&pts[..300]).unwrap(), Quadtree::new(&pts[200..]).unwrap());
+    /// let n = AtomicU64::new(0);
+    /// let _ = a.par_pairs_within_other(&b, 0.0, Boundary::Inclusive, |_, _, _| {
+    ///     n.fetch_add(1, Ordering::Relaxed);
+    ///     ControlFlow::<()>::Continue(())
+    /// });
+    /// assert_eq!(n.into_inner(), 100); // the shared points, each with itself
+    /// ```
+    fn par_pairs_within_other<B: PointSet<D> + Sync, Br: Send>(
+        &self,
+        other: &B,
+        r: f64,
+        boundary: Boundary,
+        visit: impl Fn(usize, usize, f64) -> ControlFlow<Br> + Sync,
+    ) -> Result<ControlFlow<Br>, QueryError>
+    where
+        Self: Sized,
+    {
+        par_pairs(self, other, &Euclid, false, r, boundary, visit)
+    }
+
+    /// The pairs of [`Joins::pairs_within`] folded on rayon's threads: each thread's share of
+    /// the traversal starts from `identity()`, `fold(&mut acc, s, t, d)` takes in each of its
+    /// pairs (`s < t`, squared distance `d`), and `reduce` combines the accumulators into one.
+    /// The pairs are met in an order that varies from run to run, so `reduce` should be
+    /// associative and commutative for a repeatable answer. Nothing but the accumulators is
+    /// held.
+    ///
+    /// # Errors
+    /// A negative or NaN `r` ([`QueryError::InvalidRadius`]).
+    ///
+    /// ```
+    /// use orthtree::prelude::*;
+    /// use orthtree::{query::Boundary, Quadtree};
+    /// let pts: Vec<([f64; 2], ())> = (0..500).map(|i| ([(i % 25) as f64, (i / 25) as f64], ())).collect();
+    /// let t = Quadtree::new(&pts).unwrap();
+    /// // the number of pairs and the largest squared distance
+    /// let (n, far) = t
+    ///     .par_fold_pairs_within(1.5, Boundary::Inclusive, || (0u64, 0.0f64),
+    ///         |acc, _, _, d| { acc.0 += 1; acc.1 = acc.1.max(d); },
+    ///         |x, y| (x.0 + y.0, x.1.max(y.1)))
+    ///     .unwrap();
+    /// assert_eq!((n, far), (24 * 20 + 25 * 19 + 2 * 24 * 19, 2.0));
+    /// ```
+    fn par_fold_pairs_within<T: Send>(
+        &self,
+        r: f64,
+        boundary: Boundary,
+        identity: impl Fn() -> T + Sync + Send,
+        fold: impl Fn(&mut T, usize, usize, f64) + Sync,
+        reduce: impl Fn(T, T) -> T + Sync + Send,
+    ) -> Result<T, QueryError>
+    where
+        Self: Sized,
+    {
+        par_fold_pairs(
+            self,
+            self,
+            &Euclid,
+            true,
+            (r, boundary),
+            identity,
+            fold,
+            reduce,
+        )
+    }
+
+    /// The pairs of [`Joins::pairs_within_other`] folded on rayon's threads, as
+    /// [`ParallelJoins::par_fold_pairs_within`] folds those of one set (`s` a slot of this set,
+    /// `t` of `other`).
+    ///
+    /// # Errors
+    /// A negative or NaN `r` ([`QueryError::InvalidRadius`]).
+    ///
+    /// ```
+    /// use orthtree::prelude::*;
+    /// use orthtree::{query::Boundary, Quadtree};
+    /// let a = Quadtree::new(&[([0.0, 0.0], ()), ([5.0, 5.0], ())]).unwrap();
+    /// let b = Quadtree::new(&[([0.5, 0.0], ()), ([5.0, 6.0], ()), ([9.0, 9.0], ())]).unwrap();
+    /// let n = a.par_fold_pairs_within_other(&b, 1.0, Boundary::Inclusive, || 0, |n, _, _, _| *n += 1, |x, y| x + y);
+    /// assert_eq!(n, Ok(2));
+    /// ```
+    fn par_fold_pairs_within_other<B: PointSet<D> + Sync, T: Send>(
+        &self,
+        other: &B,
+        r: f64,
+        boundary: Boundary,
+        identity: impl Fn() -> T + Sync + Send,
+        fold: impl Fn(&mut T, usize, usize, f64) + Sync,
+        reduce: impl Fn(T, T) -> T + Sync + Send,
+    ) -> Result<T, QueryError>
+    where
+        Self: Sized,
+    {
+        par_fold_pairs(
+            self,
+            other,
+            &Euclid,
+            false,
+            (r, boundary),
+            identity,
+            fold,
+            reduce,
+        )
     }
 
     /// [`Joins::sparse_distance_matrix`] on rayon's threads; the same matrix.
@@ -79,55 +236,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        let r2 = squared_radius(r)?;
-        let (a, b) = (self, other);
-        let collect = |triples: &mut Vec<(usize, usize, f64)>, start| {
-            let mut v = PairsWithin {
-                metric: &Euclid,
-                unordered: false,
-                a,
-                b,
-                r2,
-                boundary,
-                visit: |s, t, d| {
-                    triples.push((s, t, d));
-                    ControlFlow::<Infallible>::Continue(())
-                },
-                block: Block::boxed(),
-            };
-            let _ = run(a.index(), b.index(), &Euclid, start, &mut v);
-        };
-        let mut top = Vec::new();
-        let frontier = {
-            let mut v = PairsWithin {
-                metric: &Euclid,
-                unordered: false,
-                a,
-                b,
-                r2,
-                boundary,
-                visit: |s, t, d| {
-                    top.push((s, t, d));
-                    ControlFlow::<Infallible>::Continue(())
-                },
-                block: Block::boxed(),
-            };
-            let want = rayon::current_num_threads() * PAIRS_PER_THREAD;
-            let start = roots((a.index(), b.index(), &Euclid), false, (), &mut v);
-            split_top(a.index(), b.index(), &Euclid, start, want, &mut v)
-        };
-        let parts: Vec<Vec<(usize, usize, f64)>> = frontier
-            .into_par_iter()
-            .map(|pair| {
-                let mut triples = Vec::new();
-                collect(&mut triples, vec![pair]);
-                triples
-            })
-            .collect();
-        for p in parts {
-            top.extend(p);
-        }
-        Ok(SparseDistances::new((a.len(), b.len()), top))
+        par_sparse(self, other, &Euclid, r, boundary)
     }
 
     /// [`Joins::count_pairs_within`] on rayon's threads; the same counts.
@@ -153,7 +262,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        par_count(self, self, true, radii, boundary)
+        par_count(self, self, &Euclid, true, radii, boundary)
     }
 
     /// [`Joins::count_neighbors`] on rayon's threads; the same counts.
@@ -180,83 +289,8 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        par_count(self, other, false, radii, boundary)
+        par_count(self, other, &Euclid, false, radii, boundary)
     }
 }
 
 impl<P: Joins<D> + Sync, const D: usize> ParallelJoins<D> for P {}
-
-/// The k-nearest join of `a` in `b` (`same`: the self-join), the groups of `a` on rayon's
-/// threads.
-fn par_knn<A: PointSet<D> + Sync, B: PointSet<D> + Sync, const D: usize>(
-    a: &A,
-    b: &B,
-    k: usize,
-    same: bool,
-) -> KnnTable {
-    let w = width(k, b.len(), same);
-    let mut t = table(a.len(), w);
-    if w == 0 {
-        return t;
-    }
-    let gs = groups(a.index());
-    let lists: Vec<Vec<(f64, usize)>> = gs
-        .par_iter()
-        .map(|g| {
-            let mut l = Vec::new();
-            group_knn(a.index(), b.index(), &Euclid, g, w, same, &mut l);
-            l
-        })
-        .collect();
-    for (g, l) in gs.into_iter().zip(lists) {
-        write_rows(a, b, g.0, &l, &mut t);
-    }
-    t
-}
-
-/// The counts within each of `radii` between `a` and `b` (`same`: `b` is `a`), the top of the
-/// traversal split into node pairs counted on rayon's threads.
-fn par_count<A: PointSet<D> + Sync, B: PointSet<D> + Sync, const D: usize>(
-    a: &A,
-    b: &B,
-    same: bool,
-    radii: &[f64],
-    boundary: Boundary,
-) -> Result<Vec<u64>, QueryError> {
-    let r2 = squared_radii(radii)?;
-    if r2.is_empty() {
-        return Ok(Vec::new());
-    }
-    let counter = || CountWithin {
-        metric: &Euclid,
-        a,
-        b,
-        r2: &r2,
-        boundary,
-        diff: vec![0; r2.len() + 1],
-        block: Block::boxed(),
-    };
-    let mut top = counter();
-    let want = rayon::current_num_threads() * PAIRS_PER_THREAD;
-    let start = roots(
-        (a.index(), b.index(), &Euclid),
-        same,
-        (0, r2.len()),
-        &mut top,
-    );
-    let frontier = split_top(a.index(), b.index(), &Euclid, start, want, &mut top);
-    let parts: Vec<Vec<i128>> = frontier
-        .into_par_iter()
-        .map(|pair| {
-            let mut c = counter();
-            let _ = run(a.index(), b.index(), &Euclid, vec![pair], &mut c);
-            c.diff
-        })
-        .collect();
-    for part in parts {
-        for (t, p) in top.diff.iter_mut().zip(part) {
-            *t += p;
-        }
-    }
-    Ok(top.counts())
-}

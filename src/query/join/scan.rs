@@ -47,9 +47,33 @@ impl<const D: usize> Block<D> {
         })
     }
 
+    /// Empties the block.
+    #[inline(always)]
+    pub(crate) fn clear(&mut self) {
+        self.len = 0;
+    }
+
+    /// The number of points gathered.
+    #[inline(always)]
+    pub(crate) fn len(&self) -> usize {
+        self.len
+    }
+
+    /// The position of gathered point `j`.
+    #[inline(always)]
+    pub(crate) fn at(&self, j: usize) -> usize {
+        self.at[j]
+    }
+
+    /// The distance of gathered point `j` to the last point tested (see [`Block::mask`]).
+    #[inline(always)]
+    pub(crate) fn dist(&self, j: usize) -> f64 {
+        self.dist[j]
+    }
+
     /// Adds point `p` at position `at` (the block must not be full).
     #[inline(always)]
-    fn push(&mut self, p: &[f64; D], at: usize) {
+    pub(crate) fn push(&mut self, p: &[f64; D], at: usize) {
         let j = self.len;
         for (col, &c) in self.cols.iter_mut().zip(p) {
             col[j] = c;
@@ -61,7 +85,7 @@ impl<const D: usize> Block<D> {
     /// The distances from `q` to the points `from..` of the block (kept in `dist`), and the
     /// mask of those that `admits` takes in (bit `j` for point `j`).
     #[inline(always)]
-    fn mask<P: PairDistance<D>>(
+    pub(crate) fn mask<P: PairDistance<D>>(
         &mut self,
         from: usize,
         q: &[f64; D],

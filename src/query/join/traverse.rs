@@ -197,9 +197,14 @@ where
     out
 }
 
+/// The node pairs a traversal's top is split into, or the visitor's break met on the way.
+#[cfg(feature = "rayon")]
+pub(crate) type Frontier<A, B, T, Br, const D: usize> = ControlFlow<Br, Vec<Pair<A, B, T, D>>>;
+
 /// Splits the traversal's top into at least `want` independent node pairs (fewer when the trees
 /// are small), in traversal order: the pairs a parallel join hands to separate threads. Pairs
-/// the visitor skips, and leaf pairs met on the way, are given to `visitor`.
+/// the visitor skips, and leaf pairs met on the way, are given to `visitor`, whose break ends
+/// the split and is returned.
 #[cfg(feature = "rayon")]
 pub(crate) fn split_top<A, B, T, V, P, const D: usize>(
     a: &A,
@@ -208,11 +213,11 @@ pub(crate) fn split_top<A, B, T, V, P, const D: usize>(
     start: Vec<Pair<A::Node, B::Node, T, D>>,
     want: usize,
     visitor: &mut V,
-) -> Vec<Pair<A::Node, B::Node, T, D>>
+) -> Frontier<A::Node, B::Node, T, V::Break, D>
 where
     A: SpatialIndex<D>,
     B: SpatialIndex<D>,
-    V: PairVisitor<A, B, T, D, Break = core::convert::Infallible>,
+    V: PairVisitor<A, B, T, D>,
     P: PairDistance<D>,
 {
     let mut frontier = start;
@@ -220,14 +225,11 @@ where
         let mut next = Vec::new();
         for pair in frontier {
             let mut out = Vec::new();
-            let _ = step(a, b, metric, pair, visitor, &mut out);
+            step(a, b, metric, pair, visitor, &mut out)?;
             out.reverse();
             next.extend(out);
         }
-        if next.is_empty() {
-            return next;
-        }
         frontier = next;
     }
-    frontier
+    ControlFlow::Continue(frontier)
 }

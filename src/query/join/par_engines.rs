@@ -1,0 +1,288 @@
+//! The engines of the parallel joins (feature `rayon`), once for every distance of
+//! [`bounds`](super::bounds): the same answers as the serial engines, the work split into
+//! independent parts run on rayon's threads.
+//!
+//! - The k-nearest joins hand the querying tree's groups (see [`knn`](super::knn)) to the
+//!   threads; each thread reuses one [`Search`] for all its groups and writes the groups' rows
+//!   of one table directly.
+//! - The radius joins split the top of the dual-tree traversal (Gray and Moore, 2001) into at
+//!   least 16 independent node pairs per thread ([`split_top`]) and traverse each on a thread:
+//!   the counts of the parts are summed, the pairs of the sparse matrix concatenated and sorted,
+//!   the pairs of the visitors handed over as found (with one shared flag that stops every
+//!   thread at the first break), or folded into one accumulator per part and reduced.
+//!
+//! Nothing here holds all the pairs of a visitor or a fold in memory: each thread holds its
+//! traversal's stack and a block of 64 gathered points.
+
+use super::bounds::PairDistance;
+use super::knn::{fill, groups, inverse, parts, row_slots, table, width, KnnTable};
+use super::knn_group::Search;
+use super::pairs::{CountWithin, PairsWithin};
+use super::radius::{squared_radii, squared_radius, Boundary};
+use super::scan::Block;
+use super::sparse::SparseDistances;
+use super::traverse::{roots, run, split_top};
+use crate::query::{PointSet, QueryError};
+use core::convert::Infallible;
+use core::ops::ControlFlow;
+use core::sync::atomic::{AtomicBool, Ordering};
+use rayon::prelude::*;
+
+/// Node pairs per thread that the top of a parallel traversal is split into: enough for the
+/// threads to even out the uneven parts.
+const PAIRS_PER_THREAD: usize = 16;
+
+/// The number of node pairs to split a traversal's top into.
+fn want() -> usize {
+    rayon::current_num_threads() * PAIRS_PER_THREAD
+}
+
+/// The k-nearest join of `a` in `b` under `metric` (`same`: the self-join), the groups of `a`
+/// on rayon's threads.
+pub(crate) fn par_knn<A, B, P, const D: usize>(
+    a: &A,
+    b: &B,
+    metric: &P,
+    k: usize,
+    same: bool,
+) -> KnnTable
+where
+    A: PointSet<D> + Sync,
+    B: PointSet<D> + Sync,
+    P: PairDistance<D>,
+{
+    let (n, w) = (a.len(), width(k, b.len(), same));
+    if w == 0 {
+        return table(0, n, Vec::new(), Vec::new());
+    }
+    let gs = groups(a.index());
+    let (mut slots, mut distances) = (vec![0; n * w], vec![0.0; n * w]);
+    parts(&gs, w, &mut slots, &mut distances)
+        .into_par_iter()
+        .for_each_init(Search::new, |search, part| {
+            fill(search, (a, b, metric), part, w, same);
+        });
+    let Some(order) = row_slots(a, &gs) else {
+        return table(w, n, slots, distances);
+    };
+    let inv = inverse(&order);
+    let (mut ts, mut td) = (vec![0; n * w], vec![0.0; n * w]);
+    ts.par_chunks_mut(w)
+        .zip(td.par_chunks_mut(w))
+        .enumerate()
+        .for_each(|(s, (rs, rd))| {
+            let at = inv[s] * w..(inv[s] + 1) * w;
+            rs.copy_from_slice(&slots[at.clone()]);
+            rd.copy_from_slice(&distances[at]);
+        });
+    table(w, n, ts, td)
+}
+
+/// The visitor of the pairs within `r2` between `a` and `b` under `metric` (`same`: `b` is `a`,
+/// unordered pairs once) that hands them to `visit`.
+fn pairs_visitor<'s, A, B, P, F, Br, const D: usize>(
+    (a, b, metric): (&'s A, &'s B, &'s P),
+    same: bool,
+    r2: f64,
+    boundary: Boundary,
+    visit: F,
+) -> PairsWithin<'s, A, B, P, F, D>
+where
+    F: FnMut(usize, usize, f64) -> ControlFlow<Br>,
+{
+    PairsWithin {
+        metric,
+        unordered: same,
+        a,
+        b,
+        r2,
+        boundary,
+        visit,
+        block: Block::boxed(),
+    }
+}
+
+/// Every pair within `r` between `a` and `b` under `metric` (`same`: `b` is `a`, unordered pairs
+/// once) handed to `visit` from rayon's threads; the first break seen stops every thread (pairs
+/// being visited on other threads at that moment finish) and is returned.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn par_pairs<A, B, P, F, Br, const D: usize>(
+    a: &A,
+    b: &B,
+    metric: &P,
+    same: bool,
+    r: f64,
+    boundary: Boundary,
+    visit: F,
+) -> Result<ControlFlow<Br>, QueryError>
+where
+    A: PointSet<D> + Sync,
+    B: PointSet<D> + Sync,
+    P: PairDistance<D>,
+    F: Fn(usize, usize, f64) -> ControlFlow<Br> + Sync,
+    Br: Send,
+{
+    let r2 = squared_radius(r)?;
+    let (ia, ib) = (a.index(), b.index());
+    let frontier = {
+        let mut v = pairs_visitor((a, b, metric), same, r2, boundary, &visit);
+        let start = roots((ia, ib, metric), same, (), &mut v);
+        match split_top(ia, ib, metric, start, want(), &mut v) {
+            ControlFlow::Continue(f) => f,
+            ControlFlow::Break(br) => return Ok(ControlFlow::Break(br)),
+        }
+    };
+    let stopped = AtomicBool::new(false);
+    let found = frontier.into_par_iter().find_map_any(|pair| {
+        if stopped.load(Ordering::Relaxed) {
+            return None;
+        }
+        let each = |s, t, d| {
+            if stopped.load(Ordering::Relaxed) {
+                return ControlFlow::Break(None);
+            }
+            visit(s, t, d).map_break(|br| {
+                stopped.store(true, Ordering::Relaxed);
+                Some(br)
+            })
+        };
+        let mut v = pairs_visitor((a, b, metric), same, r2, boundary, each);
+        match run(a.index(), b.index(), metric, vec![pair], &mut v) {
+            ControlFlow::Break(br) => br,
+            ControlFlow::Continue(()) => None,
+        }
+    });
+    Ok(found.map_or(ControlFlow::Continue(()), ControlFlow::Break))
+}
+
+/// Every pair within `r` between `a` and `b` under `metric` (`same`: `b` is `a`, unordered pairs
+/// once) folded by `fold` into accumulators made by `identity`, one per part of the traversal,
+/// then combined by `reduce`.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn par_fold_pairs<A, B, P, T, I, F, R, const D: usize>(
+    a: &A,
+    b: &B,
+    metric: &P,
+    same: bool,
+    (r, boundary): (f64, Boundary),
+    identity: I,
+    fold: F,
+    reduce: R,
+) -> Result<T, QueryError>
+where
+    A: PointSet<D> + Sync,
+    B: PointSet<D> + Sync,
+    P: PairDistance<D>,
+    T: Send,
+    I: Fn() -> T + Sync + Send,
+    F: Fn(&mut T, usize, usize, f64) + Sync,
+    R: Fn(T, T) -> T + Sync + Send,
+{
+    let r2 = squared_radius(r)?;
+    let (ia, ib) = (a.index(), b.index());
+    let mut top = identity();
+    let frontier = {
+        let each = |s, t, d| {
+            fold(&mut top, s, t, d);
+            ControlFlow::<Infallible>::Continue(())
+        };
+        let mut v = pairs_visitor((a, b, metric), same, r2, boundary, each);
+        let start = roots((ia, ib, metric), same, (), &mut v);
+        let ControlFlow::Continue(f) = split_top(ia, ib, metric, start, want(), &mut v);
+        f
+    };
+    let rest = frontier
+        .into_par_iter()
+        .map(|pair| {
+            let mut acc = identity();
+            let each = |s, t, d| {
+                fold(&mut acc, s, t, d);
+                ControlFlow::<Infallible>::Continue(())
+            };
+            let mut v = pairs_visitor((a, b, metric), same, r2, boundary, each);
+            let _ = run(a.index(), b.index(), metric, vec![pair], &mut v);
+            acc
+        })
+        .reduce(&identity, &reduce);
+    Ok(reduce(top, rest))
+}
+
+/// The sparse distance matrix of the pairs within `r` between `a` and `b` under `metric`.
+pub(crate) fn par_sparse<A, B, P, const D: usize>(
+    a: &A,
+    b: &B,
+    metric: &P,
+    r: f64,
+    boundary: Boundary,
+) -> Result<SparseDistances, QueryError>
+where
+    A: PointSet<D> + Sync,
+    B: PointSet<D> + Sync,
+    P: PairDistance<D>,
+{
+    let triples = par_fold_pairs(
+        a,
+        b,
+        metric,
+        false,
+        (r, boundary),
+        Vec::new,
+        |acc: &mut Vec<(usize, usize, f64)>, s, t, d| acc.push((s, t, d)),
+        |mut x, mut y| {
+            if x.len() < y.len() {
+                core::mem::swap(&mut x, &mut y);
+            }
+            x.extend(y);
+            x
+        },
+    )?;
+    Ok(SparseDistances::new((a.len(), b.len()), triples))
+}
+
+/// The counts within each of `radii` between `a` and `b` under `metric` (`same`: `b` is `a`),
+/// the top of the traversal split into node pairs counted on rayon's threads.
+pub(crate) fn par_count<A, B, P, const D: usize>(
+    a: &A,
+    b: &B,
+    metric: &P,
+    same: bool,
+    radii: &[f64],
+    boundary: Boundary,
+) -> Result<Vec<u64>, QueryError>
+where
+    A: PointSet<D> + Sync,
+    B: PointSet<D> + Sync,
+    P: PairDistance<D>,
+{
+    let r2 = squared_radii(radii)?;
+    if r2.is_empty() {
+        return Ok(Vec::new());
+    }
+    let counter = || CountWithin {
+        metric,
+        a,
+        b,
+        r2: &r2,
+        boundary,
+        diff: vec![0; r2.len() + 1],
+        block: Block::boxed(),
+    };
+    let (ia, ib) = (a.index(), b.index());
+    let mut top = counter();
+    let start = roots((ia, ib, metric), same, (0, r2.len()), &mut top);
+    let ControlFlow::Continue(frontier) = split_top(ia, ib, metric, start, want(), &mut top);
+    let parts: Vec<Vec<i128>> = frontier
+        .into_par_iter()
+        .map(|pair| {
+            let mut c = counter();
+            let _ = run(a.index(), b.index(), metric, vec![pair], &mut c);
+            c.diff
+        })
+        .collect();
+    for part in parts {
+        for (t, p) in top.diff.iter_mut().zip(part) {
+            *t += p;
+        }
+    }
+    Ok(top.counts())
+}
