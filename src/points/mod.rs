@@ -31,7 +31,9 @@ use crate::tree::{BalanceOptions, NodeId, Tree};
 #[cfg(any(feature = "saved", feature = "mpi"))]
 pub(crate) use build::settle;
 #[cfg(any(feature = "saved", feature = "serde"))]
-pub(crate) use raw::{PointTreeParts, PointTreeView};
+pub(crate) use raw::{checked_root, PointTreeParts, PointTreeView};
+#[cfg(feature = "serde")]
+pub(crate) use dynamic::DynamicParts;
 pub(crate) use runs::Runs;
 #[cfg(feature = "mpi")]
 pub(crate) use {

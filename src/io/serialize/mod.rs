@@ -23,6 +23,7 @@
 //! assert!(bad.unwrap_err().to_string().contains("axis 0"));
 //! ```
 
+mod dynamic;
 mod geom;
 mod points;
 mod tree;
