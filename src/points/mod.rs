@@ -31,15 +31,15 @@ use crate::tree::{BalanceOptions, NodeId, Tree};
 #[cfg(any(feature = "saved", feature = "mpi"))]
 pub(crate) use build::settle;
 #[cfg(any(feature = "saved", feature = "serde"))]
-pub(crate) use raw::{checked_root, PointTreeParts, PointTreeView};
-#[cfg(feature = "serde")]
-pub(crate) use dynamic::DynamicParts;
+pub(crate) use raw::{PointTreeParts, PointTreeView};
 pub(crate) use runs::Runs;
 #[cfg(feature = "mpi")]
 pub(crate) use {
     build::{index_bits, order_by_full_keys, pack},
     radix::sort_keyed,
 };
+#[cfg(feature = "serde")]
+pub(crate) use {dynamic::DynamicParts, raw::checked_root};
 
 /// A point quadtree (D = 2), octree (D = 3) or 2^D-tree storing (point, item) pairs.
 ///

@@ -23,9 +23,13 @@
 //! assert!(bad.unwrap_err().to_string().contains("axis 0"));
 //! ```
 
+mod compressed;
 mod dynamic;
 mod geom;
+mod locator;
+mod mesh;
 mod points;
+mod settings;
 mod tree;
 
 /// `v` as an array of `D` values, or an error naming `what` and the lengths.
