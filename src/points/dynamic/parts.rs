@@ -124,7 +124,7 @@ impl<S: Scalar, T, const D: usize> DynamicPointTree<S, T, D> {
                 tree.node_count()
             )));
         }
-        let (owned, live, pos) =
+        let Entries { owned, live, pos } =
             check_nodes(&tree, &parts.nodes, &parts.slots, n, parts.max_depth)?;
         let mut nodes = vec![NodeData::default(); tree.node_count()];
         for (id, _) in tree.pre_order() {
@@ -149,6 +149,14 @@ impl<S: Scalar, T, const D: usize> DynamicPointTree<S, T, D> {
     }
 }
 
+/// What [`check_nodes`] finds of the chunk array: which entries lie in a chunk, which are live,
+/// and each slot's entry.
+struct Entries {
+    owned: Vec<bool>,
+    live: Vec<bool>,
+    pos: Vec<u32>,
+}
+
 /// Checks every live node's record against `tree` and the chunk array (`slots`, for `n` items)
 /// in 64-bit arithmetic: a leaf's count within its chunk and its chunk within the array, an
 /// inner node above `max_depth`, without a chunk and counting what its children count, the
@@ -161,7 +169,7 @@ fn check_nodes<const D: usize>(
     slots: &[u32],
     n: usize,
     max_depth: u8,
-) -> Result<(Vec<bool>, Vec<bool>, Vec<u32>), ValidationError> {
+) -> Result<Entries, ValidationError> {
     let links = |id: u32, detail: String| {
         Err(ValidationError::new(Invariant::Links)
             .node(id)
@@ -218,5 +226,5 @@ fn check_nodes<const D: usize>(
             pos[slot as usize] = e;
         }
     }
-    Ok((owned, live, pos))
+    Ok(Entries { owned, live, pos })
 }
