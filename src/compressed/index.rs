@@ -102,6 +102,19 @@ impl<S: Scalar, const D: usize> CompressedIndex<S, D> {
             .map(|p| geometry.deep_key(&p.map(Scalar::to_f64)))
             .collect();
         let order = deep_order(&keys);
+        Self::from_keyed(geometry, domain, points, keys, order)
+    }
+
+    /// The index of `points` with their deep `keys`, taken in `order` (slot numbers; `None` for
+    /// `0..n`), which must be a deep Morton order of the keys: equal keys share a leaf, listed
+    /// in this order.
+    pub(crate) fn from_keyed(
+        geometry: RootGeometry<D>,
+        domain: Aabb<f64, D>,
+        points: Vec<[S; D]>,
+        keys: Vec<DeepKey<D>>,
+        order: Option<Vec<u32>>,
+    ) -> Self {
         let slot = |i: usize| order.as_ref().map_or(i, |o| o[i] as usize);
         let n = keys.len();
         let starts: Vec<usize> = (0..n)

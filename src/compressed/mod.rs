@@ -43,6 +43,8 @@
 mod build;
 mod index;
 mod locate;
+#[cfg(feature = "serde")]
+mod parts;
 mod skip;
 mod subdivision;
 pub(crate) mod topology;

@@ -135,6 +135,11 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
         }
     }
 
+    /// The seed the sample is drawn with ([`SkipQuadtree::with_seed`]).
+    pub fn seed(&self) -> u64 {
+        self.seed
+    }
+
     /// Level 0: every point, and every query of [`CompressedTree`].
     pub fn base(&self) -> &CompressedTree<S, T, D> {
         &self.base

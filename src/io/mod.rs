@@ -17,7 +17,9 @@
 //!   and as XYZ/CSV text, read and written with their attributes; `las` (behind the `las`
 //!   feature; LAZ with `laz`) as ASPRS LAS with integer coordinates kept.
 //! - `serialize` (behind the `serde` feature, private): `Serialize` and `Deserialize` for boxes,
-//!   cells, the arena, point trees and region trees, each checked on the way in.
+//!   cells, the arena, every point tree (plain, dynamic, compressed, skip), region trees, the
+//!   mesher's board, mesh and options, planar subdivisions and their locators, tori, metrics
+//!   and balance options, each checked on the way in.
 
 mod board_file;
 mod board_syntax;

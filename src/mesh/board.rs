@@ -11,6 +11,7 @@ pub type Point = [i64; 2];
 /// the end). After [`Board::new`] the vertices run counter-clockwise and no vertex is the middle
 /// of two collinear edges.
 #[derive(Clone, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Component {
     /// The vertices in order.
     pub outline: Vec<Point>,

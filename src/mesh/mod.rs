@@ -25,6 +25,8 @@ pub use budget::{TooManyTriangles, DEFAULT_MAX_TRIANGLES, PEAK_BYTES_PER_TRIANGL
 pub use error::BoardError;
 pub use generate::{generate_mesh, MeshOutcome};
 pub use halfedge::{HalfEdgeError, HalfEdges};
+#[cfg(feature = "serde")]
+pub(crate) use options::MeshSettings;
 pub use options::{MeshOptions, Mode, OptionsError, SizeFn};
 pub use output::{Mesh, Segment, SegmentKind};
 pub use random_board::{random_board, random_board_capacity, try_random_board, RandomBoardError};

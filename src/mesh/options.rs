@@ -29,6 +29,7 @@ pub type SizeFn = dyn Fn([f64; 2]) -> f64 + Send + Sync;
 
 /// Which cells the mesher splits (beyond the size limits, which apply in both modes).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Mode {
     /// The chapter's GENERATEMESH: a cell meeting a component edge is split down to the near
     /// size, one grid unit by default.
@@ -70,6 +71,17 @@ pub struct MeshOptions {
     near_size: Option<i64>,
     max_size: Option<i64>,
     size_fn: Option<Arc<SizeFn>>,
+    max_triangles: Option<u64>,
+}
+
+/// The serializable settings of [`MeshOptions`] (all but the size function).
+#[cfg(feature = "serde")]
+#[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
+pub(crate) struct MeshSettings {
+    mode: Mode,
+    grid_unit: Option<i64>,
+    near_size: Option<i64>,
+    max_size: Option<i64>,
     max_triangles: Option<u64>,
 }
 
@@ -156,6 +168,46 @@ impl MeshOptions {
     /// The mode set.
     pub fn current_mode(&self) -> Mode {
         self.mode
+    }
+
+    /// The settings as set (`None` where the default applies), and whether a size function is
+    /// set: what serde writes.
+    #[cfg(feature = "serde")]
+    pub(crate) fn settings(&self) -> (MeshSettings, bool) {
+        let s = MeshSettings {
+            mode: self.mode,
+            grid_unit: self.grid_unit,
+            near_size: self.near_size,
+            max_size: self.max_size,
+            max_triangles: self.max_triangles,
+        };
+        (s, self.size_fn.is_some())
+    }
+
+    /// The options of `s`, with no size function, once the settings that do not depend on the
+    /// board are checked: the grid unit a positive power of two, the size limits positive.
+    ///
+    /// # Errors
+    /// [`OptionsError::GridUnitNotPowerOfTwo`] or [`OptionsError::SizeNotPositive`], naming the
+    /// value.
+    #[cfg(feature = "serde")]
+    pub(crate) fn from_settings(s: MeshSettings) -> Result<Self, OptionsError> {
+        if let Some(unit) = s.grid_unit.filter(|&u| u <= 0 || u & (u - 1) != 0) {
+            return Err(OptionsError::GridUnitNotPowerOfTwo { unit });
+        }
+        for (option, size) in [("near size", s.near_size), ("maximum size", s.max_size)] {
+            if let Some(size) = size.filter(|&v| v <= 0) {
+                return Err(OptionsError::SizeNotPositive { option, size });
+            }
+        }
+        Ok(MeshOptions {
+            mode: s.mode,
+            grid_unit: s.grid_unit,
+            near_size: s.near_size,
+            max_size: s.max_size,
+            size_fn: None,
+            max_triangles: s.max_triangles,
+        })
     }
 
     /// Meshes `board` with these options.

@@ -3,6 +3,7 @@
 
 /// What a marked segment of a [`Mesh`] lies on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum SegmentKind {
     /// The board's boundary.
     Boundary,
@@ -12,6 +13,7 @@ pub enum SegmentKind {
 
 /// A mesh edge that lies on the board boundary or on a component's outline.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Segment {
     /// The two vertex indices.
     pub vertices: [u32; 2],

@@ -40,6 +40,8 @@ pub(crate) use {
     build::{index_bits, order_by_full_keys, pack},
     radix::sort_keyed,
 };
+#[cfg(feature = "serde")]
+pub(crate) use {dynamic::DynamicParts, raw::checked_root};
 
 /// A point quadtree (D = 2), octree (D = 3) or 2^D-tree storing (point, item) pairs.
 ///

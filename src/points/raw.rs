@@ -46,6 +46,33 @@ pub(crate) struct PointTreeParts<S, T, const D: usize> {
     pub balanced: Option<BalanceOptions>,
 }
 
+/// The root cube of `half_lo` and `half_side` ([`RootGeometry::halves`]), checked with the
+/// `domain` every point must lie in: both finite, the domain a box inside the cube. Shared by
+/// every tree read back from its parts.
+///
+/// # Errors
+/// [`Invariant::Settings`] naming the root cube's or the domain's fault, or the first axis on
+/// which the domain leaves the cube.
+pub(crate) fn checked_root<const D: usize>(
+    half_lo: [f64; D],
+    half_side: f64,
+    domain: &Aabb<f64, D>,
+) -> Result<RootGeometry<D>, ValidationError> {
+    let settings = |detail: String| ValidationError::new(Invariant::Settings).detail(detail);
+    let geometry = RootGeometry::try_from_halves(half_lo, half_side)
+        .map_err(|e| settings(format!("the root cube: {e}")))?;
+    Aabb::new(domain.min, domain.max).map_err(|e| settings(format!("the domain: {e}")))?;
+    let root = geometry.root_box();
+    if let Some(axis) = (0..D).find(|&a| domain.min[a] < root.min[a] || domain.max[a] > root.max[a])
+    {
+        return Err(settings(format!(
+            "the domain [{}, {}] on axis {axis} is not inside the root cube's [{}, {}]",
+            domain.min[axis], domain.max[axis], root.min[axis], root.max[axis]
+        )));
+    }
+    Ok(geometry)
+}
+
 impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// The stored arrays and settings.
     pub(crate) fn view(&self) -> PointTreeArrays<'_, S, T, D> {
@@ -87,19 +114,8 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
                 Cell::<D>::MAX_LEVEL
             )));
         }
-        let geometry = RootGeometry::try_from_halves(parts.half_lo, parts.half_side)
-            .map_err(|e| settings(format!("the root cube: {e}")))?;
+        let geometry = checked_root(parts.half_lo, parts.half_side, &parts.domain)?;
         let domain = parts.domain;
-        Aabb::new(domain.min, domain.max).map_err(|e| settings(format!("the domain: {e}")))?;
-        let root = geometry.root_box();
-        if let Some(axis) =
-            (0..D).find(|&a| domain.min[a] < root.min[a] || domain.max[a] > root.max[a])
-        {
-            return Err(settings(format!(
-                "the domain [{}, {}] on axis {axis} is not inside the root cube's [{}, {}]",
-                domain.min[axis], domain.max[axis], root.min[axis], root.max[axis]
-            )));
-        }
         if parts.points.len() != parts.items.len() || parts.points.len() > u32::MAX as usize {
             return Err(ValidationError::new(Invariant::Lengths).detail(format!(
                 "{} points, {} items (at most 2^32 - 1 of each)",

@@ -127,6 +127,7 @@ pub(crate) fn axis_gap(q: f64, lo: f64, hi: f64) -> f64 {
 /// The squared Euclidean distance, sum of `(a_i - b_i)^2` (distances and maximum distances are in
 /// these squared units).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SquaredEuclidean;
 
 impl<const D: usize> Metric<D> for SquaredEuclidean {
@@ -156,6 +157,7 @@ impl<const D: usize> Metric<D> for SquaredEuclidean {
 
 /// The Manhattan (L1) distance, sum of `|a_i - b_i|`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Manhattan;
 
 impl<const D: usize> Metric<D> for Manhattan {
@@ -179,6 +181,7 @@ impl<const D: usize> Metric<D> for Manhattan {
 
 /// The Chebyshev (L-infinity) distance, max of `|a_i - b_i|`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Chebyshev;
 
 impl<const D: usize> Metric<D> for Chebyshev {

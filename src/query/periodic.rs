@@ -47,6 +47,7 @@ pub struct Torus<const D: usize> {
 
 /// What [`Torus::prepare`] does with a point outside the period box on a wrapping axis.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum OutsidePoints {
     /// Bring it into `[lo, hi)` by whole periods.
     Wrap,

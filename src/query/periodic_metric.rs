@@ -78,6 +78,7 @@ impl AxisMetric for Chebyshev {
 /// assert_eq!(m.distance(&[0.0, 0.0], &[5.0, 5.0]), 50.0); // never more than half a period
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct MinImage<M, const D: usize> {
     /// The domain.
     pub torus: Torus<D>,

@@ -6,6 +6,7 @@
 //! bug in those helpers cannot hide a bug in the code under test.
 #![allow(dead_code)]
 
+pub mod mutate;
 pub mod points;
 pub mod updates;
 

@@ -4,7 +4,7 @@
 
 use super::{all_options, leaf_cells};
 use orthtree::prelude::*;
-use orthtree::query::Location;
+use orthtree::query::{Location, Metric};
 use orthtree::{
     geom::RootGeometry, points::PointTreeBuilder, tree::BalanceOptions, Aabb, Cell, PointTree,
     Scalar,
@@ -207,5 +207,49 @@ pub fn unit_builder<const D: usize>(
     match max_depth {
         Some(m) => b.max_depth(m),
         None => b,
+    }
+}
+
+/// `back`, a copy of `original` read back (from a saved file, a serde document), checked: valid,
+/// the same (point, item) pairs in the same slots, and for each query point the same answers as
+/// `original` (box queries and k nearest, ties and slots included), both checked against a brute
+/// force over `original`'s pairs.
+pub fn same_answers<P, const D: usize>(original: &P, back: &P, qs: &[[f64; D]])
+where
+    P: PointSet<D, Scalar = f64, Item = u32>,
+{
+    let metric = orthtree::query::SquaredEuclidean;
+    back.validate().unwrap();
+    let pairs = |t: &P| -> Vec<([f64; D], u32)> { t.iter().map(|(p, &i)| (*p, i)).collect() };
+    let all = pairs(original);
+    assert_eq!(pairs(back), all, "the pairs by slot");
+    for (j, q) in qs.iter().enumerate() {
+        let r = (j % 4) as f64 * 0.75;
+        let b = Aabb::new(q.map(|x| x - r), q.map(|x| x + r)).unwrap();
+        let mut want: Vec<u32> = (all.iter().filter(|(p, _)| b.contains(p)))
+            .map(|&(_, i)| i)
+            .collect();
+        want.sort_unstable();
+        let mut got: Vec<u32> = back.query(b).unwrap().map(|(_, &i)| i).collect();
+        got.sort_unstable();
+        assert_eq!(got, want, "box around {q:?}");
+        let k = 1 + j % 7;
+        let mut dist: Vec<f64> = all.iter().map(|(p, _)| metric.distance(q, p)).collect();
+        dist.sort_by(f64::total_cmp);
+        let near = |t: &P| -> Vec<(usize, u32, f64)> {
+            let found = t.k_nearest(q, k).unwrap();
+            found
+                .iter()
+                .map(|n| (n.index, *n.item, n.distance))
+                .collect()
+        };
+        let (got, want) = (near(back), near(original));
+        assert_eq!(got, want, "{k} nearest of {q:?}");
+        let got: Vec<f64> = got.iter().map(|n| n.2).collect();
+        assert_eq!(
+            got,
+            dist[..k.min(dist.len())],
+            "{k} nearest of {q:?} by brute force"
+        );
     }
 }

@@ -11,4 +11,6 @@ mod workload;
 mod compressed;
 mod compressed_deep;
 mod point_location;
+#[cfg(feature = "serde")]
+mod serde_compressed;
 mod skip;

@@ -28,8 +28,12 @@ mod queries;
 mod saved;
 #[cfg(feature = "saved")]
 mod saved_fuzz;
+#[cfg(feature = "serde")]
+mod serde_dynamic;
 #[cfg(all(feature = "serde", feature = "saved"))]
 mod serde_round_trips;
+#[cfg(feature = "serde")]
+mod serde_settings;
 mod streaming;
 mod updates;
 mod updates_after_balance;

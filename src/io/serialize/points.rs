@@ -70,17 +70,7 @@ where
     fn deserialize<De: Deserializer<'de>>(d: De) -> Result<Self, De::Error> {
         let o = PointTreeOwned::<S, T>::deserialize(d)?;
         let custom = |m: String| De::Error::custom(format!("point tree: {m}"));
-        if o.points.len() % D != 0 {
-            return Err(custom(format!(
-                "{} coordinates are not whole points of {D}",
-                o.points.len()
-            )));
-        }
-        let points: Vec<[S; D]> = o
-            .points
-            .chunks_exact(D)
-            .map(|c| core::array::from_fn(|a| c[a]))
-            .collect();
+        let points = flat_points::<De::Error, S, D>("point tree", o.points)?;
         let balanced = match o.balance {
             None => None,
             Some((c, k)) => Some(
@@ -107,4 +97,21 @@ where
         };
         PointTree::from_parts(parts).map_err(|e| custom(e.to_string()))
     }
+}
+
+/// `flat` (n D coordinates) as n points, or an error naming `what` and the count.
+pub(super) fn flat_points<E: serde::de::Error, S: Copy, const D: usize>(
+    what: &str,
+    flat: Vec<S>,
+) -> Result<Vec<[S; D]>, E> {
+    if flat.len() % D != 0 {
+        return Err(E::custom(format!(
+            "{what}: {} coordinates are not whole points of {D}",
+            flat.len()
+        )));
+    }
+    Ok(flat
+        .chunks_exact(D)
+        .map(|c| core::array::from_fn(|a| c[a]))
+        .collect())
 }

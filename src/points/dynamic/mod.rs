@@ -49,10 +49,14 @@
 //! topology.
 
 mod index;
+#[cfg(feature = "serde")]
+mod parts;
 mod pool;
 mod update;
 
 pub use index::{DynamicIndex, DynamicNode};
+#[cfg(feature = "serde")]
+pub(crate) use parts::DynamicParts;
 
 use super::PointTree;
 use crate::error::{Error, ValidationError};

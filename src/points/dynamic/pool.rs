@@ -83,6 +83,46 @@ impl<S: Copy + Default, const D: usize> Pool<S, D> {
         }
     }
 
+    /// The pool of a tree read back from its arrays: `owned[e]` tells whether entry `e` lies in
+    /// a leaf's chunk; every maximal run of other entries becomes free space (cut into powers of
+    /// two as [`Pool::free`] does), and every entry a query never reads (free or beyond its
+    /// chunk's count, `live[e]` false) gets `filler` as its point. The free lists may cut the
+    /// space differently from the written tree's, which only changes where later chunks go.
+    /// O(n log n) at worst.
+    #[cfg(feature = "serde")]
+    pub(super) fn restore(
+        mut points: Vec<[S; D]>,
+        slots: Vec<u32>,
+        owned: &[bool],
+        live: &[bool],
+    ) -> Self {
+        let filler = (0..points.len())
+            .find(|&e| live[e])
+            .map_or([S::default(); D], |e| points[e]);
+        for (p, _) in points.iter_mut().zip(live).filter(|(_, &l)| !l) {
+            *p = filler;
+        }
+        let mut pool = Pool {
+            points,
+            slots,
+            free: Vec::new(),
+            free_len: 0,
+        };
+        let mut e = 0;
+        while e < owned.len() {
+            if owned[e] {
+                e += 1;
+                continue;
+            }
+            let start = e;
+            while e < owned.len() && !owned[e] {
+                e += 1;
+            }
+            pool.free(start as u32, (e - start) as u32);
+        }
+        pool
+    }
+
     /// An empty pool with room for `n` entries.
     pub(super) fn with_capacity(n: usize) -> Self {
         Pool {
