@@ -1,7 +1,8 @@
 //! A hint to the processor to start loading a value into cache, so that cache misses overlap
-//! instead of coming one after another. The bulk build's gather reads the input in Morton
-//! order, which for scattered points is a random walk over the input, and asks for the record
-//! [`LOOKAHEAD`] steps ahead; the query engines ask for the runs of the nodes they stack
+//! instead of coming one after another. The distributed build's gather reads its input in
+//! Morton order, which for scattered points is a random walk over the input, and asks for the
+//! record `LOOKAHEAD` steps ahead (the measurements below were made on the in-memory bulk build,
+//! which now distributes its records into cache-sized buckets instead: `points/distribute.rs`); the query engines ask for the runs of the nodes they stack
 //! ([`prefetch_run`]; measured in `query/range.rs`).
 //!
 //! The gather, measured (10^6 uniform points, `(point, u64)` input, the build alone, four alternating runs
@@ -15,6 +16,7 @@
 //! A plain load of the record ahead (safe code) did not help: it waits like the one it hides.
 
 /// How many records ahead of the one being read the gather asks for.
+#[cfg(feature = "mpi")]
 pub(crate) const LOOKAHEAD: usize = 24;
 
 /// Starts loading the cache line holding the start of `value`; does nothing else (and

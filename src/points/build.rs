@@ -24,7 +24,6 @@ use super::PointTree;
 use crate::error::Error;
 use crate::geom::RootGeometry;
 use crate::geom::{Aabb, Cell, Dim, Scalar};
-use crate::prefetch::{prefetch, LOOKAHEAD};
 use crate::tree::{NodeId, Tree};
 
 /// The bucket size used unless one is set: a leaf holds up to 64 points before it splits.
@@ -111,14 +110,7 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
     /// given root box (each naming the point, axis and value), [`Error::InvalidRootBox`],
     /// [`Error::ZeroBucketSize`], [`Error::MaxDepthTooLarge`], [`Error::TooManyPoints`].
     pub fn build<T: Clone>(&self, entries: &[([S; D], T)]) -> Result<PointTree<S, T, D>, Error> {
-        self.build_with(
-            entries.len(),
-            |i| &entries[i].0,
-            |i, later| {
-                prefetch(&entries[later]);
-                entries[i].clone()
-            },
-        )
+        self.build_with(entries.len(), |i| &entries[i].0, |i| entries[i].clone())
     }
 
     /// Builds from owned (point, item) pairs, moving the items.
@@ -141,9 +133,7 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
         self.build_with(
             points.len(),
             |i| &points[i],
-            |i, later| {
-                prefetch(&points[later]);
-                prefetch(&items[later]);
+            |i| {
                 (
                     points[i],
                     items[i].take().expect("each input index is taken once"),
@@ -152,14 +142,13 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
         )
     }
 
-    /// The build over `n` points: `point(i)` reads point `i`; `take(i, later)` moves or clones
-    /// entry `i` out, and may [`prefetch`] entry `later`, the one it will be asked for
-    /// [`LOOKAHEAD`] calls from now.
+    /// The build over `n` points: `point(i)` reads point `i`; `take(i)` moves or clones entry
+    /// `i` out (called once for each, in input order).
     fn build_with<'p, T>(
         &self,
         n: usize,
         point: impl Fn(usize) -> &'p [S; D],
-        mut take: impl FnMut(usize, usize) -> ([S; D], T),
+        take: impl FnMut(usize) -> ([S; D], T),
     ) -> Result<PointTree<S, T, D>, Error>
     where
         S: 'p,
@@ -169,17 +158,15 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
         let (geometry, domain) = settle(root, bounds, n);
         let bits = index_bits(n);
         let mut packed: Vec<u64> = Vec::with_capacity(n);
-        geometry.keys_into(n, &point, |i, key| packed.push(pack(key, i, bits)));
-        super::radix::sort_keyed(&mut packed);
-        let mut points = Vec::with_capacity(n);
-        let mut items = Vec::with_capacity(n);
-        // The gather reads the input in Morton order, at random for scattered points: ask for
-        // the records ahead so that their cache misses overlap.
-        for (j, &k) in packed.iter().enumerate() {
-            let (p, item) = take(unpack_index(k, bits), later_index(&packed, j, bits));
-            points.push(p);
-            items.push(item);
-        }
+        let (mut all, mut any) = (u64::MAX, 0u64);
+        geometry.keys_into(n, &point, |i, key| {
+            let k = pack(key, i, bits);
+            all &= k;
+            any |= k;
+            packed.push(k);
+        });
+        let (packed, points, items) =
+            super::distribute::sort_gather(packed, all ^ any, bits, [S::zero(); D], take);
         Ok(self.assemble(geometry, domain, packed, bits, points, items))
     }
 
@@ -278,20 +265,6 @@ pub(crate) fn index_bits(n: usize) -> u32 {
 #[inline]
 pub(crate) fn pack(key: u64, index: usize, bits: u32) -> u64 {
     (key >> bits << bits) | index as u64
-}
-
-/// The input index the gather reads [`LOOKAHEAD`] steps after step `j` (its own at the end),
-/// for it to [`prefetch`].
-#[inline]
-pub(super) fn later_index(packed: &[u64], j: usize, bits: u32) -> usize {
-    let later = packed.get(j + LOOKAHEAD).unwrap_or(&packed[j]);
-    unpack_index(*later, bits)
-}
-
-/// The input index of a [`pack`]ed key.
-#[inline]
-pub(crate) fn unpack_index(packed: u64, bits: u32) -> usize {
-    (packed & ((1u64 << bits) - 1)) as usize
 }
 
 /// Puts each run of `points` (with `items` and `packed`) whose packed keys agree above the

@@ -7,6 +7,7 @@
 
 mod batch_update;
 mod build;
+mod distribute;
 mod dynamic;
 mod index;
 pub(crate) mod leaves;

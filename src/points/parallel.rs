@@ -7,11 +7,10 @@
 //! points and items into key order. Cutting the sorted run into nodes stays serial: it is a small
 //! part of the time. The result is the same tree as [`PointTreeBuilder::build`] gives.
 
-use super::build::{index_bits, later_index, pack, settle, unpack_index};
+use super::build::{index_bits, pack, settle};
 use super::{PointTree, PointTreeBuilder};
 use crate::error::Error;
 use crate::geom::{Aabb, Scalar};
-use crate::prefetch::prefetch;
 use rayon::prelude::*;
 
 /// Points per parallel task when checking the input.
@@ -55,25 +54,26 @@ impl<S: Scalar + Send + Sync, const D: usize> PointTreeBuilder<S, D> {
         let (geometry, domain) = settle(root, bounds, n);
         let bits = index_bits(n);
         let mut packed = vec![0u64; n];
-        packed
+        let (all, any) = packed
             .par_chunks_mut(CHUNK)
             .enumerate()
-            .for_each(|(c, out)| {
+            .map(|(c, out)| {
                 let first = c * CHUNK;
                 let point = |i: usize| &entries[first + i].0;
+                let (mut all, mut any) = (u64::MAX, 0u64);
                 geometry.keys_into(out.len(), point, |i, key| {
-                    out[i] = pack(key, first + i, bits);
+                    let k = pack(key, first + i, bits);
+                    all &= k;
+                    any |= k;
+                    out[i] = k;
                 });
-            });
-        super::radix::par_sort_keyed(&mut packed);
-        let (points, items): (Vec<[S; D]>, Vec<T>) = packed
-            .par_iter()
-            .enumerate()
-            .map(|(j, &k)| {
-                prefetch(&entries[later_index(&packed, j, bits)]);
-                entries[unpack_index(k, bits)].clone()
+                (all, any)
             })
-            .unzip();
+            .reduce(|| (u64::MAX, 0), |a, b| (a.0 & b.0, a.1 | b.1));
+        let (packed, points, items) =
+            super::distribute::par_sort_gather(packed, all ^ any, bits, [S::zero(); D], |i| {
+                entries[i].clone()
+            });
         Ok(self.assemble(geometry, domain, packed, bits, points, items))
     }
 }

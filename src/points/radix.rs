@@ -61,44 +61,16 @@ pub(crate) fn sort_keyed<P: Packed>(pairs: &mut [P]) {
     sort_run(pairs, &mut buffer, 56, true);
 }
 
-/// [`sort_keyed`] with the runs after the first byte that differs sorted in parallel.
-#[cfg(feature = "rayon")]
-pub(super) fn par_sort_keyed<P: Packed>(pairs: &mut [P]) {
-    use rayon::prelude::*;
+/// [`sort_keyed`] of values whose bits above byte `shift / 8` are the same in all, with a
+/// buffer kept between calls (the bulk build sorts many buckets one after another).
+pub(super) fn sort_keyed_from<P: Packed>(pairs: &mut [P], buffer: &mut Vec<P>, shift: u32) {
     if pairs.len() <= SMALL {
         sort_short(pairs, P::MAX);
         return;
     }
-    let mut shift = 56u32;
-    let counts = loop {
-        let counts = count_bytes(pairs, shift);
-        if counts.iter().all(|&c| c < pairs.len()) {
-            break counts;
-        }
-        match shift.checked_sub(8) {
-            Some(next) => shift = next,
-            None => return, // every key equal: already in input order
-        }
-    };
-    let mut buffer = vec![P::default(); pairs.len()];
-    scatter(pairs, &mut buffer, shift, &counts);
-    let Some(next) = shift.checked_sub(8) else {
-        pairs.copy_from_slice(&buffer);
-        return;
-    };
-    // the 256 runs, as disjoint pieces of both arrays
-    let mut runs = Vec::with_capacity(256);
-    let (mut rest_pairs, mut rest_buffer) = (&mut *pairs, &mut buffer[..]);
-    for &count in &counts {
-        let (p, ps) = rest_pairs.split_at_mut(count);
-        let (b, bs) = rest_buffer.split_at_mut(count);
-        if count > 0 {
-            runs.push((p, b));
-        }
-        (rest_pairs, rest_buffer) = (ps, bs);
-    }
-    runs.into_par_iter()
-        .for_each(|(p, b)| sort_run(p, b, next, false));
+    buffer.clear();
+    buffer.resize(pairs.len(), P::default());
+    sort_run(pairs, buffer, shift, true);
 }
 
 /// The byte at `shift` (within the key) of every pair, counted.
@@ -187,28 +159,14 @@ mod tests {
             .collect();
         let mut expected = pairs.clone();
         expected.sort_unstable();
-        let mut parallel = pairs.clone();
         sort_keyed(&mut pairs);
         assert_eq!(pairs, expected);
-        #[cfg(feature = "rayon")]
-        {
-            par_sort_keyed(&mut parallel);
-            assert_eq!(parallel, expected);
-        }
-        let _ = &mut parallel;
         // The same keys as `u64`s (the key's low 32 bits given to the index).
         let mut packed: Vec<u64> = expected.iter().map(|&p| (p >> 32) as u64).collect();
         let mut by_value = packed.clone();
         by_value.sort_unstable();
         sort_keyed(&mut packed);
         assert_eq!(packed, by_value);
-        #[cfg(feature = "rayon")]
-        {
-            let mut parallel = by_value.clone();
-            parallel.reverse();
-            par_sort_keyed(&mut parallel);
-            assert_eq!(parallel, by_value);
-        }
     }
 
     #[test]
