@@ -3,9 +3,9 @@
 //!
 //! The stages are the serial build's (see `build.rs`): checking the points and finding their
 //! bounds (in chunks, the first error in input order reported, as serially), computing the keys,
-//! the radix sort (after the first byte that differs, its 256 runs in parallel), and gathering
-//! points and items into key order. Cutting the sorted run into nodes stays serial: it is a small
-//! part of the time. The result is the same tree as [`PointTreeBuilder::build`] gives.
+//! and the distribution into buckets and their sorts (`distribute.rs`: each chunk of the input
+//! counted and scattered by its own thread, then the buckets sorted in parallel). Cutting the
+//! sorted run into nodes stays serial: it is a small part of the time. The result is the same tree as [`PointTreeBuilder::build`] gives.
 
 use super::build::{index_bits, pack, settle};
 use super::{PointTree, PointTreeBuilder};

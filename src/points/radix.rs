@@ -1,8 +1,8 @@
-//! The sort behind the bulk build: (Morton key, input index) pairs packed into one integer
-//! ([`Packed`]) and sorted by key, equal keys in input order. The build packs a point's key with
-//! its low bits replaced by its index into a `u64` (8 bytes moved per point and pass, see
-//! `build.rs`); the batch insert packs the whole key and the index as `key << 32 | index` into a
-//! `u128`.
+//! The sort behind the bulk build's buckets (`distribute.rs`) and the batch insert: (Morton
+//! key, input index) pairs packed into one integer ([`Packed`]) and sorted by key, equal keys
+//! in input order. The build packs a point's key with its low bits replaced by its index into
+//! a `u64` (8 bytes moved per point and pass, see `build.rs`); the batch insert packs the whole
+//! key and the index as `key << 32 | index` into a `u128`.
 //!
 //! Most-significant-digit radix sort (the byte-wise MSD sort of McIlroy, Bostic and McIlroy,
 //! "Engineering radix sort", Computing Systems 6, 1993), out of place with one buffer: a run is
