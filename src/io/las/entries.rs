@@ -1,5 +1,5 @@
 //! The coordinates alone of an uncompressed LAS file, in world units, paired with their record
-//! numbers: the input of a point tree ([`crate::points::PointTreeBuilder::par_build`]), read
+//! numbers: the input of a point tree (`PointTreeBuilder::build` or `par_build`), read
 //! in one pass at the speed of the disk cache.
 //!
 //! The header is the `las` crate's; the point records are then read in blocks straight from
