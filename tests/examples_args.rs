@@ -1,8 +1,8 @@
-//! The library examples' command lines (`quadtree_points`, `point_location`; the command-line
-//! program has its own tests), run as a user runs them: every example answers `--help` (usage
-//! text, exit 0); an unknown option, a missing or bad value, work too large for memory and an
-//! output path in a missing folder each give one `error:` line naming the argument and exit 2,
-//! at once and never with a panic; small valid runs succeed.
+//! The library examples' command lines (`quadtree_points`, `point_location`, `build_scale`; the
+//! command-line program has its own tests), run as a user runs them: every example answers
+//! `--help` (usage text, exit 0); an unknown option, a missing or bad value, work too large for
+//! memory and an output path in a missing folder each give one `error:` line naming the
+//! argument and exit 2, at once and never with a panic; small valid runs succeed.
 //!
 //! The binaries are the ones `cargo test` builds next to this test (in the profile's
 //! `examples/` folder). When they are missing or older than the sources (this file run alone,
@@ -15,7 +15,7 @@ use std::sync::OnceLock;
 use std::time::{Duration, SystemTime};
 
 /// The examples covered here.
-const EXAMPLES: [&str; 2] = ["point_location", "quadtree_points"];
+const EXAMPLES: [&str; 3] = ["point_location", "quadtree_points", "build_scale"];
 
 /// The profile's folder (`target/release`): this test runs from its `deps/` folder.
 fn profile_dir() -> PathBuf {
@@ -164,6 +164,7 @@ fn missing_and_bad_values_are_named() {
         }
     }
     refused("quadtree_points", &["--n", "0"], &["--n", "0"]);
+    refused("build_scale", &["--runs", "0"], &["--runs", "0"]);
 }
 
 #[test]
@@ -175,6 +176,12 @@ fn work_too_large_for_memory_is_estimated_and_refused() {
             &["--n", n, "estimated", "the limit is"],
         );
     }
+    // within build_scale's range of counts, beyond this machine's memory
+    refused(
+        "build_scale",
+        &["--n", "4000000000"],
+        &["--n", "estimated", "the limit is"],
+    );
 }
 
 #[test]
@@ -216,4 +223,15 @@ fn small_valid_runs_succeed() {
     assert_eq!(r.code, 0, "{}", r.stderr);
     assert!(svg.is_file());
     let _ = std::fs::remove_dir_all(&dir);
+    let r = run("build_scale", &["--n", "5000", "--runs", "2"]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    // two builds of the same points: the same tree, digest and all
+    let digests: Vec<&str> = r
+        .stdout
+        .lines()
+        .filter_map(|l| l.split("items digest ").nth(1))
+        .collect();
+    assert_eq!(digests.len(), 2, "{}", r.stdout);
+    assert_eq!(digests[0], digests[1]);
+    assert!(r.stdout.contains("n 5000 build: median"), "{}", r.stdout);
 }

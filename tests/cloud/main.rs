@@ -8,6 +8,8 @@ mod common;
 
 mod formats;
 mod formats_hostile;
+#[cfg(all(feature = "las", feature = "rayon"))]
+mod las_entries;
 #[cfg(feature = "las")]
 mod las_files;
 mod neighbours;
