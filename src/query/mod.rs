@@ -48,10 +48,10 @@ pub use batch::{BatchError, ParallelQueries};
 pub(crate) use index::nearest_child_by_boxes;
 pub use index::SpatialIndex;
 pub use join::{Boundary, CsrDistances, Joins, KnnTable, PeriodicJoins, SparseDistances};
-#[cfg(feature = "mpi")]
-pub(crate) use knn::k_nearest;
 #[cfg(feature = "rayon")]
 pub use join::{ParallelJoins, ParallelPeriodicJoins};
+#[cfg(feature = "mpi")]
+pub(crate) use knn::k_nearest;
 pub use knn::Neighbor;
 pub use location::Location;
 pub use metric::{Chebyshev, Manhattan, Metric, SquaredEuclidean};
