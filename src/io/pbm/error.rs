@@ -72,7 +72,7 @@ pub enum PbmError {
         /// The first of them, escaped and cut short.
         found: String,
     },
-    /// The image breaks a [`Limits`] limit.
+    /// The image breaks a [`Limits`](crate::io::Limits) limit.
     Limit(LimitError),
     /// The image is too large for a region tree, or building it broke the byte limit.
     Image(ImageError),
