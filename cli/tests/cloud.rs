@@ -322,6 +322,55 @@ fn small_files_by_extension_whatever_the_case() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// An uncompressed LAS file indexed from its coordinates alone, in memory and streamed out of
+/// core: both write the bytes of the library's tree of the file's world coordinates.
+#[cfg(feature = "las")]
+#[test]
+fn index_of_a_las_file_in_memory_and_streamed_out_of_core() {
+    use orthtree::cloud::Frame;
+    let dir = scratch_dir("cloud-index-las");
+    let mut cloud: Cloud<i32> = Cloud::from_points(
+        (0..20_000)
+            .map(|i: i32| [i % 150 * 40, i / 150 * 40, (i * 7919) % 1000])
+            .collect(),
+    );
+    cloud.frame = Frame {
+        scale: [0.01, 0.01, 0.001],
+        offset: [500_000.0, 4_000_000.0, 10.0],
+    };
+    orthtree::io::las::write(&cloud, dir.join("scan.las"), false).unwrap();
+    let entries: Vec<([f64; 3], u32)> = cloud.world_points().into_iter().zip(0..).collect();
+    let tree = orthtree::PointTree::builder()
+        .bucket_size(16)
+        .build(&entries)
+        .unwrap();
+    let mut want = Vec::new();
+    orthtree::io::saved::write_point_tree(&tree, &mut want).unwrap();
+    let base = [
+        "index",
+        "scan.las",
+        "--bucket-size",
+        "16",
+        "--out",
+        "a.tree",
+    ];
+    let out = ok(&base, &dir);
+    assert!(out.contains("20000 points (coordinates only)"), "{out}");
+    assert!(
+        std::fs::read(dir.join("a.tree")).unwrap() == want,
+        "in memory"
+    );
+    for budget in ["1M", "64M"] {
+        let out = ok(&[&base[..], &["--budget", budget]].concat(), &dir);
+        assert!(out.contains("(streamed)"), "{out}");
+        assert!(
+            std::fs::read(dir.join("a.tree")).unwrap() == want,
+            "budget {budget}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// LAS and LAZ input (features `las`, `laz`): the cloud in world coordinates (scale and offset
 /// applied), downsampled as the library does.
 #[cfg(feature = "laz")]

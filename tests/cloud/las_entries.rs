@@ -1,4 +1,5 @@
-//! `io::las::read_entries`, the coordinates-only LAS reader behind indexing a file: the same
+//! `io::las::read_entries` and its stream `LasEntries`, the coordinates-only LAS readers behind
+//! indexing a file (in memory and out of core): the same
 //! world coordinates as the full reader (`las::read` then `Cloud::world_points`), paired with
 //! their record numbers, for legacy and extended formats with extra bytes and for block
 //! boundaries; the tree built from them equals the tree of the full read; truncated files,
@@ -80,6 +81,13 @@ fn entries_are_the_full_reads_world_points_in_file_order() {
         for (i, ((p, item), w)) in entries.iter().zip(&world).enumerate() {
             assert_eq!((p, *item as usize), (w, i), "n {n}, record {i}");
         }
+        let stream = las::LasEntries::open(&file.0).unwrap();
+        assert_eq!(stream.point_count(), n);
+        let streamed: Vec<([f64; 3], u32)> = stream.map(Result::unwrap).collect();
+        assert_eq!(
+            streamed, entries,
+            "n {n}: the stream reads what the whole read does"
+        );
     }
 }
 
@@ -117,6 +125,10 @@ fn a_truncated_file_names_the_first_missing_point() {
         } => assert_eq!((point, count, length), (59, 100, cut as u64)),
         other => panic!("{other}"),
     }
+    match las::LasEntries::open(&file.0).map(|_| ()).unwrap_err() {
+        LasError::Truncated { point, .. } => assert_eq!(point, 59),
+        other => panic!("{other}"),
+    }
 }
 
 #[test]
@@ -136,6 +148,11 @@ fn a_header_claiming_billions_of_points_is_refused_before_allocating() {
     let file = TempFile::new("claims-more.las", &b);
     let message = las::read_entries(&file.0).unwrap_err().to_string();
     assert!(message.contains("at most 4294967294"), "{message}");
+    let message = las::LasEntries::open(&file.0).map(|_| ()).unwrap_err();
+    assert!(
+        message.to_string().contains("at most 4294967294"),
+        "{message}"
+    );
 }
 
 #[cfg(feature = "laz")]

@@ -63,16 +63,18 @@ fn cloud_failure(name: &str, arg: &str, e: CloudError) -> Failure {
 }
 
 /// The bounding box of the points (the origin for none).
-pub fn bounds(points: &[[f64; 3]]) -> Aabb<f64, 3> {
+pub fn bounds<'a>(points: impl IntoIterator<Item = &'a [f64; 3]>) -> Aabb<f64, 3> {
     let mut min = [f64::INFINITY; 3];
     let mut max = [f64::NEG_INFINITY; 3];
+    let mut empty = true;
     for p in points {
+        empty = false;
         for k in 0..3 {
             min[k] = min[k].min(p[k]);
             max[k] = max[k].max(p[k]);
         }
     }
-    if points.is_empty() {
+    if empty {
         return Aabb {
             min: [0.0; 3],
             max: [0.0; 3],

@@ -4,12 +4,13 @@
 //! one.
 
 use super::commands::{bounds, load};
-use super::{scan, IndexArgs};
-use crate::limits::human_bytes;
+use super::{input, scan, IndexArgs};
+use crate::limits::{human_bytes, shown};
 use crate::progress::Phase;
 use crate::Failure;
 use orthtree::geom::Aabb;
-use orthtree::io::saved::{self, external::ExternalBuild, mapped::MappedTree};
+use orthtree::io::saved::external::{ExternalBuild, ExternalReport};
+use orthtree::io::saved::{self, mapped::MappedTree};
 use orthtree::{PointSet, PointTree};
 use std::path::Path;
 use std::time::Instant;
@@ -44,6 +45,11 @@ pub fn run(a: &IndexArgs) -> Result<(), Failure> {
     let start = Instant::now();
     let phase = Phase::start("sorting runs and merging them into the tree");
     let (report, name) = match a.input.as_deref() {
+        #[cfg(feature = "las")]
+        Some(path) if input::format_of(path)? == input::Format::Las => (
+            las_streamed(&build, path, &a.out),
+            format!("{} (streamed)", shown(path)),
+        ),
         None => {
             let (seed, n) = (a.source.seed, a.source.points);
             let name = format!("built-in scan (seed {seed}, epoch 0, {n} points, streamed)");
@@ -52,15 +58,23 @@ pub fn run(a: &IndexArgs) -> Result<(), Failure> {
                     .zip(0u32..)
                     .map(|((p, _, _), i)| (p, i))
             };
-            (build.write(returns, &a.out), name)
+            let report = build.write(returns, &a.out);
+            (
+                report.map_err(|e| Failure::Input(format!("{name}: {e}"))),
+                name,
+            )
         }
         Some(path) => {
             let (cloud, name) = load(Some(path), &a.source, 0)?;
             let entries = || cloud.points.iter().copied().zip(0u32..);
-            (build.write(entries, &a.out), name)
+            let report = build.write(entries, &a.out);
+            (
+                report.map_err(|e| Failure::Input(format!("{name}: {e}"))),
+                name,
+            )
         }
     };
-    let report = report.map_err(|e| Failure::Input(format!("{name}: {e}")))?;
+    let report = report?;
     drop(phase);
     let took = start.elapsed().as_secs_f64();
     say!("input:       {name}");
@@ -87,6 +101,38 @@ pub fn run(a: &IndexArgs) -> Result<(), Failure> {
     Ok(())
 }
 
+/// The out-of-core build of an uncompressed LAS file, its points streamed block by block in
+/// each of the build's two passes ([`LasEntries`]): the whole cloud is never in memory, so the
+/// file may be larger than it.
+#[cfg(feature = "las")]
+fn las_streamed(build: &ExternalBuild, path: &str, out: &Path) -> Result<ExternalReport, Failure> {
+    use orthtree::io::las::LasEntries;
+    let named = |e: &dyn std::fmt::Display| Failure::Input(format!("{}: {e}", shown(path)));
+    // The header's checks, before any pass.
+    LasEntries::open(path).map_err(|e| named(&e))?;
+    // A read that fails in either pass ends that pass's stream and is reported here, before
+    // whatever the build made of the shortened pass.
+    let failed = &core::cell::RefCell::new(None);
+    let source = || {
+        let mut stream = LasEntries::open(path)
+            .map_err(|e| *failed.borrow_mut() = Some(e))
+            .ok();
+        core::iter::from_fn(move || match stream.as_mut()?.next()? {
+            Ok(entry) => Some(entry),
+            Err(e) => {
+                *failed.borrow_mut() = Some(e);
+                stream = None;
+                None
+            }
+        })
+    };
+    let report = build.write(source, out);
+    if let Some(e) = failed.take() {
+        return Err(named(&e));
+    }
+    report.map_err(|e| named(&e))
+}
+
 /// Box queries through the map, each timed: columns through the domain's centre of a tenth
 /// and a hundredth of its x and y extents.
 fn query_through_map(mapped: &MappedTree<f64, u32, 3>, out: &Path) -> Result<(), Failure> {
@@ -106,19 +152,49 @@ fn query_through_map(mapped: &MappedTree<f64, u32, 3>, out: &Path) -> Result<(),
     Ok(())
 }
 
-/// The in-memory build, written, loaded back whole (every check) and queried.
-fn in_memory(a: &IndexArgs) -> Result<(), Failure> {
-    let fail = |e: &dyn std::fmt::Display| Failure::Input(format!("{}: {e}", a.out.display()));
+/// A point and its position in the input.
+type Entry = ([f64; 3], u32);
+
+/// The points to index, each with its position in the input: an uncompressed LAS file's
+/// coordinates alone ([`orthtree::io::las::read_entries`], without the other fields), any
+/// other input read whole.
+fn entries_of(a: &IndexArgs) -> Result<(Vec<Entry>, String), Failure> {
+    #[cfg(feature = "las")]
+    if let Some(path) = a.input.as_deref() {
+        if input::format_of(path)? == input::Format::Las {
+            let start = Instant::now();
+            let phase = Phase::start(&format!("reading {}", shown(path)));
+            let entries = orthtree::io::las::read_entries(path)
+                .map_err(|e| Failure::Input(format!("{}: {e}", shown(path))))?;
+            drop(phase);
+            say!(
+                "input:       {}: {} points (coordinates only), read in {}",
+                shown(path),
+                entries.len(),
+                ms(start.elapsed().as_secs_f64())
+            );
+            return Ok((entries, shown(path)));
+        }
+    }
     let (cloud, name) = load(a.input.as_deref(), &a.source, 0)?;
     let entries = cloud
         .entries()
         .map_err(|e| Failure::Input(format!("{name}: {e}")))?;
+    Ok((entries, name))
+}
+
+/// The in-memory build, written, loaded back whole (every check) and queried.
+fn in_memory(a: &IndexArgs) -> Result<(), Failure> {
+    let fail = |e: &dyn std::fmt::Display| Failure::Input(format!("{}: {e}", a.out.display()));
+    let (entries, name) = entries_of(a)?;
     let start = Instant::now();
     let phase = Phase::start("building the tree");
-    let tree = PointTree::builder()
-        .bucket_size(a.bucket_size)
-        .build(&entries)
-        .map_err(|e| Failure::Input(format!("{name}: {e}")))?;
+    let builder = PointTree::builder().bucket_size(a.bucket_size);
+    #[cfg(feature = "rayon")]
+    let tree = builder.par_build(&entries);
+    #[cfg(not(feature = "rayon"))]
+    let tree = builder.build(&entries);
+    let tree = tree.map_err(|e| Failure::Input(format!("{name}: {e}")))?;
     drop(phase);
     let build = start.elapsed().as_secs_f64();
     if a.source.no_files {
@@ -152,7 +228,7 @@ fn in_memory(a: &IndexArgs) -> Result<(), Failure> {
     let back: PointTree<f64, u32, 3> = saved::read_point_tree_file(&a.out).map_err(|e| fail(&e))?;
     drop(phase);
     let load_time = start.elapsed().as_secs_f64();
-    let query = column(&bounds(&cloud.points), 0.1);
+    let query = column(&bounds(entries.iter().map(|(p, _)| p)), 0.1);
     let start = Instant::now();
     let found = back
         .query_count(query)

@@ -1,6 +1,7 @@
 //! The coordinates alone of an uncompressed LAS file, in world units, paired with their record
 //! numbers: the input of a point tree (`PointTreeBuilder::build` or `par_build`), read
-//! in one pass at the speed of the disk cache.
+//! in one pass at the speed of the disk cache ([`read_entries`]), or streamed block by block
+//! for files larger than memory ([`LasEntries`]).
 //!
 //! The header is the `las` crate's; the point records are then read in blocks straight from
 //! the file, and the three 32-bit integers at the start of each record (every point format
@@ -56,6 +57,76 @@ fn convert(
     );
 }
 
+/// An uncompressed LAS file positioned at its first point record, with the layout of its
+/// records as its header declares them (checked against the file's length).
+#[derive(Debug)]
+struct Records {
+    file: std::fs::File,
+    /// Bytes of one record.
+    record: usize,
+    /// Records the header declares (all present in the file).
+    count: usize,
+    frame: Frame,
+}
+
+impl Records {
+    /// Opens `path`, reads and checks its header, and seeks to the first record.
+    fn open(path: &Path) -> Result<Records, LasError> {
+        let mut file = std::fs::File::open(path)?;
+        let length = file.metadata()?.len();
+        let header = raw::Header::read_from(&mut file).map_err(las_error(None))?;
+        let id = header.point_data_record_format;
+        let format = ::las::point::Format::new(id).map_err(las_error(None))?;
+        if format.is_compressed || format.has_waveform {
+            return Err(LasError::UnsupportedFormat(id));
+        }
+        let record = usize::from(header.point_data_record_length);
+        if record < usize::from(format.len()) {
+            return Err(LasError::Las {
+                point: None,
+                message: format!(
+                    "a record of {record} bytes is shorter than point format {id} ({} bytes)",
+                    format.len()
+                ),
+            });
+        }
+        let count = match header.large_file {
+            Some(large) if header.number_of_point_records == 0 => large.number_of_point_records,
+            _ => u64::from(header.number_of_point_records),
+        };
+        if count >= u64::from(u32::MAX) {
+            return Err(LasError::Las {
+                point: None,
+                message: format!("{count} points: at most {} fit a point tree", u32::MAX - 1),
+            });
+        }
+        let start = u64::from(header.offset_to_point_data);
+        let whole = length.saturating_sub(start) / record as u64;
+        if whole < count {
+            return Err(LasError::Truncated {
+                point: whole,
+                count,
+                length,
+            });
+        }
+        let frame = Frame {
+            scale: [
+                header.x_scale_factor,
+                header.y_scale_factor,
+                header.z_scale_factor,
+            ],
+            offset: [header.x_offset, header.y_offset, header.z_offset],
+        };
+        file.seek(SeekFrom::Start(start))?;
+        Ok(Records {
+            file,
+            record,
+            count: count as usize,
+            frame,
+        })
+    }
+}
+
 /// Reads the world coordinates of every point of the uncompressed LAS file at `path`, each
 /// paired with its record number (0, 1, ...), in file order.
 ///
@@ -76,54 +147,13 @@ fn convert(
 /// # Complexity
 /// O(n) time; memory the entries (32 bytes a point) and two blocks of at most 4 MiB.
 pub fn read_entries(path: impl AsRef<Path>) -> Result<Vec<([f64; 3], u32)>, LasError> {
-    let mut file = std::fs::File::open(path)?;
-    let length = file.metadata()?.len();
-    let header = raw::Header::read_from(&mut file).map_err(las_error(None))?;
-    let id = header.point_data_record_format;
-    let format = ::las::point::Format::new(id).map_err(las_error(None))?;
-    if format.is_compressed || format.has_waveform {
-        return Err(LasError::UnsupportedFormat(id));
-    }
-    let record = usize::from(header.point_data_record_length);
-    if record < usize::from(format.len()) {
-        return Err(LasError::Las {
-            point: None,
-            message: format!(
-                "a record of {record} bytes is shorter than point format {id} ({} bytes)",
-                format.len()
-            ),
-        });
-    }
-    let count = match header.large_file {
-        Some(large) if header.number_of_point_records == 0 => large.number_of_point_records,
-        _ => u64::from(header.number_of_point_records),
-    };
-    if count >= u64::from(u32::MAX) {
-        return Err(LasError::Las {
-            point: None,
-            message: format!("{count} points: at most {} fit a point tree", u32::MAX - 1),
-        });
-    }
-    let start = u64::from(header.offset_to_point_data);
-    let whole = length.saturating_sub(start) / record as u64;
-    if whole < count {
-        return Err(LasError::Truncated {
-            point: whole,
-            count,
-            length,
-        });
-    }
-    let frame = Frame {
-        scale: [
-            header.x_scale_factor,
-            header.y_scale_factor,
-            header.z_scale_factor,
-        ],
-        offset: [header.x_offset, header.y_offset, header.z_offset],
-    };
-    file.seek(SeekFrom::Start(start))?;
+    let Records {
+        mut file,
+        record,
+        count,
+        frame,
+    } = Records::open(path.as_ref())?;
     let per_block = (BATCH_BYTES / record).max(1);
-    let count = count as usize;
     let mut entries = Vec::with_capacity(count);
     let mut block = vec![0u8; per_block.min(count) * record];
     let mut next = block.clone();
@@ -142,6 +172,112 @@ pub fn read_entries(path: impl AsRef<Path>) -> Result<Vec<([f64; 3], u32)>, LasE
         done += here;
     }
     Ok(entries)
+}
+
+/// The world coordinates of the points of an uncompressed LAS file, each paired with its
+/// record number, read block by block: a stream for inputs larger than memory, such as the
+/// out-of-core build (`io::saved::external::ExternalBuild::write`, feature `saved`, which
+/// reads its source twice: open one stream per pass). The same entries, in the same order, as
+/// [`read_entries`].
+///
+/// ```no_run
+/// use orthtree::io::las::LasEntries;
+/// let mut n = 0;
+/// for entry in LasEntries::open("scan.las")? {
+///     let (_position, record) = entry?;
+///     assert_eq!(record, n);
+///     n += 1;
+/// }
+/// # Ok::<(), orthtree::io::las::LasError>(())
+/// ```
+///
+/// # Complexity
+/// O(n) time over the whole stream; memory one block of at most 4 MiB of records and its
+/// entries, whatever the file's size.
+#[derive(Debug)]
+pub struct LasEntries {
+    records: Records,
+    /// The bytes of the block being converted.
+    block: Vec<u8>,
+    /// The current block's entries and the next one to hand out.
+    entries: Vec<([f64; 3], u32)>,
+    at: usize,
+    /// Records read so far.
+    read: usize,
+    /// Set after an error: the stream has ended.
+    failed: bool,
+}
+
+impl LasEntries {
+    /// Opens the file at `path` and checks its header; no point is read yet.
+    ///
+    /// # Errors
+    /// As [`read_entries`]: a header the `las` crate refuses, too many points, a compressed or
+    /// waveform format, a file shorter than its records, or failing I/O.
+    pub fn open(path: impl AsRef<Path>) -> Result<LasEntries, LasError> {
+        let records = Records::open(path.as_ref())?;
+        Ok(LasEntries {
+            records,
+            block: Vec::new(),
+            entries: Vec::new(),
+            at: 0,
+            read: 0,
+            failed: false,
+        })
+    }
+
+    /// The number of points the file holds (the header's count, checked against its length).
+    pub fn point_count(&self) -> usize {
+        self.records.count
+    }
+
+    /// Reads and converts the next block; `false` at the end of the records.
+    fn refill(&mut self) -> Result<bool, LasError> {
+        let Records {
+            file,
+            record,
+            count,
+            frame,
+        } = &mut self.records;
+        let here = (*count - self.read).min((BATCH_BYTES / *record).max(1));
+        if here == 0 {
+            return Ok(false);
+        }
+        self.block.resize(here * *record, 0);
+        file.read_exact(&mut self.block)?;
+        self.entries.clear();
+        self.at = 0;
+        convert(&self.block, *record, frame, self.read, &mut self.entries);
+        self.read += here;
+        Ok(true)
+    }
+}
+
+impl Iterator for LasEntries {
+    type Item = Result<([f64; 3], u32), LasError>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.at == self.entries.len() {
+            if self.failed {
+                return None;
+            }
+            match self.refill() {
+                Ok(true) => {}
+                Ok(false) => return None,
+                Err(e) => {
+                    self.failed = true;
+                    return Some(Err(e));
+                }
+            }
+        }
+        self.at += 1;
+        Some(Ok(self.entries[self.at - 1]))
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let left = self.entries.len() - self.at + (self.records.count - self.read);
+        (0, Some(left))
+    }
 }
 
 /// Runs both, in parallel with the `rayon` feature.

@@ -37,7 +37,7 @@ use std::path::Path;
 
 mod entries;
 mod write;
-pub use entries::read_entries;
+pub use entries::{read_entries, LasEntries};
 pub use write::{write, write_to};
 
 /// The most bytes of point records read at once.
