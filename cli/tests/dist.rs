@@ -45,7 +45,6 @@ fn mpirun(np: usize, args: &[&str]) -> Run {
         EXE,
     ];
     all.extend_from_slice(args);
-    std::env::set_var("OMPI_MCA_btl_vader_single_copy_mechanism", "none");
     programs::run(
         Path::new("mpirun"),
         args[0],
