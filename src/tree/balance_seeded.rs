@@ -12,7 +12,6 @@
 use super::balance::{outward_directions, Levels};
 use super::{BalanceOptions, NodeId, Tree};
 use crate::geom::{Cell, Dim};
-use smallvec::SmallVec;
 
 impl<const D: usize> Tree<D> {
     /// Refines the tree until `cell` is a node (splitting the leaves on its path, and calling
@@ -54,8 +53,8 @@ impl<const D: usize> Tree<D> {
     /// Appends to `out` the cells of the leaves below node `v` (itself if a leaf), whose cell
     /// is `cell`, in Morton order, as the tree was when it had `before` nodes (children made
     /// later taken as absent; `u32::MAX`: the tree as it is): one walk with a frame per internal
-    /// node on the path (its first child, its cell, the next child to visit), so each leaf costs
-    /// one step of a loop and one write.
+    /// node on the path (its first child, its cell, the next child to visit) in a fixed array,
+    /// each frame's leaf children written out in one loop until an internal one is met.
     pub(crate) fn leaf_cells_below(
         &self,
         v: NodeId,
@@ -69,20 +68,28 @@ impl<const D: usize> Tree<D> {
             return;
         }
         let n = Dim::<D>::CHILDREN as u32;
-        let mut stack: SmallVec<[(u32, Cell<D>, u32); 64]> = SmallVec::new();
-        stack.push((f, cell, 0));
-        while let Some(top) = stack.last_mut() {
-            let (first, parent, i) = *top;
-            if i == n {
-                stack.pop();
-                continue;
+        // One frame per level below `v`, at most Cell::MAX_LEVEL <= 32.
+        let mut stack = [(f, cell, 0u32); 33];
+        let mut top = 0;
+        'frames: loop {
+            let (first, parent, mut i) = stack[top];
+            while i < n {
+                let child = parent.child(i as usize);
+                let g = self.first_child[(first + i) as usize];
+                i += 1;
+                if g >= before {
+                    out.push(child);
+                } else {
+                    stack[top].2 = i;
+                    top += 1;
+                    stack[top] = (g, child, 0);
+                    continue 'frames;
+                }
             }
-            top.2 = i + 1;
-            let child = parent.child(i as usize);
-            match self.first_child[(first + i) as usize] {
-                f if f >= before => out.push(child),
-                f => stack.push((f, child, 0)),
+            if top == 0 {
+                break;
             }
+            top -= 1;
         }
     }
 
