@@ -59,8 +59,9 @@ impl<const D: usize> Tree<D> {
         let mut levels = Levels::new(self, options);
         while let Some((nodes, min_level)) = levels.next_level() {
             for &c in &nodes {
+                let level = self.level(c);
                 for &d in &outward[self.child_index(c)] {
-                    levels.reach(self, c, d, min_level);
+                    levels.reach(self, c, level, d, min_level);
                 }
             }
         }
@@ -91,9 +92,9 @@ impl<const D: usize> Tree<D> {
         None
     }
 
-    /// Follows the neighbour search from `id` in `direction`, splitting every leaf met above
-    /// `min_level` on the way down (calling `on_split` after each split), until the path reaches
-    /// `min_level` or its end.
+    /// Follows the neighbour search from `id` (at `level`) in `direction`, splitting every leaf
+    /// met above `min_level` on the way down (calling `on_split` after each split), until the
+    /// path reaches `min_level` or its end.
     ///
     /// The search of [`Tree::neighbor_path`] and the descent of [`Tree::split_down`] in one:
     /// the child indices to take go in one word (D bits a level: D times the deepest level is
@@ -102,6 +103,7 @@ impl<const D: usize> Tree<D> {
     pub(super) fn reach(
         &mut self,
         id: NodeId,
+        level: u8,
         direction: Direction,
         min_level: u8,
         mut on_split: impl FnMut(&Self, NodeId),
@@ -121,7 +123,7 @@ impl<const D: usize> Tree<D> {
             steps += 1;
         }
         let mask = (1u64 << D) - 1;
-        let mut level = self.level(id) - steps;
+        let mut level = level - steps;
         while steps > 0 && level < min_level {
             steps -= 1;
             let mut first = self.first_child[v.index()];
@@ -222,10 +224,11 @@ impl Levels {
         &mut self,
         tree: &mut Tree<D>,
         id: NodeId,
+        level: u8,
         direction: Direction,
         min_level: u8,
     ) {
-        tree.reach(id, direction, min_level, |tree, leaf| {
+        tree.reach(id, level, direction, min_level, |tree, leaf| {
             self.record(tree, leaf)
         });
     }

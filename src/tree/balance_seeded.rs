@@ -104,8 +104,9 @@ impl<const D: usize> Tree<D> {
         let mut levels = Levels::seeded(self, options, seeds);
         while let Some((nodes, min_level)) = levels.next_level() {
             for &c in &nodes {
+                let level = self.level(c);
                 for &d in &outward[self.child_index(c)] {
-                    levels.reach(self, c, d, min_level);
+                    levels.reach(self, c, level, d, min_level);
                 }
             }
         }
