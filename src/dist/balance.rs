@@ -85,9 +85,12 @@ impl<const D: usize> DistForest<D> {
 
         let mut tree = Tree::<D>::new();
         tree.reserve_splits(self.leaves.len() / ((1 << D) - 1) + 64);
-        // Each own leaf's node: the own leaves after balance are the leaves below them.
-        let mut nodes: Vec<NodeId> = Vec::with_capacity(self.leaves.len());
-        tree.refine_to_sorted(&self.leaves, |v| nodes.push(v));
+        tree.refine_to_sorted(&self.leaves);
+        // The tree holds them now, as its own leaves with the build's nodes (ids below
+        // `built`; balance only appends), and gives them back on an error below: their memory
+        // goes back to the allocator before the balance asks for more.
+        let built = u32::try_from(tree.node_count()).expect("node ids are u32");
+        self.leaves = Vec::new();
         phases.push(("build", clock.elapsed().as_secs_f64()));
         let clock = Instant::now();
         tree.balance(options);
@@ -114,7 +117,13 @@ impl<const D: usize> DistForest<D> {
             }
             rounds += 1;
             sent += count as u64;
-            let (cells, _) = exchange_cells(comm, &outgoing)?;
+            let cells = match exchange_cells(comm, &outgoing) {
+                Ok((cells, _)) => cells,
+                Err(e) => {
+                    self.leaves = own_leaves(&tree, mine, built);
+                    return Err(e);
+                }
+            };
             received += cells.len() as u64;
             exchange_s += t.elapsed().as_secs_f64();
             let t = Instant::now();
@@ -139,16 +148,7 @@ impl<const D: usize> DistForest<D> {
         phases.push(("exchange", exchange_s));
         phases.push(("fix-up", fixup_s));
         let clock = Instant::now();
-        // The own leaves given are in Morton order and their nodes in the order the build
-        // made them, so this reads the arena mostly in order; only the subtrees balance added
-        // are walked.
-        let given = std::mem::take(&mut self.leaves);
-        let mut leaves = Vec::with_capacity(tree.leaf_count());
-        for (cell, &v) in given.iter().zip(&nodes) {
-            tree.leaf_cells_below(v, *cell, &mut leaves);
-        }
-        drop((given, nodes));
-        self.leaves = leaves;
+        self.leaves = own_leaves(&tree, mine, u32::MAX);
         let first_key = self.leaves.first().map(Cell::aligned_key);
         self.partition = super::Partition::gather(comm, self.leaves.len(), first_key)?;
         phases.push(("collect", clock.elapsed().as_secs_f64()));
@@ -186,6 +186,39 @@ fn boundary_leaves<const D: usize>(tree: &Tree<D>, mine: (u128, u128)) -> Vec<Ce
         }
     }
     out
+}
+
+/// The leaves of `tree` whose keys lie in `mine`, in Morton order, as the tree was when it had
+/// `before` nodes (`u32::MAX`: as it is). The walk skips every subtree outside the range and
+/// lists every subtree inside it in one pass (the build made the nodes in Morton order, so the
+/// arena is read mostly in order).
+fn own_leaves<const D: usize>(tree: &Tree<D>, mine: (u128, u128), before: u32) -> Vec<Cell<D>> {
+    // At most every leaf: the pages past the end are never touched, and given back below.
+    let mut leaves = Vec::with_capacity(tree.leaf_count());
+    let mut stack: SmallVec<[(NodeId, Cell<D>); 64]> = SmallVec::new();
+    stack.push((NodeId::ROOT, Cell::root()));
+    while let Some((v, cell)) = stack.pop() {
+        let (lo, hi) = span(&cell);
+        if hi <= mine.0 || lo >= mine.1 {
+            continue;
+        }
+        if lo >= mine.0 && hi <= mine.1 {
+            tree.leaf_cells_below(v, cell, before, &mut leaves);
+            continue;
+        }
+        let Some(first) = tree.child(v, 0).filter(|f| f.0 < before) else {
+            // Across an end of the range: its key decides, as for every own leaf.
+            if lo >= mine.0 {
+                leaves.push(cell);
+            }
+            continue;
+        };
+        for i in (0..1 << D).rev() {
+            stack.push((NodeId(first.0 + i as u32), cell.child(i)));
+        }
+    }
+    leaves.shrink_to_fit();
+    leaves
 }
 
 /// Agrees that every rank passed rank 0's options.

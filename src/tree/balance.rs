@@ -59,8 +59,9 @@ impl<const D: usize> Tree<D> {
         let mut levels = Levels::new(self, options);
         while let Some((nodes, min_level)) = levels.next_level() {
             for &c in &nodes {
+                let level = self.level(c);
                 for &d in &outward[self.child_index(c)] {
-                    levels.reach(self, c, d, min_level);
+                    levels.reach(self, c, level, d, min_level);
                 }
             }
         }
@@ -91,22 +92,52 @@ impl<const D: usize> Tree<D> {
         None
     }
 
-    /// Follows the neighbour search from `id` in `direction`, splitting every leaf met above
-    /// `min_level` on the way down (calling `on_split` after each split), until the path reaches
-    /// `min_level` or its end.
+    /// Follows the neighbour search from `id` (at `level`) in `direction`, splitting every leaf
+    /// met above `min_level` on the way down (calling `on_split` after each split), until the
+    /// path reaches `min_level` or its end.
+    ///
+    /// The search of [`Tree::neighbor_path`] and the descent of [`Tree::split_down`] in one:
+    /// the child indices to take go in one word (D bits a level: D times the deepest level is
+    /// at most 64) and the levels on the way down are counted, not read, so each step down
+    /// reads one word of the arena.
     pub(super) fn reach(
         &mut self,
         id: NodeId,
+        level: u8,
         direction: Direction,
         min_level: u8,
-        on_split: impl FnMut(&Self, NodeId),
+        mut on_split: impl FnMut(&Self, NodeId),
     ) {
-        if let Some((v, path)) = self.neighbor_path(id, direction) {
-            self.split_down(v, &path, min_level, on_split);
+        let (mut plus, mut minus) = (direction.plus_mask(), direction.minus_mask());
+        let (mut v, mut path, mut steps) = (id, 0u64, 0u8);
+        while plus | minus != 0 {
+            let Some(parent) = self.parent(v) else {
+                return; // the step leaves the root cube
+            };
+            let c = self.child_index(v) as u8;
+            path |= u64::from(c ^ (plus | minus)) << (D * steps as usize);
+            // Axes on which the step leaves the parent's cell carry over to the parent's level.
+            plus &= c;
+            minus &= !c;
+            v = parent;
+            steps += 1;
+        }
+        let mask = (1u64 << D) - 1;
+        let mut level = level - steps;
+        while steps > 0 && level < min_level {
+            steps -= 1;
+            let mut first = self.first_child[v.index()];
+            if first == super::arena::NONE {
+                first = self.split(v).0;
+                on_split(self, v);
+            }
+            v = NodeId(first + ((path >> (D * steps as usize)) & mask) as u32);
+            level += 1;
         }
     }
 
     /// The descent of [`Tree::reach`] from `v`, taking the child indices of `path` from its end.
+    #[cfg(feature = "rayon")]
     pub(super) fn split_down(
         &mut self,
         mut v: NodeId,
@@ -193,10 +224,11 @@ impl Levels {
         &mut self,
         tree: &mut Tree<D>,
         id: NodeId,
+        level: u8,
         direction: Direction,
         min_level: u8,
     ) {
-        tree.reach(id, direction, min_level, |tree, leaf| {
+        tree.reach(id, level, direction, min_level, |tree, leaf| {
             self.record(tree, leaf)
         });
     }

@@ -9,11 +9,9 @@
 //! pass: the result is the coarsest balanced refinement of the refined tree. The cost is that of
 //! the seeds and the splits they force, not of the whole tree.
 
-use super::arena::NONE;
 use super::balance::{outward_directions, Levels};
 use super::{BalanceOptions, NodeId, Tree};
 use crate::geom::{Cell, Dim};
-use smallvec::SmallVec;
 
 impl<const D: usize> Tree<D> {
     /// Refines the tree until `cell` is a node (splitting the leaves on its path, and calling
@@ -30,11 +28,10 @@ impl<const D: usize> Tree<D> {
         v
     }
 
-    /// [`Tree::refine_to`] for each of `cells`, in Morton order, calling `at` with each cell's
-    /// node in turn: the walk down starts from the deepest node on the previous cell's path that
-    /// contains the next cell, so a run of n leaves costs O(n + depth) node visits rather than
-    /// O(n depth).
-    pub(crate) fn refine_to_sorted(&mut self, cells: &[Cell<D>], mut at_node: impl FnMut(NodeId)) {
+    /// [`Tree::refine_to`] for each of `cells`, in Morton order: the walk down starts from the
+    /// deepest node on the previous cell's path that contains the next cell, so a run of n
+    /// leaves costs O(n + depth) node visits rather than O(n depth).
+    pub(crate) fn refine_to_sorted(&mut self, cells: &[Cell<D>]) {
         let mut path: Vec<(NodeId, Cell<D>)> = vec![(NodeId::ROOT, Cell::root())];
         for cell in cells {
             while path.len() > 1 && !path.last().expect("the root stays").1.contains(cell) {
@@ -50,35 +47,49 @@ impl<const D: usize> Tree<D> {
                 at = at.child(c);
                 path.push((v, at));
             }
-            at_node(v);
         }
     }
 
     /// Appends to `out` the cells of the leaves below node `v` (itself if a leaf), whose cell
-    /// is `cell`, in Morton order: one walk with a frame per internal node on the path (its first
-    /// child, its cell, the next child to visit), so each leaf costs one step of a loop and one
-    /// write.
-    pub(crate) fn leaf_cells_below(&self, v: NodeId, cell: Cell<D>, out: &mut Vec<Cell<D>>) {
+    /// is `cell`, in Morton order, as the tree was when it had `before` nodes (children made
+    /// later taken as absent; `u32::MAX`: the tree as it is): one walk with a frame per internal
+    /// node on the path (its first child, its cell, the next child to visit) in a fixed array,
+    /// each frame's leaf children written out in one loop until an internal one is met.
+    pub(crate) fn leaf_cells_below(
+        &self,
+        v: NodeId,
+        cell: Cell<D>,
+        before: u32,
+        out: &mut Vec<Cell<D>>,
+    ) {
         let f = self.first_child[v.index()];
-        if f == NONE {
+        if f >= before {
             out.push(cell);
             return;
         }
         let n = Dim::<D>::CHILDREN as u32;
-        let mut stack: SmallVec<[(u32, Cell<D>, u32); 64]> = SmallVec::new();
-        stack.push((f, cell, 0));
-        while let Some(top) = stack.last_mut() {
-            let (first, parent, i) = *top;
-            if i == n {
-                stack.pop();
-                continue;
+        // One frame per level below `v`, at most Cell::MAX_LEVEL <= 32.
+        let mut stack = [(f, cell, 0u32); 33];
+        let mut top = 0;
+        'frames: loop {
+            let (first, parent, mut i) = stack[top];
+            while i < n {
+                let child = parent.child(i as usize);
+                let g = self.first_child[(first + i) as usize];
+                i += 1;
+                if g >= before {
+                    out.push(child);
+                } else {
+                    stack[top].2 = i;
+                    top += 1;
+                    stack[top] = (g, child, 0);
+                    continue 'frames;
+                }
             }
-            top.2 = i + 1;
-            let child = parent.child(i as usize);
-            match self.first_child[(first + i) as usize] {
-                NONE => out.push(child),
-                f => stack.push((f, child, 0)),
+            if top == 0 {
+                break;
             }
+            top -= 1;
         }
     }
 
@@ -93,8 +104,9 @@ impl<const D: usize> Tree<D> {
         let mut levels = Levels::seeded(self, options, seeds);
         while let Some((nodes, min_level)) = levels.next_level() {
             for &c in &nodes {
+                let level = self.level(c);
                 for &d in &outward[self.child_index(c)] {
-                    levels.reach(self, c, d, min_level);
+                    levels.reach(self, c, level, d, min_level);
                 }
             }
         }

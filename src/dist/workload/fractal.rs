@@ -90,6 +90,6 @@ pub(super) fn fractal_tree<const D: usize>(level: u8) -> Tree<D> {
     let leaves = fractal_part::<D>(level, 0, uniform_cells::<D>(level));
     let mut tree = Tree::<D>::new();
     tree.reserve_splits(leaves.len() / ((1 << D) - 1) + 1);
-    tree.refine_to_sorted(&leaves, |_| {});
+    tree.refine_to_sorted(&leaves);
     tree
 }
