@@ -18,6 +18,9 @@ use orthtree::query::{Boundary, QueryError};
 use orthtree::{CompressedTree, DynamicPointTree, PointTree, SkipQuadtree};
 use proptest::prelude::*;
 
+#[path = "joins_densities.rs"]
+mod densities;
+
 /// The squared distance, as the query layer computes it (axis order, `f64`).
 fn dist<const D: usize>(a: &[f64; D], b: &[f64; D]) -> f64 {
     let mut s = 0.0;
@@ -36,12 +39,15 @@ fn admits(boundary: Boundary, d: f64, r: f64) -> bool {
 }
 
 /// Every set here stores the input position of each point as its item.
-trait Set<const D: usize>: PointSet<D, Scalar = f64, Item = usize> + Sync {}
+pub(crate) trait Set<const D: usize>:
+    PointSet<D, Scalar = f64, Item = usize> + Sync
+{
+}
 impl<P: PointSet<D, Scalar = f64, Item = usize> + Sync, const D: usize> Set<D> for P {}
 
 /// The k-nearest join of `a` in `b` (`same`: the self-join): per row, exactly the single-tree
 /// answer (without the point itself in a self-join), and the brute-force distances.
-fn check_knn<A: Set<D>, B: Set<D>, const D: usize>(
+pub(crate) fn check_knn<A: Set<D>, B: Set<D>, const D: usize>(
     a: &A,
     pa: &[[f64; D]],
     b: &B,
@@ -383,7 +389,7 @@ fn radii(extra: f64) -> Vec<f64> {
     r
 }
 
-fn entries<const D: usize>(pts: &[[f64; D]]) -> Vec<([f64; D], usize)> {
+pub(crate) fn entries<const D: usize>(pts: &[[f64; D]]) -> Vec<([f64; D], usize)> {
     pts.iter().enumerate().map(|(i, p)| (*p, i)).collect()
 }
 

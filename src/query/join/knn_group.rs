@@ -1,34 +1,40 @@
 //! The search of one group of the k-nearest joins: the `k` nearest points of the other tree to
-//! every point of a group of nearby points of the querying tree, found together (the leaf-level
-//! step of the dual-tree k-nearest join of Gray and Moore, "N-body problems in statistical
-//! learning", NIPS 2001).
+//! every point of a group of nearby points of the querying tree (the leaf-level step of the
+//! dual-tree k-nearest join of Gray and Moore, "N-body problems in statistical learning", NIPS
+//! 2001), with a guessed radius checked afterwards.
 //!
-//! The group pops nodes of the other tree from an explicit stack, the nearest box first, and
-//! skips a node whose box-to-box lower bound from the group's box exceeds the group's bound
-//! (the largest `k`-th distance of its points, infinite while one holds fewer than `k`). The
-//! first nodes reached are the group's own cell and its neighbours, so the bounds of all the
-//! group's points are seeded from one search before the farther nodes are weighed. At a node to
-//! scan, the points within the group's bound of the group's box are gathered into columns (a
-//! [`Block`] of up to 64; between neighbouring cells this keeps the strip along their shared
-//! faces), then each point of the group whose own bound reaches the gathered points' tight box
-//! computes its distances to the whole block at once into a bit mask of those within its bound,
-//! and appends only those to its buffer of candidates. A buffer holds up to `2k` candidates in
-//! no order: when it first holds `k`, the point's bound becomes their largest distance; when it
-//! is full, a selection keeps the `k` first by `(distance, position)` and the bound becomes the
-//! `k`-th distance (a constant cost per candidate, where keeping a sorted list costs up to `k`
-//! moves and a mispredicted branch per insertion); at the end the `k` kept are sorted.
+//! 1. Pick a radius `g` (a squared distance): twice the largest `k`-th distance of the group
+//!    searched before by this [`Search`] (nearby groups have nearby densities), or, for the
+//!    first, one that surely holds ([`radius_of`]).
+//! 2. Gather the candidate pool: the points of the other tree within `g` of the group's box, in
+//!    columns ([`Pool`]).
+//! 3. Search the pool for each point of the group in turn. A point starts from a bound on its
+//!    `k`-th distance taken from the point before it (the farthest of that point and its `k`
+//!    neighbours: `k` other points, so a true bound) or from `g`, keeps the pool's points within
+//!    the bound in a buffer of `2k` (when it fills, a selection keeps its `k` first by
+//!    `(distance, position)` and the `k`-th tightens the bound), and ends by selecting and
+//!    sorting its `k` first (sorting all when they are few). Consecutive points of a group are
+//!    close (the runs are in the tree's order), so the bound is tight from the first candidate
+//!    on, and few candidates reach the buffer.
+//! 4. A point whose `k`-th distance in the pool exceeds `g` (or which found fewer than `k`) may
+//!    have missed a point outside the pool: the pool is gathered again with the largest radius
+//!    such points need (their `k`-th distance in the pool; for one that found fewer, four times
+//!    `g` or [`radius_of`], the smaller), and only they are searched again, until none is left:
+//!    the radius grows each time, and the one of [`radius_of`] holds for every point.
 //!
-//! Exactness: a node or point is skipped only when a lower bound of its distance exceeds the
-//! bound strictly, so every point at exactly the `k`-th distance is offered, and a selection
-//! keeps the first `k` by `(distance, position)`: each row is exactly what
+//! Exactness: the pool holds every point within `g` of the group's box, so a point whose `k`-th
+//! distance in the pool is at most `g` has every point it lacks strictly farther than that; a
+//! chunk or a candidate is skipped only when a lower bound of its distance exceeds the bound
+//! strictly, so every point at exactly the `k`-th distance is offered, and the `k` first by
+//! `(distance, position)` are kept (distances are compared by their bits, which order
+//! non-negative `f64` as their values): each row is exactly what
 //! [`PointSet::k_nearest`](crate::query::PointSet::k_nearest) answers, ties included.
 //!
 //! All the buffers live in a [`Search`] made once per thread and reused for every group:
-//! nothing is allocated per group or per point.
+//! nothing is allocated per group or per point once they have grown.
 
 use super::bounds::PairDistance;
-use super::scan::{Block, BLOCK};
-use super::traverse::{children, SCAN};
+use super::knn_pool::{radius_of, Pool, CHUNK};
 use crate::geom::{Aabb, Scalar};
 use crate::query::SpatialIndex;
 use core::ops::Range;
@@ -37,19 +43,22 @@ use core::ops::Range;
 pub(crate) struct Search<N, const D: usize> {
     /// The group's points as `f64`.
     qs: Vec<[f64; D]>,
-    /// Per point of the group: its `k`-th distance so far (infinite while it holds fewer).
-    bounds: Vec<f64>,
-    /// Per point of the group: how many candidates its buffer holds.
-    held: Vec<usize>,
-    /// Per point of the group, [`Search::cap`] entries each: its candidates, unordered while
-    /// the search runs; the first `k`, sorted by `(distance, position)`, at the end.
+    /// Per point of the group, `k` entries: its `k` nearest as (distance, position), sorted by
+    /// `(distance, position)`, once it is done.
     lists: Vec<(f64, usize)>,
-    /// The entries of each point's buffer: twice `k`.
-    cap: usize,
-    /// The nodes of the other tree left to look at, with their lower bounds and boxes.
-    stack: Vec<(f64, N, Aabb<f64, D>)>,
-    /// The gathered points of the node being scanned.
-    block: Box<Block<D>>,
+    /// Per point of the group: whether its list is final.
+    done: Vec<bool>,
+    /// The candidates of the point being searched: `2k` and a chunk's worth of room.
+    buf: Vec<(u64, usize)>,
+    /// The candidate pool of the group.
+    pool: Pool<N, D>,
+    /// The list of the last point of the last group searched (empty before the first).
+    last: Vec<(f64, usize)>,
+    /// That point.
+    last_q: [f64; D],
+    /// The radius to try first: the largest `k`-th distance of the last group searched
+    /// (infinite before the first).
+    guess: f64,
 }
 
 impl<N: Copy, const D: usize> Search<N, D> {
@@ -57,26 +66,26 @@ impl<N: Copy, const D: usize> Search<N, D> {
     pub(crate) fn new() -> Self {
         Search {
             qs: Vec::new(),
-            bounds: Vec::new(),
-            held: Vec::new(),
             lists: Vec::new(),
-            cap: 0,
-            stack: Vec::new(),
-            block: Block::boxed(),
+            done: Vec::new(),
+            buf: Vec::new(),
+            pool: Pool::new(),
+            last: Vec::new(),
+            last_q: [0.0; D],
+            guess: f64::INFINITY,
         }
     }
 
     /// The list of point `qi` of the last group searched: its `k` nearest as (distance,
     /// position in the other tree), sorted by `(distance, position)`.
     pub(crate) fn list(&self, qi: usize, k: usize) -> &[(f64, usize)] {
-        &self.lists[qi * self.cap..qi * self.cap + k]
+        &self.lists[qi * k..(qi + 1) * k]
     }
 
     /// Finds the `k` nearest points of `b` to every point of the group `run` of `a` (whose
-    /// points lie in the closed box `gbox`), into the lists of [`Search::list`]. `same`: `b` is `a`, and a
-    /// point skips its own position. `k` must be at least 1 and at most what `b` holds (others,
-    /// when `same`).
-    #[allow(clippy::too_many_arguments)]
+    /// points lie in the closed box `gbox`), into the lists of [`Search::list`]. `same`: `b` is
+    /// `a`, and a point skips its own position. `k` must be at least 1 and at most what `b`
+    /// holds (others, when `same`).
     pub(crate) fn group<A, B, P>(
         &mut self,
         a: &A,
@@ -91,140 +100,142 @@ impl<N: Copy, const D: usize> Search<N, D> {
         P: PairDistance<D>,
     {
         let m = run.len();
+        if m == 0 {
+            return;
+        }
         self.qs.clear();
         self.qs.extend(
             a.points()[run.clone()]
                 .iter()
                 .map(|p| p.map(Scalar::to_f64)),
         );
-        self.bounds.clear();
-        self.bounds.resize(m, f64::INFINITY);
-        self.held.clear();
-        self.held.resize(m, 0);
-        self.cap = 2 * k;
         self.lists.clear();
-        self.lists.resize(m * self.cap, (f64::INFINITY, usize::MAX));
-        self.stack.clear();
-        let Some((root, rbox)) = b.root() else { return };
-        let mut gbound = f64::INFINITY;
-        let pb = b.points();
-        self.stack.push((metric.box_box(gbox, &rbox).0, root, rbox));
-        while let Some((lower, node, nb)) = self.stack.pop() {
-            if lower > gbound {
-                continue;
-            }
-            let kids = children(b, &(node, nb), SCAN);
-            if kids.is_empty() {
-                let rb = b.run(node);
-                let mut next = rb.start;
-                while next < rb.end {
-                    let tight = self.gather(pb, &mut next, rb.end, metric, gbox, gbound);
-                    if let Some(tight) = tight {
-                        self.offer_block(metric, &tight, run.start, k, same);
+        self.lists.resize(m * k, (f64::INFINITY, usize::MAX));
+        self.done.clear();
+        self.done.resize(m, false);
+        self.buf.clear();
+        self.buf.resize(2 * k + CHUNK, (u64::MAX, usize::MAX));
+        let need = k + usize::from(same);
+        let mut g = if self.guess.is_finite() {
+            self.guess
+        } else {
+            radius_of(b, metric, gbox, need)
+        };
+        let mut worst = 0.0f64;
+        loop {
+            self.pool.gather(b, metric, gbox, g);
+            let mut again = f64::NEG_INFINITY;
+            for qi in 0..m {
+                if self.done[qi] {
+                    continue;
+                }
+                let seed = self.seed(qi, b.points(), metric, (run.start, same), k);
+                let found = self.point(qi, metric, (run.start, same), k, seed.min(g));
+                match found {
+                    Some(kth) if kth <= g => {
+                        self.done[qi] = true;
+                        worst = worst.max(kth);
+                    }
+                    Some(kth) => again = again.max(kth),
+                    None => {
+                        // Four times the radius (twice the distance) if that is less than
+                        // the radius that surely holds.
+                        let sure = radius_of(b, metric, gbox, need);
+                        again = again.max(if g > 0.0 { sure.min(4.0 * g) } else { sure });
                     }
                 }
-                gbound = self.bounds.iter().copied().fold(0.0, f64::max);
-                continue;
             }
-            // Farthest first, so that the nearest child is popped next.
-            let before = self.stack.len();
-            for (c, cb) in kids {
-                let d = metric.box_box(gbox, &cb).0;
-                if d > gbound {
-                    continue;
-                }
-                let mut at = self.stack.len();
-                self.stack.push((d, c, cb));
-                while at > before && self.stack[at - 1].0 < d {
-                    self.stack.swap(at - 1, at);
-                    at -= 1;
-                }
+            if again == f64::NEG_INFINITY {
+                break;
             }
+            // Every point left needs at most `again`; a radius that does not grow (which the
+            // bounds rule out) would take the whole tree.
+            g = if again > g { again } else { f64::INFINITY };
         }
-        for qi in 0..m {
-            let buf = &mut self.lists[qi * self.cap..qi * self.cap + self.held[qi]];
-            if buf.len() > k {
-                buf.select_nth_unstable_by(k - 1, order);
-            }
-            buf[..k].sort_unstable_by(order);
-        }
+        self.guess = worst * MARGIN;
+        self.last.clear();
+        self.last.extend_from_slice(&self.lists[(m - 1) * k..]);
+        self.last_q = self.qs[m - 1];
     }
 
-    /// Gathers into the block the next points of `points[*next..end]` (up to [`BLOCK`]) that
-    /// may be within `gbound` of a point of the group's box `gbox`, moving `next` past those
-    /// looked at; their tight box, or `None` when none was kept.
-    #[inline(always)]
-    fn gather<S: Scalar, P: PairDistance<D>>(
-        &mut self,
-        points: &[[S; D]],
-        next: &mut usize,
-        end: usize,
+    /// A bound on the `k`-th distance of point `qi` when point `qi - 1` is done (or `qi` is 0
+    /// and a group was searched before: then its last point stands for point `qi - 1`): the
+    /// farthest distance to that point's neighbours and, when `same`, to that point itself, but
+    /// `qi`'s own position: at least `k` other points of `b` (whose points are `pb`). Infinite
+    /// when there is no such point.
+    fn seed<S: Scalar, P: PairDistance<D>>(
+        &self,
+        qi: usize,
+        pb: &[[S; D]],
         metric: &P,
-        gbox: &Aabb<f64, D>,
-        gbound: f64,
-    ) -> Option<Aabb<f64, D>> {
-        let block = &mut self.block;
-        block.clear();
-        let mut tight = Aabb::<f64, D>::empty();
-        while *next < end && block.len() < BLOCK {
-            let p = points[*next].map(Scalar::to_f64);
-            if metric.point_box(&p, gbox) <= gbound {
-                block.push(&p, *next);
-                tight.add_point(&p);
-            }
-            *next += 1;
-        }
-        (block.len() > 0).then_some(tight)
-    }
-
-    /// Offers the gathered points to every point of the group whose bound reaches their tight
-    /// box: distances to the whole block at once, then only those within the bound one by one.
-    /// `first`: the position of the group's first point (to skip a point itself when `same`).
-    #[inline(always)]
-    fn offer_block<P: PairDistance<D>>(
-        &mut self,
-        metric: &P,
-        tight: &Aabb<f64, D>,
-        first: usize,
+        (first, same): (usize, bool),
         k: usize,
-        same: bool,
-    ) {
-        for (qi, q) in self.qs.iter().enumerate() {
-            let bound = self.bounds[qi];
-            if metric.point_box(q, tight) > bound {
-                continue;
+    ) -> f64 {
+        let (list, before) = match qi {
+            0 if self.last.is_empty() => return f64::INFINITY,
+            0 => (&self.last[..], &self.last_q),
+            _ if !self.done[qi - 1] => return f64::INFINITY,
+            _ => (&self.lists[(qi - 1) * k..qi * k], &self.qs[qi - 1]),
+        };
+        let q = &self.qs[qi];
+        let me = if same { first + qi } else { usize::MAX };
+        let mut s = 0.0f64;
+        for &(_, at) in list {
+            if at != me {
+                s = s.max(metric.distance(q, &pb[at].map(Scalar::to_f64)));
             }
-            let mut mask = self.block.mask(0, q, metric, |d| d <= bound);
-            let cap = self.cap;
-            let buf = &mut self.lists[qi * cap..(qi + 1) * cap];
-            let held = &mut self.held[qi];
-            let mut bound = bound;
-            let me = first + qi;
-            while mask != 0 {
-                let j = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                let (at, d) = (self.block.at(j), self.block.dist(j));
-                if (same && at == me) || d > bound {
-                    continue;
-                }
-                buf[*held] = (d, at);
-                *held += 1;
-                if *held == k {
-                    bound = buf[..k].iter().fold(0.0, |b, c| c.0.max(b));
-                } else if *held == cap {
-                    buf.select_nth_unstable_by(k - 1, order);
-                    *held = k;
-                    bound = buf[k - 1].0;
-                }
-            }
-            self.bounds[qi] = bound;
         }
+        if same {
+            s = s.max(metric.distance(q, before));
+        }
+        s
+    }
+
+    /// Searches the pool for point `qi` of the group within `bound` (at least its `k`-th
+    /// distance, or the pool's radius) and, when it finds `k`, writes its list and returns its
+    /// `k`-th distance; `None` when fewer than `k` are within `bound`. `first`: the position of
+    /// the group's first point (to skip a point itself when `same`).
+    fn point<P: PairDistance<D>>(
+        &mut self,
+        qi: usize,
+        metric: &P,
+        (first, same): (usize, bool),
+        k: usize,
+        bound: f64,
+    ) -> Option<f64> {
+        let q = self.qs[qi];
+        let skip = if same { first + qi } else { usize::MAX };
+        let mut held = 0;
+        let shrink = |buf: &mut [(u64, usize)], held: &mut usize| {
+            buf[..*held].select_nth_unstable(k - 1);
+            *held = k;
+            f64::from_bits(buf[k - 1].0)
+        };
+        let buf = &mut self.buf;
+        self.pool
+            .scan(metric, (&q, skip), bound, (buf, &mut held), 2 * k, shrink);
+        if held < k {
+            return None;
+        }
+        let cands = &mut self.buf[..held];
+        if held > SORT_ALL {
+            cands.select_nth_unstable(k - 1);
+            cands[..k].sort_unstable();
+        } else {
+            cands.sort_unstable();
+        }
+        for (l, &(d, at)) in self.lists[qi * k..(qi + 1) * k].iter_mut().zip(&*cands) {
+            *l = (f64::from_bits(d), at);
+        }
+        Some(f64::from_bits(cands[k - 1].0))
     }
 }
 
-/// The order of candidates: by distance, then by position (the order
-/// [`PointSet::k_nearest`](crate::query::PointSet::k_nearest) breaks ties in).
-#[inline(always)]
-fn order(a: &(f64, usize), b: &(f64, usize)) -> core::cmp::Ordering {
-    a.0.total_cmp(&b.0).then(a.1.cmp(&b.1))
-}
+/// The factor from the largest `k`-th distance of a group to the radius the next group tries
+/// (squared distances: 1.41 times the distance); the largest `k`-th distance of nearby groups
+/// varies, and a group whose points need more gathers its pool again.
+const MARGIN: f64 = 2.0;
+
+/// Up to this many candidates, a point's are sorted whole; above, the `k` first are selected
+/// before they are sorted.
+const SORT_ALL: usize = 20;

@@ -16,6 +16,7 @@
 mod bounds;
 mod knn;
 mod knn_group;
+mod knn_pool;
 mod pairs;
 #[cfg(feature = "rayon")]
 mod par_engines;

@@ -47,30 +47,6 @@ impl<const D: usize> Block<D> {
         })
     }
 
-    /// Empties the block.
-    #[inline(always)]
-    pub(crate) fn clear(&mut self) {
-        self.len = 0;
-    }
-
-    /// The number of points gathered.
-    #[inline(always)]
-    pub(crate) fn len(&self) -> usize {
-        self.len
-    }
-
-    /// The position of gathered point `j`.
-    #[inline(always)]
-    pub(crate) fn at(&self, j: usize) -> usize {
-        self.at[j]
-    }
-
-    /// The distance of gathered point `j` to the last point tested (see [`Block::mask`]).
-    #[inline(always)]
-    pub(crate) fn dist(&self, j: usize) -> f64 {
-        self.dist[j]
-    }
-
     /// Adds point `p` at position `at` (the block must not be full).
     #[inline(always)]
     pub(crate) fn push(&mut self, p: &[f64; D], at: usize) {

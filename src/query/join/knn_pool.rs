@@ -1,0 +1,202 @@
+//! The candidate pool of one group of the k-nearest joins: every point of the other tree that
+//! may be among the `k` nearest of a point of the group, gathered once per group into columns.
+//!
+//! Given a radius `g` (a squared distance), the pool is the points `p` of the other tree with
+//! [`PairDistance::point_box`]`(p, group box) <= g`, found by a depth-first walk of the other
+//! tree on an explicit stack that skips every node whose box is farther than `g` from the group's
+//! box ([`PairDistance::box_box`]). The points are laid out in [`Chunk`]s of [`CHUNK`]: one array
+//! per axis, their positions, and the tight box of the chunk's points, so that one query point
+//! skips a chunk beyond its bound with one box test and otherwise computes its distances to the
+//! whole chunk in a loop of arithmetic without branches (the columns make it vectorise), then
+//! keeps those within its bound by writing every one and advancing the end of its buffer by the
+//! comparison's outcome (no branch to mispredict).
+//!
+//! A point `q` of the group whose `k`-th distance among the pool is at most `g` has found its
+//! exact `k` nearest there: every point left out lies strictly farther than `g` from the group's
+//! box, so from `q`. [`radius_of`] gives a radius that surely holds, from the tree alone.
+//!
+//! The chunks are kept from group to group and reused: nothing is allocated once they have
+//! grown to the largest pool seen.
+
+use super::bounds::PairDistance;
+use super::traverse::{children, SCAN};
+use crate::geom::{Aabb, Scalar};
+use crate::query::SpatialIndex;
+
+/// The points of a chunk: the lanes of one query point's distance loop.
+pub(crate) const CHUNK: usize = 64;
+
+// The lanes of a chunk are the bits of a `u64` mask.
+const _: () = assert!(CHUNK <= 64);
+
+/// Up to [`CHUNK`] points of the pool in columns, with their positions and tight box. Lanes
+/// past `len` repeat the first point, so that every lane computes an ordinary distance.
+pub(crate) struct Chunk<const D: usize> {
+    cols: [[f64; CHUNK]; D],
+    at: [usize; CHUNK],
+    len: usize,
+    /// The mask of the lanes holding a point: the first `len`.
+    live: u64,
+    tight: Aabb<f64, D>,
+}
+
+impl<const D: usize> Chunk<D> {
+    /// An empty chunk.
+    fn new() -> Self {
+        Chunk {
+            cols: [[0.0; CHUNK]; D],
+            at: [0; CHUNK],
+            len: 0,
+            live: 0,
+            tight: Aabb::empty(),
+        }
+    }
+
+    /// Takes in `part` (1 to [`CHUNK`] points with their positions) in place of its points;
+    /// the lanes past them repeat the first.
+    fn fill(&mut self, part: &[([f64; D], usize)]) {
+        self.len = part.len();
+        self.live = u64::MAX >> (64 - self.len);
+        self.tight = Aabb::empty();
+        for j in 0..CHUNK {
+            let (p, at) = part.get(j).unwrap_or(&part[0]);
+            for (col, &c) in self.cols.iter_mut().zip(p) {
+                col[j] = c;
+            }
+            self.at[j] = *at;
+        }
+        for (p, _) in part {
+            self.tight.add_point(p);
+        }
+    }
+}
+
+/// The pool of one group: its chunks (the first `used` of `chunks`) and the walk's stack.
+pub(crate) struct Pool<N, const D: usize> {
+    chunks: Vec<Chunk<D>>,
+    used: usize,
+    stack: Vec<(N, Aabb<f64, D>)>,
+    /// The points kept by the walk, with their positions, before they are cut into chunks.
+    staged: Vec<([f64; D], usize)>,
+}
+
+impl<N: Copy, const D: usize> Pool<N, D> {
+    /// An empty pool.
+    pub(crate) fn new() -> Self {
+        Pool {
+            chunks: Vec::new(),
+            used: 0,
+            stack: Vec::new(),
+            staged: Vec::new(),
+        }
+    }
+
+    /// Gathers the points of `b` within `g` of `gbox` (see the module doc) in place of the pool's
+    /// points.
+    pub(crate) fn gather<B, P>(&mut self, b: &B, metric: &P, gbox: &Aabb<f64, D>, g: f64)
+    where
+        B: SpatialIndex<D, Node = N>,
+        P: PairDistance<D>,
+    {
+        self.staged.clear();
+        self.stack.clear();
+        let points = b.points();
+        self.stack.extend(b.root());
+        while let Some(side) = self.stack.pop() {
+            if metric.box_box(gbox, &side.1).0 > g {
+                continue;
+            }
+            let kids = children(b, &side, SCAN);
+            if !kids.is_empty() {
+                self.stack.extend(kids);
+                continue;
+            }
+            for at in b.run(side.0) {
+                let p = points[at].map(Scalar::to_f64);
+                if metric.point_box(&p, gbox) <= g {
+                    self.staged.push((p, at));
+                }
+            }
+        }
+        for (i, part) in self.staged.chunks(CHUNK).enumerate() {
+            if i == self.chunks.len() {
+                self.chunks.push(Chunk::new());
+            }
+            self.chunks[i].fill(part);
+        }
+        self.used = self.staged.len().div_ceil(CHUNK);
+    }
+
+    /// Appends to `buf[*held..]` every point of the pool within `bound` of `q` as (distance,
+    /// position), but the position `skip`; `buf` holds at least `*held + CHUNK` entries. After
+    /// each chunk, when `*held` reaches `full`, calls `shrink(buf, held)`, which keeps the best
+    /// and returns the new bound.
+    #[inline(always)]
+    pub(crate) fn scan<P: PairDistance<D>>(
+        &self,
+        metric: &P,
+        (q, skip): (&[f64; D], usize),
+        mut bound: f64,
+        (buf, held): (&mut [(u64, usize)], &mut usize),
+        full: usize,
+        mut shrink: impl FnMut(&mut [(u64, usize)], &mut usize) -> f64,
+    ) -> f64 {
+        for c in &self.chunks[..self.used] {
+            if metric.point_box(q, &c.tight) > bound {
+                continue;
+            }
+            let mut dist = [0.0; CHUNK];
+            for (j, d) in dist.iter_mut().enumerate() {
+                let p: [f64; D] = core::array::from_fn(|a| c.cols[a][j]);
+                *d = metric.distance(q, &p);
+            }
+            let mut mask = 0u64;
+            for (j, &d) in dist.iter().enumerate() {
+                mask |= u64::from(d <= bound) << j;
+            }
+            mask &= c.live;
+            while mask != 0 {
+                let j = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                buf[*held] = (dist[j].to_bits(), c.at[j]);
+                *held += usize::from(c.at[j] != skip);
+            }
+            if *held >= full {
+                bound = shrink(buf, held);
+            }
+        }
+        bound
+    }
+}
+
+/// A radius (squared distance) within which every point of the closed box `gbox` surely has
+/// `need` points of `b`: the farthest distance from `gbox` to the box of the smallest node met
+/// on the way down from the root, toward `gbox`'s centre, that still holds `need` points. `b`
+/// holds at least `need` points.
+pub(crate) fn radius_of<B, P, const D: usize>(
+    b: &B,
+    metric: &P,
+    gbox: &Aabb<f64, D>,
+    need: usize,
+) -> f64
+where
+    B: SpatialIndex<D>,
+    P: PairDistance<D>,
+{
+    let Some((mut node, mut nb)) = b.root() else {
+        return f64::INFINITY;
+    };
+    let centre: [f64; D] = core::array::from_fn(|a| 0.5 * (gbox.min[a] + gbox.max[a]));
+    loop {
+        let mut next = None;
+        b.for_each_child_in(node, &nb, |c, cb| {
+            if next.is_none() && cb.contains(&centre) && b.count(c) >= need {
+                next = Some((c, *cb));
+            }
+        });
+        match next {
+            Some((c, cb)) => (node, nb) = (c, cb),
+            None => return metric.box_box(gbox, &nb).1,
+        }
+    }
+}
