@@ -4,10 +4,8 @@
 //! rayon`, `par_balance` and `par_is_balanced` too.
 
 use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion, Throughput};
+use orthtree::tree::fractal;
 use orthtree::{Connectivity, Tree};
-
-#[path = "workloads/fractal.rs"]
-mod fractal;
 
 fn bench_dim<const D: usize>(c: &mut Criterion, levels: &[u8]) {
     for conn in [Connectivity::Face, Connectivity::Corner] {

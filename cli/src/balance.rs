@@ -6,16 +6,14 @@
 //! `--incremental` also builds the same refinement with `Tree::split_balanced` (exercise 14.8:
 //! balanced construction without the unbalanced tree first) and compares time and result.
 //!
-//! The refinement is p4est's (see `benches/workloads/fractal.rs`). Prints the leaf counts before and after balance, the refine, balance and
+//! The refinement is p4est's (`orthtree::tree::fractal`). Prints the leaf counts before and after balance, the refine, balance and
 //! is_balanced times, peak memory, and a checksum of the sorted leaf cells.
 
 use crate::limits;
 use crate::Failure;
+use orthtree::tree::fractal::{self, fractal_leaves};
 use orthtree::{tree::BalanceOptions, Connectivity, Tree};
 use std::time::Instant;
-
-#[path = "../../benches/workloads/fractal.rs"]
-mod fractal;
 
 /// p4est's fractal refinement, then 2:1 balance (its benchmark workload)
 ///
@@ -86,24 +84,6 @@ const PEAK_BYTES_PER_LEAF: f64 = 40.0;
 /// The extra peak of `--incremental` (a second tree and the list of split cells): measured 1.2
 /// at level 8 in 3D; with a margin.
 const INCREMENTAL_FACTOR: f64 = 1.5;
-
-/// Leaves of the fractal at `level` in dimension `dim` (exact, see `benches/workloads/fractal.rs`):
-/// the uniform tree at level u = level - 4 (or the root), half of whose cells (those with an
-/// even child id) are refined for the remaining levels, half of each cell's children again.
-fn fractal_leaves(dim: usize, level: u8) -> f64 {
-    let uniform = level.saturating_sub(4);
-    let half = 2f64.powi(dim as i32 - 1);
-    // leaves under an even cell with k levels to go: 1, then half * (1 + below(k - 1))
-    let mut below = 1.0;
-    for _ in 0..level - uniform {
-        below = half * (1.0 + below);
-    }
-    if uniform == 0 {
-        below
-    } else {
-        2f64.powi((dim * uniform as usize) as i32) / 2.0 * (1.0 + below)
-    }
-}
 
 /// The deepest level of a tree in dimension `dim` (`Cell::<D>::MAX_LEVEL`).
 fn max_level(dim: usize) -> u8 {

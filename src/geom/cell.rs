@@ -221,3 +221,19 @@ impl<const D: usize> Ord for Cell<D> {
         (self.aligned_key(), self.level).cmp(&(other.aligned_key(), other.level))
     }
 }
+
+/// The child index, below a cell at `level`, of the cell at `level + 1` holding the point whose
+/// Morton key at [`Cell::MAX_LEVEL`] is `key`: the key's digit `level + 1`.
+#[inline]
+pub(crate) fn digit<const D: usize>(key: u64, level: u8) -> usize {
+    let shift = D as u32 * (Cell::<D>::MAX_LEVEL - level - 1) as u32;
+    ((key >> shift) as usize) & (Dim::<D>::CHILDREN - 1)
+}
+
+/// Whether the points whose Morton keys at [`Cell::MAX_LEVEL`] are `a` and `b` lie in one cell
+/// at `level` (the keys agree in their first `level` digits).
+#[inline]
+pub(crate) fn same_cell<const D: usize>(a: u64, b: u64, level: u8) -> bool {
+    let shift = D as u32 * u32::from(Cell::<D>::MAX_LEVEL - level);
+    shift >= 64 || (a >> shift) == (b >> shift)
+}

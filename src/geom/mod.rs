@@ -15,7 +15,7 @@ mod scalar;
 
 pub use aabb::{Aabb, AabbError};
 pub use cell::Cell;
-pub(crate) use cell::Dim;
+pub(crate) use cell::{digit, same_cell, Dim};
 pub use deep::{DeepCell, DeepKey};
 pub use direction::{Connectivity, Direction};
 pub use float_bits::FloatBits;

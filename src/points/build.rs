@@ -35,6 +35,13 @@ use crate::tree::{NodeId, Tree};
 /// (3D) bytes per point instead of 2.55 and 4.03; 128 measured the same within noise.
 pub const DEFAULT_BUCKET_SIZE: usize = 64;
 
+/// The build's split rule: a node at `level` holding `count` points splits when it holds more
+/// than the bucket size and lies above the maximum depth (so duplicates never loop).
+#[inline]
+pub(crate) fn splits(count: usize, level: u8, bucket_size: usize, max_depth: u8) -> bool {
+    count > bucket_size && level < max_depth
+}
+
 /// Settings for building a [`PointTree`]: root box, bucket size and maximum depth.
 ///
 /// ```

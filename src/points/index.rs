@@ -1,13 +1,18 @@
-//! [`PointTree`] as the query engines and users see it: its [`SpatialIndex`] (the tree is its
-//! own index: every node owns one contiguous run of the points in Morton order, carried down
-//! with the node as a [`PointNode`]), and its [`PointSet`] and [`PointSetMut`] (slots are
-//! positions in Morton order, so a neighbour's index is its position in
-//! [`PointTree::points`]).
+//! A point tree as the query engines and users see it, written once for the owned
+//! [`PointTree`] and the saved tree's borrowed view (`io::saved::PointTreeView`):
+//!
+//! - [`PointArrays`]: the arrays a query walks, borrowed (the points and items in Morton order,
+//!   each node slot's first child and run end, the root geometry), and their [`SpatialIndex`]:
+//!   every node owns one contiguous run of the points, carried down with the node as a
+//!   [`PointNode`], so a child's run is read from the 2^D run ends of its block (`runs.rs`);
+//! - `point_index!`, through which each tree implements [`SpatialIndex`] by lending its
+//!   arrays, and [`PointSet`] (slots are positions in Morton order, so a neighbour's index is
+//!   its position in [`PointTree::points`]);
+//! - [`PointTree`]'s own use of them.
 
 use super::PointTree;
-use crate::error::ValidationError;
-use crate::geom::{child_box, Aabb, Cell, Scalar};
-use crate::query::{nearest_child_by_boxes, Metric, PointSet, SpatialIndex};
+use crate::geom::{child_box, Aabb, Cell, Dim, RootGeometry, Scalar};
+use crate::query::{nearest_child_by_boxes, Metric, SpatialIndex};
 use crate::tree::NodeId;
 use core::ops::Range;
 
@@ -25,23 +30,59 @@ pub struct PointNode<const D: usize> {
     pub end: u32,
 }
 
-impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointTree<S, T, D> {
+/// A leaf's marker in the first children (as the arena's).
+const NONE: u32 = u32::MAX;
+
+/// The arrays of a point tree the query engines walk, borrowed from the owned tree or from
+/// saved bytes (see the module doc). The links followed are trusted: the owned tree keeps them,
+/// the view checked them when it was opened.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PointArrays<'a, S, T, const D: usize> {
+    /// The points in Morton order.
+    pub points: &'a [[S; D]],
+    /// Their items.
+    pub items: &'a [T],
+    /// Per node slot, the id of its first child, `u32::MAX` for a leaf.
+    pub first_child: &'a [u32],
+    /// Per node slot, the end of its run relative to its parent's start.
+    pub run_ends: &'a [u32],
+    /// Where the cells lie.
+    pub geometry: &'a RootGeometry<D>,
+}
+
+impl<S, T, const D: usize> PointArrays<'_, S, T, D> {
+    /// The first child of `node`, `None` for a leaf.
+    #[inline(always)]
+    fn first_child_of(&self, node: &PointNode<D>) -> Option<u32> {
+        let f = self.first_child[node.id.index()];
+        (f != NONE).then_some(f)
+    }
+
+    /// The relative run ends of the block whose first node is `first`.
+    #[inline(always)]
+    fn block(&self, first: u32) -> &[u32] {
+        let f = first as usize;
+        &self.run_ends[f..f + Dim::<D>::CHILDREN]
+    }
+}
+
+impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointArrays<'_, S, T, D> {
     type Scalar = S;
     type Payload = T;
     type Node = PointNode<D>;
 
     #[inline]
     fn points(&self) -> &[[S; D]] {
-        &self.points
+        self.points
     }
 
     #[inline]
     fn payloads(&self) -> &[T] {
-        &self.items
+        self.items
     }
 
     fn root(&self) -> Option<(PointNode<D>, Aabb<f64, D>)> {
-        if self.is_empty() {
+        if self.points.is_empty() {
             return None;
         }
         let cell = Cell::root();
@@ -49,9 +90,9 @@ impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointTree<S, T, D> {
             id: NodeId::ROOT,
             cell,
             start: 0,
-            end: self.len() as u32,
+            end: self.points.len() as u32,
         };
-        Some((node, self.geometry().cell_box(&cell)))
+        Some((node, self.geometry.cell_box(&cell)))
     }
 
     #[inline]
@@ -65,7 +106,7 @@ impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointTree<S, T, D> {
         node: PointNode<D>,
         f: impl FnMut(PointNode<D>, &Aabb<f64, D>),
     ) -> bool {
-        let bbox = self.geometry().cell_box(&node.cell);
+        let bbox = self.geometry.cell_box(&node.cell);
         self.for_each_child_in(node, &bbox, f)
     }
 
@@ -81,14 +122,14 @@ impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointTree<S, T, D> {
         q: &[f64; D],
         metric: &M,
     ) -> Option<(PointNode<D>, Aabb<f64, D>)> {
-        let first = self.tree().child(node.id, 0)?;
+        let first = self.first_child_of(&node)?;
         if bbox.contains(q) {
-            let (i, child) = self.geometry().child_holding(&node.cell, bbox, q);
-            let ends = self.runs().block::<D>(first);
+            let (i, child) = self.geometry.child_holding(&node.cell, bbox, q);
+            let ends = self.block(first);
             let start = node.start + if i == 0 { 0 } else { ends[i - 1] };
             let end = node.start + ends[i];
             if start < end {
-                let id = NodeId(first.0 + i as u32);
+                let id = NodeId(first + i as u32);
                 let cell = node.cell.child(i);
                 return Some((
                     PointNode {
@@ -111,12 +152,12 @@ impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointTree<S, T, D> {
         bbox: &Aabb<f64, D>,
         mut f: impl FnMut(PointNode<D>, &Aabb<f64, D>),
     ) -> bool {
-        let Some(first) = self.tree().child(node.id, 0) else {
+        let Some(first) = self.first_child_of(&node) else {
             return false;
         };
-        let mid = self.geometry().mids(&node.cell);
+        let mid = self.geometry.mids(&node.cell);
         let mut s = node.start;
-        for (i, &end) in self.runs().block::<D>(first).iter().enumerate() {
+        for (i, &end) in self.block(first).iter().enumerate() {
             let e = node.start + end;
             if s == e {
                 continue;
@@ -124,7 +165,7 @@ impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointTree<S, T, D> {
             let b = child_box(bbox, &mid, i);
             f(
                 PointNode {
-                    id: NodeId(first.0 + i as u32),
+                    id: NodeId(first + i as u32),
                     cell: node.cell.child(i),
                     start: s,
                     end: e,
@@ -137,58 +178,151 @@ impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointTree<S, T, D> {
     }
 }
 
-impl<S: Scalar, T, const D: usize> PointSet<D> for PointTree<S, T, D> {
-    type Scalar = S;
-    type Item = T;
-    type Index = Self;
+/// Implements [`SpatialIndex`] by the type's `arrays()` (its [`PointArrays`]) and
+/// [`PointSet`](crate::PointSet) on its fields `points`, `items` and `domain`, for a point tree
+/// over `S` coordinates and `T` items, whose `validate` calls the method named, documented by
+/// the attributes given:
+///
+/// ```ignore
+/// point_index!(impl[S: Scalar, T, const D: usize] PointTree<S, T, D>, check_invariants);
+/// ```
+macro_rules! point_index {
+    (impl[$($g:tt)*] $ty:ty, $(#[$doc:meta])* $validate:ident) => {
+        impl<$($g)*> $crate::query::SpatialIndex<D> for $ty {
+            type Scalar = S;
+            type Payload = T;
+            type Node = $crate::points::PointNode<D>;
 
+            #[inline]
+            fn points(&self) -> &[[S; D]] {
+                &self.points
+            }
+
+            #[inline]
+            fn payloads(&self) -> &[T] {
+                &self.items
+            }
+
+            fn root(&self) -> Option<(Self::Node, $crate::Aabb<f64, D>)> {
+                self.arrays().root()
+            }
+
+            #[inline]
+            fn run(&self, node: Self::Node) -> core::ops::Range<usize> {
+                node.start as usize..node.end as usize
+            }
+
+            #[inline]
+            fn for_each_child(
+                &self,
+                node: Self::Node,
+                f: impl FnMut(Self::Node, &$crate::Aabb<f64, D>),
+            ) -> bool {
+                self.arrays().for_each_child(node, f)
+            }
+
+            /// When `q` lies in the node's closed box, the child holding it under the split
+            /// convention (a coordinate on a split line goes to the lower child), if it has
+            /// points: one comparison per axis instead of a box distance per child. Otherwise
+            /// the default.
+            #[inline(always)]
+            fn nearest_child<M: $crate::Metric<D>>(
+                &self,
+                node: Self::Node,
+                bbox: &$crate::Aabb<f64, D>,
+                q: &[f64; D],
+                metric: &M,
+            ) -> Option<(Self::Node, $crate::Aabb<f64, D>)> {
+                self.arrays().nearest_child(node, bbox, q, metric)
+            }
+
+            #[inline]
+            fn for_each_child_in(
+                &self,
+                node: Self::Node,
+                bbox: &$crate::Aabb<f64, D>,
+                f: impl FnMut(Self::Node, &$crate::Aabb<f64, D>),
+            ) -> bool {
+                self.arrays().for_each_child_in(node, bbox, f)
+            }
+        }
+
+        impl<$($g)*> $crate::PointSet<D> for $ty {
+            type Scalar = S;
+            type Item = T;
+            type Index = Self;
+
+            #[inline(always)]
+            fn index(&self) -> &Self {
+                self
+            }
+
+            #[inline(always)]
+            fn item_of<'p>(&'p self, payload: &'p T) -> &'p T {
+                payload
+            }
+
+            #[inline(always)]
+            fn slot_of(&self, position: usize, _: &T) -> usize {
+                position
+            }
+
+            /// The items, in the order of the points (Morton order).
+            #[inline]
+            fn items(&self) -> &[T] {
+                &self.items
+            }
+
+            #[inline]
+            fn point(&self, slot: usize) -> &[S; D] {
+                &self.points[slot]
+            }
+
+            #[inline]
+            fn domain(&self) -> &$crate::Aabb<f64, D> {
+                &self.domain
+            }
+
+            $(#[$doc])*
+            fn validate(&self) -> Result<(), $crate::ValidationError> {
+                self.$validate()
+            }
+
+            #[inline]
+            fn len(&self) -> usize {
+                self.points.len()
+            }
+
+            #[inline]
+            fn iter(&self) -> impl ExactSizeIterator<Item = (&[S; D], &T)> + '_ {
+                self.points.iter().zip(self.items.iter())
+            }
+        }
+    };
+}
+#[cfg(feature = "saved")]
+pub(crate) use point_index;
+
+impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
+    /// The arrays the queries walk.
     #[inline(always)]
-    fn index(&self) -> &Self {
-        self
-    }
-
-    #[inline(always)]
-    fn item_of<'a>(&'a self, payload: &'a T) -> &'a T {
-        payload
-    }
-
-    #[inline(always)]
-    fn slot_of(&self, position: usize, _: &T) -> usize {
-        position
-    }
-
-    /// The items, in the order of [`PointTree::points`] (Morton order).
-    #[inline]
-    fn items(&self) -> &[T] {
-        &self.items
-    }
-
-    #[inline]
-    fn point(&self, slot: usize) -> &[S; D] {
-        &self.points[slot]
-    }
-
-    #[inline]
-    fn domain(&self) -> &Aabb<f64, D> {
-        &self.domain
-    }
-
-    /// Checks every invariant and names the first one broken: node runs nest and partition their
-    /// parent's; every point lies in its leaf's cell under the split convention and inside the
-    /// domain; the points are in Morton order; a leaf holds more than the bucket size only at the
-    /// maximum depth; an internal node holds more than the bucket size unless balance split it,
-    /// and then the tree is balanced.
-    fn validate(&self) -> Result<(), ValidationError> {
-        self.check_invariants()
-    }
-
-    #[inline]
-    fn len(&self) -> usize {
-        self.points.len()
-    }
-
-    #[inline]
-    fn iter(&self) -> impl ExactSizeIterator<Item = (&[S; D], &T)> + '_ {
-        self.points.iter().zip(&self.items)
+    pub(crate) fn arrays(&self) -> PointArrays<'_, S, T, D> {
+        PointArrays {
+            points: &self.points,
+            items: &self.items,
+            first_child: self.tree.link_arrays().0,
+            run_ends: self.runs.ends(),
+            geometry: &self.geometry,
+        }
     }
 }
+
+point_index!(
+    impl[S: Scalar, T, const D: usize] PointTree<S, T, D>,
+    /// Checks every invariant and names the first one broken: node runs nest and partition
+    /// their parent's; every point lies in its leaf's cell under the split convention and
+    /// inside the domain; the points are in Morton order; a leaf holds more than the bucket
+    /// size only at the maximum depth; an internal node holds more than the bucket size unless
+    /// balance split it, and then the tree is balanced.
+    check_invariants
+);

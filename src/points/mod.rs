@@ -21,17 +21,25 @@ pub(crate) mod run_walk;
 mod runs;
 mod update;
 
+pub(crate) use build::splits;
 pub use build::{PointTreeBuilder, DEFAULT_BUCKET_SIZE};
 pub use dynamic::{DynamicIndex, DynamicNode, DynamicPointTree};
 pub use index::PointNode;
+#[cfg(feature = "saved")]
+pub(crate) use index::{point_index, PointArrays};
 pub use leaves::Leaf;
 
 use crate::error::{Error, ValidationError};
-use crate::geom::{Aabb, Cell, Dim, RootGeometry, Scalar};
+pub(crate) use crate::geom::digit;
+use crate::geom::{Aabb, Dim, RootGeometry, Scalar};
 use crate::query::{Location, PointSet, QueryError};
 use crate::tree::{BalanceOptions, NodeId, Tree};
 #[cfg(any(feature = "saved", feature = "mpi"))]
 pub(crate) use build::settle;
+#[cfg(feature = "serde")]
+pub(crate) use dynamic::DynamicParts;
+#[cfg(any(feature = "saved", feature = "serde"))]
+pub(crate) use raw::checked_root;
 #[cfg(any(feature = "saved", feature = "serde"))]
 pub(crate) use raw::{PointTreeArrays, PointTreeParts};
 pub(crate) use runs::Runs;
@@ -40,8 +48,6 @@ pub(crate) use {
     build::{index_bits, order_by_full_keys, pack},
     radix::sort_keyed,
 };
-#[cfg(feature = "serde")]
-pub(crate) use {dynamic::DynamicParts, raw::checked_root};
 
 /// A point quadtree (D = 2), octree (D = 3) or 2^D-tree storing (point, item) pairs.
 ///
@@ -255,7 +261,12 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         let (tree, runs, points) = (&mut self.tree, &mut self.runs, &self.points);
         let mut stack = vec![(start, runs.run(tree, start))];
         while let Some((v, (s, e))) = stack.pop() {
-            if (e - s) as usize <= self.bucket_size || tree.level(v) >= self.max_depth {
+            if !splits(
+                (e - s) as usize,
+                tree.level(v),
+                self.bucket_size,
+                self.max_depth,
+            ) {
                 continue;
             }
             tree.split(v);
@@ -274,20 +285,13 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     }
 }
 
-/// The child index of the cell at `level + 1` holding the point whose finest Morton key is `key`.
-#[inline]
-pub(crate) fn digit<const D: usize>(key: u64, level: u8) -> usize {
-    let shift = D as u32 * (Cell::<D>::MAX_LEVEL - level - 1) as u32;
-    ((key >> shift) as usize) & (Dim::<D>::CHILDREN - 1)
-}
-
 /// Runs up to this long are partitioned in one pass over their digits, longer ones by a binary
 /// search per child. The pass is branch-free and reads the run in order.
 const LINEAR_PARTITION: u32 = 512;
 
 /// Gives each child of the just-split node `v` its part of `v`'s run `(s, e)`, which is sorted
 /// by key.
-fn partition_children<const D: usize>(
+pub(crate) fn partition_children<const D: usize>(
     tree: &Tree<D>,
     runs: &mut Runs,
     v: NodeId,

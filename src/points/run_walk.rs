@@ -107,7 +107,7 @@ pub(crate) fn walk_runs<const D: usize>(
         let count = (e - s) as usize;
         let first = arrays.first_child[at];
         if first == NONE {
-            if count > sizes.bucket_size && level < sizes.max_depth {
+            if super::splits(count, level, sizes.bucket_size, sizes.max_depth) {
                 return Err(ValidationError::new(Invariant::LeafSize)
                     .node(v)
                     .detail(format!("holds {count} points")));

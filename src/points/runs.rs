@@ -41,6 +41,7 @@ impl Runs {
     }
 
     /// The relative end of every node slot's run.
+    #[inline]
     pub(crate) fn ends(&self) -> &[u32] {
         &self.ends
     }
@@ -110,6 +111,13 @@ impl Runs {
         {
             *slot = end - start;
         }
+    }
+
+    /// Sets the relative end of `id`'s run (the out-of-core build closes each child's run when
+    /// its last point has arrived, and the root's at the end).
+    #[cfg(feature = "saved")]
+    pub(crate) fn set_end(&mut self, id: NodeId, end: u32) {
+        self.ends[id.index()] = end;
     }
 
     /// After one point was added (`delta` 1) to or removed (-1) from the run of the leaf at the

@@ -39,6 +39,7 @@ mod periodic_metric;
 mod periodic_queries;
 mod periodic_region;
 pub(crate) mod point_set;
+mod point_set_mut;
 pub mod range;
 mod region;
 
@@ -59,7 +60,8 @@ pub use periodic::{OutsidePoints, PeriodicError, Torus};
 pub use periodic_metric::{AxisMetric, MinImage};
 pub use periodic_queries::PeriodicQueries;
 pub use periodic_region::{PeriodicBall, PeriodicBox};
-pub use point_set::{InsertError, Payload, PointSet, PointSetMut};
+pub use point_set::{Payload, PointSet};
+pub use point_set_mut::{InsertError, PointSetMut};
 pub use range::QueryStats;
 pub use region::{Ball, HalfSpace, Region, Relation};
 

@@ -1,8 +1,9 @@
 //! [`PointSet`]: the one public trait of every point tree. A tree supplies its
 //! [`SpatialIndex`] and how a point of the index maps to its item; every user-facing query
 //! (range, counts, visitors, nearest, k-nearest, the nearest iterator, under any [`Metric`]) is
-//! a provided method, written once here over the engines of this module. [`PointSetMut`] adds
-//! the updates of the trees that take them.
+//! a provided method, written once here over the engines of this module; the iterators its
+//! queries return. [`PointSetMut`](super::PointSetMut) (`point_set_mut.rs`) adds the updates of
+//! the trees that take them.
 //!
 //! # Slots: the one meaning of an index
 //! Every tree keeps its items in one slice, [`PointSet::items`], and the point of item `s` is
@@ -18,7 +19,7 @@ use super::nearest_iter::IndexNearestIter;
 use super::range::{for_each_in, for_each_until, scan_limit, IndexRegionIter, QueryStats};
 use super::region::{Ball, HalfSpace, Region};
 use super::{check_max, query_box, query_point, QueryError};
-use crate::error::{Error, ValidationError};
+use crate::error::ValidationError;
 use crate::geom::{Aabb, Scalar};
 use core::ops::ControlFlow;
 
@@ -666,106 +667,6 @@ fn with_item<'a, P: PointSet<D> + ?Sized, const D: usize>(
         item: set.item_of(n.item),
         distance: n.distance,
         index: set.slot_of(n.index, n.item),
-    }
-}
-
-/// The updates of a [`PointSet`] that takes them: [`PointTree`](crate::PointTree),
-/// [`DynamicPointTree`](crate::DynamicPointTree), [`CompressedTree`](crate::CompressedTree) and
-/// [`SkipQuadtree`](crate::SkipQuadtree).
-///
-/// ```
-/// use orthtree::prelude::*;
-/// use orthtree::{DynamicPointTree, Quadtree};
-/// fn churn<P: PointSetMut<2, Scalar = f64, Item = u32>>(t: &mut P) {
-///     t.insert([0.25, 0.5], 7).unwrap();
-///     assert!(t.remove(&[0.25, 0.5], &7));
-///     assert_eq!(t.remove_point(&[0.0, 0.0]), Some(1));
-///     t.validate().unwrap();
-/// }
-/// let pts = [([0.0, 0.0], 1), ([1.0, 1.0], 2)];
-/// churn(&mut Quadtree::new(&pts).unwrap());
-/// churn(&mut DynamicPointTree::new(&pts).unwrap());
-/// ```
-pub trait PointSetMut<const D: usize>: PointSet<D> {
-    /// Adds `item` at `point`.
-    ///
-    /// # Errors
-    /// A NaN, infinite or inexact coordinate, or a point outside [`PointSet::domain`] (a tree
-    /// never grows its root box); too many points. The set is unchanged then, and the error
-    /// hands the item back ([`InsertError::item`]).
-    fn insert(
-        &mut self,
-        point: [Self::Scalar; D],
-        item: Self::Item,
-    ) -> Result<(), InsertError<Self::Item>>;
-
-    /// Removes one point at exactly `point` whose item `wanted` accepts and returns that item;
-    /// `None` (and the set unchanged) if there is none. [`remove`](Self::remove) and
-    /// [`remove_point`](Self::remove_point) are this with a fixed test; each tree's
-    /// implementation says which of several matches goes and what it costs.
-    ///
-    /// ```
-    /// use orthtree::prelude::*;
-    /// use orthtree::Quadtree;
-    /// let mut t = Quadtree::new(&[([0.0, 0.0], 1), ([0.0, 0.0], 2), ([0.0, 0.0], 3)]).unwrap();
-    /// assert_eq!(t.remove_where(&[0.0, 0.0], |&i| i % 2 == 0), Some(2));
-    /// assert_eq!(t.remove_where(&[0.0, 0.0], |&i| i > 5), None);
-    /// assert_eq!(t.len(), 2);
-    /// ```
-    fn remove_where(
-        &mut self,
-        point: &[Self::Scalar; D],
-        wanted: impl Fn(&Self::Item) -> bool,
-    ) -> Option<Self::Item>;
-
-    /// Removes one stored pair equal to (`point`, `item`); `false` if there is none.
-    fn remove(&mut self, point: &[Self::Scalar; D], item: &Self::Item) -> bool
-    where
-        Self::Item: PartialEq,
-    {
-        self.remove_where(point, |t| t == item).is_some()
-    }
-
-    /// Removes one point at exactly `point` and returns its item; `None` if there is none.
-    fn remove_point(&mut self, point: &[Self::Scalar; D]) -> Option<Self::Item> {
-        self.remove_where(point, |_| true)
-    }
-}
-
-/// An insert [`PointSetMut::insert`] refused: why, and the item, handed back unchanged.
-///
-/// ```
-/// use orthtree::prelude::*;
-/// use orthtree::{Error, Quadtree};
-/// let mut t = Quadtree::new(&[([0.0, 0.0], String::from("a"))]).unwrap();
-/// let refused = t.insert([f64::NAN, 0.0], String::from("kept")).unwrap_err();
-/// assert!(matches!(refused.error, Error::NonFiniteCoordinate { axis: 0, .. }));
-/// assert_eq!(refused.item, "kept");
-/// assert_eq!(t.len(), 1);
-/// ```
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct InsertError<T> {
-    /// Why the point was refused.
-    pub error: Error,
-    /// The item that was to be inserted.
-    pub item: T,
-}
-
-impl<T> core::fmt::Display for InsertError<T> {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        write!(f, "insert refused: {}", self.error)
-    }
-}
-
-impl<T: core::fmt::Debug> std::error::Error for InsertError<T> {
-    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
-        Some(&self.error)
-    }
-}
-
-impl<T> From<InsertError<T>> for Error {
-    fn from(e: InsertError<T>) -> Self {
-        e.error
     }
 }
 

@@ -2,7 +2,8 @@
 //! traversals, neighbour finding and 2:1 balance.
 //!
 //! Files by what they hold: `arena.rs` (the nodes), `traverse.rs`, `neighbors.rs`, `merge.rs`,
-//! `validate.rs` ([`Tree::validate`]), `raw.rs` (the arrays as stored, for saved trees); `balance_options.rs` ([`BalanceOptions`]), `balance.rs`
+//! `validate.rs` ([`Tree::validate`]), `fractal.rs` (p4est's fractal refinement, the balance
+//! benchmarks' workload), `raw.rs` (the arrays as stored, for saved trees); `balance_options.rs` ([`BalanceOptions`]), `balance.rs`
 //! ([`Tree::balance`]), `balance_check.rs` and `balance_check_dense.rs` ([`Tree::is_balanced`]),
 //! `balance_parallel.rs` (feature `rayon`), `balance_seeded.rs` (refinement toward
 //! given cells and balance restarted from new splits, for the forest over MPI ranks; feature `mpi`), `balanced_split.rs` ([`Tree::split_balanced`]), and
@@ -24,6 +25,7 @@ mod balance_reference;
 #[cfg(feature = "mpi")]
 mod balance_seeded;
 mod balanced_split;
+pub mod fractal;
 mod inner;
 mod merge;
 mod neighbors;

@@ -2,19 +2,17 @@
 //! D = 2 and 3, every connectivity and the weak balance, from leaves split over the ranks in
 //! several ways (evenly, all on one rank, uneven with empty ranks); the ghost layer and its
 //! mirrors against a brute-force contact search over every leaf; the partition table after
-//! balance and repartition; the fractal's parts equal to the fractal (both copies of its rule).
+//! balance and repartition; the fractal's parts (cells below a run of the uniform level) equal
+//! to the fractal refined as one tree.
 
 use super::Check;
 use mpi::datatype::PartitionMut;
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
 use orthtree::dist::{workload, DistForest, Partition};
-use orthtree::tree::BalanceOptions;
+use orthtree::tree::{fractal, BalanceOptions};
 use orthtree::{Cell, Connectivity, Tree};
 use rand::{rngs::SmallRng, Rng, SeedableRng};
-
-#[path = "../../benches/workloads/fractal.rs"]
-mod fractal;
 
 pub const CHECKS: &[Check] = &[
     ("forest::balance_equals_serial_2d", balance_2d),
@@ -281,10 +279,6 @@ fn fractal_parts(world: &SimpleCommunicator) {
             .collect();
         let cells = Partition::uniform(fractal::uniform_cells::<2>(level), size);
         let part = fractal::fractal_part::<2>(level, cells[rank], cells[rank + 1]);
-        // the distributed workload's copy of the rule gives the same part
-        let (first, end) = (cells[rank], cells[rank + 1]);
-        assert_eq!(workload::fractal_part::<2>(level, first, end), part);
-        assert_eq!(workload::uniform_cells::<2>(level), cells[size]);
         let mut forest = DistForest::new(world, part).unwrap();
         assert_eq!(gather(world, forest.leaves()), want);
         let mut serial = fractal::fractal::<2>(level);
@@ -296,10 +290,6 @@ fn fractal_parts(world: &SimpleCommunicator) {
     let want: Vec<Cell<3>> = fractal::fractal::<3>(5).leaves().map(|(_, c)| c).collect();
     assert_eq!(
         fractal::fractal_part::<3>(5, 0, fractal::uniform_cells::<3>(5)),
-        want
-    );
-    assert_eq!(
-        workload::fractal_part::<3>(5, 0, workload::uniform_cells::<3>(5)),
         want
     );
     assert_eq!(workload::fractal_leaves(3, 5), want.len() as f64);

@@ -353,8 +353,7 @@ fn balanced_trees_are_left_alone() {
 #[cfg(feature = "rayon")]
 #[test]
 fn parallel_balance_equals_serial_on_the_fractal() {
-    #[path = "../../benches/workloads/fractal.rs"]
-    mod fractal;
+    use orthtree::tree::fractal;
     fn run<const D: usize>(level: u8) {
         for connectivity in Connectivity::ALL {
             let opts = BalanceOptions::new(connectivity);

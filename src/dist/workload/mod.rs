@@ -16,9 +16,9 @@
 //! repeated runs where a workload repeats.
 
 mod balance;
-mod fractal;
 mod points;
 
+use crate::tree::fractal;
 pub use balance::{BalanceReport, BalanceWorkload};
 pub use fractal::{fractal_leaves, fractal_part, uniform_cells};
 pub use points::{PointsReport, PointsRun, PointsWorkload};

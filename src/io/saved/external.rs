@@ -388,6 +388,7 @@ impl ExternalBuild {
             items.write_all(&record[8 + p_len..8 + p_len + i_len])
         })?;
         topology.finish();
+        let raw = topology.tree.raw_parts();
         let zeros = [0u8; ALIGN as usize];
         points
             .write_all(&zeros[..(items_at - head - point_bytes) as usize])
@@ -399,7 +400,7 @@ impl ExternalBuild {
         let (half_lo, half_side) = geometry.halves();
         let header = Header::<D> {
             max_depth,
-            depth: topology.depth,
+            depth: raw.depth,
             balanced: None,
             item_size: Layout::<S, T, D>::ITEM as u32,
             item_align: core::mem::align_of::<T>() as u32,
@@ -410,14 +411,14 @@ impl ExternalBuild {
             half_side,
             half_lo,
             domain,
-            live_blocks: topology.live_blocks.clone(),
+            live_blocks: raw.live_blocks.to_vec(),
         };
         let mut at = nodes_at;
         let sections: [&[u8]; 5] = [
-            bytemuck::cast_slice(&topology.run_ends),
-            bytemuck::cast_slice(&topology.first_child),
-            &topology.level,
-            bytemuck::cast_slice(&topology.block_parent),
+            bytemuck::cast_slice(topology.runs.ends()),
+            bytemuck::cast_slice(raw.first_child),
+            raw.level,
+            bytemuck::cast_slice(raw.block_parent),
             &[],
         ];
         for s in sections {

@@ -75,7 +75,6 @@ pub mod mapped;
 mod runs;
 mod topology;
 mod view;
-mod view_index;
 
 pub use error::SavedError;
 pub use header::{ALIGN, MAGIC, VERSION};

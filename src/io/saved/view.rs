@@ -1,6 +1,7 @@
 //! [`PointTreeView`]: a saved point tree queried in place, borrowed from any byte slice (a file
 //! read into memory, a memory map) without copying or rebuilding anything, with every query of
-//! [`PointSet`](crate::PointSet) (its trait implementations are in `view_index.rs`).
+//! [`PointSet`](crate::PointSet): the saved arrays walked as the owned tree walks its own
+//! (`points/index.rs`, written once for both), slots being positions in the saved points.
 //!
 //! Opening checks, in this order: the header as [`read_point_tree`](super::read_point_tree)
 //! does (counts against the bytes available, before anything else); the sections' zero padding;
@@ -31,8 +32,10 @@ use super::header::{header_len, padded, Header};
 use super::{read_header, SavedError, SavedScalar};
 use crate::error::{Invariant, ValidationError};
 use crate::geom::{Aabb, RootGeometry};
+use crate::points::checked_root;
 use crate::points::leaf_bounds::{self, LeafRun};
 use crate::points::run_walk::{walk_runs, RunArrays, Sizes};
+use crate::points::{point_index, PointArrays};
 use crate::PointTree;
 use bytemuck::Pod;
 use std::borrow::Cow;
@@ -119,10 +122,8 @@ impl<'a, S: SavedScalar, T: Pod, const D: usize> PointTreeView<'a, S, T, D> {
     pub(super) fn open_unchecked(bytes: &'a [u8]) -> Result<(Self, Vec<LeafRun<D>>), SavedError> {
         let header = read_header::<S, T, D>(bytes, bytes.len() as u64)?;
         let sections = sections::<S, D>(&header, bytes)?;
-        let geometry = RootGeometry::try_from_halves(header.half_lo, header.half_side)
-            .map_err(|e| settings(format!("the root cube: {e}")))?;
         let domain = header.domain;
-        check_domain(&geometry, &domain)?;
+        let geometry = checked_root(header.half_lo, header.half_side, &domain)?;
         let n = header.points as usize;
         let items = if core::mem::size_of::<T>() == 0 {
             Cow::Owned(vec![T::zeroed(); n])
@@ -167,6 +168,28 @@ impl<'a, S: SavedScalar, T: Pod, const D: usize> PointTreeView<'a, S, T, D> {
         let (view, leaves) = Self::open_unchecked(bytes)?;
         view.check_points(&leaves, parallel)?;
         Ok(view)
+    }
+
+    /// The arrays the queries walk (their indices were checked when the view was opened).
+    #[inline(always)]
+    pub(crate) fn arrays(&self) -> PointArrays<'_, S, T, D> {
+        PointArrays {
+            points: &self.points,
+            items: &self.items,
+            first_child: &self.first_child,
+            run_ends: &self.run_ends,
+            geometry: &self.geometry,
+        }
+    }
+
+    /// The check of [`PointTreeView::open`] again, the structure and every point (the view's
+    /// [`PointSet::validate`](crate::PointSet::validate)).
+    fn check(&self) -> Result<(), ValidationError> {
+        match Self::open_unchecked(self.bytes()) {
+            Ok((_, leaves)) => self.check_points(&leaves, true),
+            Err(SavedError::Invalid(e)) => Err(e),
+            Err(e) => Err(ValidationError::new(Invariant::Settings).detail(e.to_string())),
+        }
     }
 
     /// The per-leaf bound check of every point (see the module doc).
@@ -253,30 +276,16 @@ impl<'a, S: SavedScalar, T: Pod, const D: usize> PointTreeView<'a, S, T, D> {
     }
 }
 
+point_index!(
+    impl[S: SavedScalar, T: Pod, const D: usize] PointTreeView<'_, S, T, D>,
+    /// The check of [`PointTreeView::open`] again (the structure and every point), on rayon's
+    /// threads with feature `rayon`.
+    check
+);
+
 /// The size of one element of `slice`.
 fn element_size<V>(_: &[V]) -> usize {
     core::mem::size_of::<V>()
-}
-
-fn settings(detail: String) -> SavedError {
-    SavedError::Invalid(ValidationError::new(Invariant::Settings).detail(detail))
-}
-
-/// The domain is a finite box inside the root cube.
-fn check_domain<const D: usize>(
-    geometry: &RootGeometry<D>,
-    domain: &Aabb<f64, D>,
-) -> Result<(), SavedError> {
-    Aabb::new(domain.min, domain.max).map_err(|e| settings(format!("the domain: {e}")))?;
-    let root = geometry.root_box();
-    if let Some(axis) = (0..D).find(|&a| domain.min[a] < root.min[a] || domain.max[a] > root.max[a])
-    {
-        return Err(settings(format!(
-            "the domain [{}, {}] on axis {axis} is not inside the root cube's [{}, {}]",
-            domain.min[axis], domain.max[axis], root.min[axis], root.max[axis]
-        )));
-    }
-    Ok(())
 }
 
 /// The seven sections of `bytes` (lengths checked by `read_header`), their padding checked.

@@ -58,7 +58,7 @@ pub use index::{DynamicIndex, DynamicNode};
 #[cfg(feature = "serde")]
 pub(crate) use parts::DynamicParts;
 
-use super::PointTree;
+use super::{splits, PointTree};
 use crate::error::{Error, ValidationError};
 use crate::geom::RootGeometry;
 use crate::geom::{Aabb, Cell, Scalar};
@@ -303,7 +303,12 @@ impl<S: Scalar, T, const D: usize> PointSet<D> for DynamicPointTree<S, T, D> {
                 }
                 continue;
             }
-            if d.count as usize > self.bucket_size && cell.level() < self.max_depth {
+            if splits(
+                d.count as usize,
+                cell.level(),
+                self.bucket_size,
+                self.max_depth,
+            ) {
                 return fail(
                     ValidationError::new(I::LeafSize)
                         .node(id.0)

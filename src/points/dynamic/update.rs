@@ -14,7 +14,7 @@ use super::pool::{cap_for, MIN_CAP};
 use super::{DynamicPointTree, NodeData, GAP};
 use crate::error::Error;
 use crate::geom::Scalar;
-use crate::points::digit;
+use crate::points::{digit, splits};
 use crate::query::{InsertError, Location, PointSet, PointSetMut, QueryError};
 use crate::tree::NodeId;
 use smallvec::SmallVec;
@@ -92,10 +92,10 @@ impl<S: Scalar, T, const D: usize> DynamicPointTree<S, T, D> {
         stack.push(v);
         while let Some(v) = stack.pop() {
             let d = self.index.nodes[v.index()];
-            if d.count as usize <= self.bucket_size || self.index.tree.level(v) >= self.max_depth {
+            let level = self.index.tree.level(v);
+            if !splits(d.count as usize, level, self.bucket_size, self.max_depth) {
                 continue;
             }
-            let level = self.index.tree.level(v);
             let first = self.index.tree.split(v);
             let ix = &mut self.index;
             if ix.nodes.len() < ix.tree.node_count() {
