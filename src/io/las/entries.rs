@@ -133,6 +133,7 @@ impl Records {
 /// ```no_run
 /// use orthtree::io::las;
 /// use orthtree::points::PointTreeBuilder;
+/// use orthtree::PointSet;
 /// let entries = las::read_entries("scan.las").unwrap();
 /// let tree = PointTreeBuilder::new().build(&entries).unwrap();
 /// assert_eq!(tree.len(), entries.len());
