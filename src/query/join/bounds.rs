@@ -50,7 +50,16 @@ impl<const D: usize> PairDistance<D> for Euclid {
 
     #[inline(always)]
     fn point_box(&self, q: &[f64; D], b: &Aabb<f64, D>) -> f64 {
-        SquaredEuclidean.box_distance(q, b)
+        // `SquaredEuclidean.box_distance` without branches: the gap `lo - q` below the box,
+        // `q - hi` above it, 0 inside, as the same subtraction in each case.
+        let mut s = 0.0;
+        for i in 0..D {
+            let (below, above) = (b.min[i] - q[i], q[i] - b.max[i]);
+            let gap = if below > above { below } else { above };
+            let gap = if gap > 0.0 { gap } else { 0.0 };
+            s += gap * gap;
+        }
+        s
     }
 
     #[inline(always)]

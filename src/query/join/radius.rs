@@ -37,6 +37,20 @@ impl Boundary {
     }
 }
 
+impl Boundary {
+    /// The largest squared distance within squared radius `r2` as a bound to compare with
+    /// `<=`: `r2` itself when inclusive, the float just below it when exclusive (`d < r2` is
+    /// `d <= r2.next_down()` for every `f64` but NaN). One comparison, the same for both
+    /// boundaries, lets the kernels test distances without a branch on the boundary.
+    #[inline(always)]
+    pub(crate) fn limit(self, r2: f64) -> f64 {
+        match self {
+            Boundary::Inclusive => r2,
+            Boundary::Exclusive => r2.next_down(),
+        }
+    }
+}
+
 /// The squared radius of a valid radius: not negative, not NaN.
 pub(crate) fn squared_radius(r: f64) -> Result<f64, QueryError> {
     if r >= 0.0 {
@@ -57,4 +71,31 @@ pub(crate) fn squared_radii(radii: &[f64]) -> Result<Vec<f64>, QueryError> {
         }
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Boundary;
+
+    #[test]
+    fn limit_agrees_with_admits() {
+        let values = [
+            0.0,
+            f64::from_bits(1),
+            f64::MIN_POSITIVE,
+            0.5,
+            1.0,
+            1.0f64.next_up(),
+            2.0,
+            f64::MAX,
+            f64::INFINITY,
+        ];
+        for b in [Boundary::Inclusive, Boundary::Exclusive] {
+            for &r2 in &values {
+                for &d in &values {
+                    assert_eq!(d <= b.limit(r2), b.admits(d, r2), "{b:?} d {d} r2 {r2}");
+                }
+            }
+        }
+    }
 }

@@ -2,13 +2,17 @@
 //! squared radius, the brute-force base case of the dual-tree traversal (Gray and Moore,
 //! "N-body problems in statistical learning", NIPS 2001), made cheap in three ways.
 //!
-//! - Filter by boxes: a point of one run farther than the radius from the other node's box has
-//!   no pair there, so only the points of run `b` within the radius of `a`'s box are gathered,
-//!   and only the points of run `a` within the radius of the gathered points' tight box are
-//!   tested. Between two neighbouring cells this leaves the strips along their shared faces.
+//! - Filter by boxes: two runs whose tight boxes (kept per run in a small cache, as a run meets
+//!   its neighbours at nearby times of the traversal) are farther apart than the radius have no
+//!   pair and cost two look-ups; otherwise a point of one run farther than the radius from the
+//!   other's tight box has no pair there, so only the points of run `b` within the radius of
+//!   `a`'s box are gathered, and only the points of run `a` within the radius of the gathered
+//!   points' tight box are tested. Between two neighbouring cells this leaves the strips along
+//!   their shared faces. The filters run without branches on their answers.
 //! - Columns: the gathered points of `b` (up to [`BLOCK`] at a time) are held one array per
 //!   axis, so that one point's distances to the whole block are a short loop of arithmetic
-//!   without branches, whose answers are compared into a bit mask.
+//!   without branches, eight at a time, whose answers are compared with one bound (the
+//!   boundary folded into it, [`Boundary::limit`]) and packed into a bit mask.
 //! - Only the mask's set bits reach the caller, with the distance already computed.
 //!
 //! A run paired with itself is gathered whole (every point lies in its own box) and each point
@@ -34,6 +38,45 @@ pub(crate) struct Block<const D: usize> {
     at: [usize; BLOCK],
     dist: [f64; BLOCK],
     len: usize,
+    /// The tight boxes of the runs met on either side of the leaf pairs.
+    tight: [TightBoxes<D>; 2],
+}
+
+/// The number of runs whose tight boxes are kept per side.
+const SLOTS: usize = 1024;
+
+/// The tight boxes of recently scanned runs, each in the slot its first position hashes to
+/// (the last one there wins): a run meets its neighbours at nearby times of the depth-first
+/// traversal, so its box is mostly found instead of computed again.
+struct TightBoxes<const D: usize> {
+    runs: Vec<Range<usize>>,
+    boxes: Vec<Aabb<f64, D>>,
+}
+
+impl<const D: usize> TightBoxes<D> {
+    fn new() -> Self {
+        TightBoxes {
+            runs: vec![0..0; SLOTS],
+            boxes: vec![Aabb::empty(); SLOTS],
+        }
+    }
+
+    /// The tight box of the points of `points[run]` as `f64` (`run` not empty).
+    #[inline(always)]
+    fn get<S: Scalar>(&mut self, points: &[[S; D]], run: Range<usize>) -> Aabb<f64, D> {
+        // Fibonacci hashing of the first position onto the slots.
+        let slot = ((run.start as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+            >> (64 - SLOTS.trailing_zeros())) as usize;
+        if self.runs[slot] != run {
+            let mut b = Aabb::<f64, D>::empty();
+            for p in &points[run.clone()] {
+                b.add_point(&p.map(Scalar::to_f64));
+            }
+            self.runs[slot] = run;
+            self.boxes[slot] = b;
+        }
+        self.boxes[slot]
+    }
 }
 
 impl<const D: usize> Block<D> {
@@ -44,6 +87,7 @@ impl<const D: usize> Block<D> {
             at: [0; BLOCK],
             dist: [0.0; BLOCK],
             len: 0,
+            tight: [TightBoxes::new(), TightBoxes::new()],
         })
     }
 
@@ -60,6 +104,11 @@ impl<const D: usize> Block<D> {
 
     /// The distances from `q` to the points `from..` of the block (kept in `dist`), and the
     /// mask of those that `admits` takes in (bit `j` for point `j`).
+    ///
+    /// The points are taken eight at a time, from the group of eight holding `from` to the one
+    /// holding the last point, in a loop of fixed length the compiler turns into vector
+    /// arithmetic; the eight answers are packed into a byte of the mask by one multiplication.
+    /// Lanes outside `from..len` hold stale coordinates: their bits are cleared at the end.
     #[inline(always)]
     pub(crate) fn mask<P: PairDistance<D>>(
         &mut self,
@@ -69,13 +118,64 @@ impl<const D: usize> Block<D> {
         admits: impl Fn(f64) -> bool,
     ) -> u64 {
         let mut m = 0u64;
-        for j in from..self.len {
-            let p: [f64; D] = core::array::from_fn(|k| self.cols[k][j]);
-            let d = metric.distance(q, &p);
-            self.dist[j] = d;
-            m |= u64::from(admits(d)) << j;
+        for g in from / LANES..self.len.div_ceil(LANES) {
+            let base = g * LANES;
+            let mut hit = [0u8; LANES];
+            for (l, h) in hit.iter_mut().enumerate() {
+                let p: [f64; D] = core::array::from_fn(|k| self.cols[k][base + l]);
+                let d = metric.distance(q, &p);
+                self.dist[base + l] = d;
+                *h = u8::from(admits(d));
+            }
+            m |= pack(hit) << base;
         }
-        m
+        m & span(from, self.len)
+    }
+}
+
+/// The points of a block tested together: one byte of the mask.
+const LANES: usize = 8;
+
+/// The bits of eight flags (each 0 or 1), flag `l` as bit `l`: the multiplication moves byte
+/// `l`'s low bit to bit `56 + l` without carries (every partial product lands on a distinct bit).
+#[inline(always)]
+fn pack(hit: [u8; LANES]) -> u64 {
+    u64::from_le_bytes(hit).wrapping_mul(0x0102_0408_1020_4080) >> 56
+}
+
+/// The mask of bits `from..len` (`len <= 64`).
+#[inline(always)]
+fn span(from: usize, len: usize) -> u64 {
+    let below_len = if len >= 64 { !0 } else { (1u64 << len) - 1 };
+    let from_on = if from >= 64 { 0 } else { !0u64 << from };
+    below_len & from_on
+}
+
+impl<const D: usize> Block<D> {
+    /// For two different runs, the tight box of run `a` when the tight boxes of the two runs
+    /// are near enough for `admits`, `None` when no pair of theirs can be (for a run paired
+    /// with itself, an empty box, unused).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn near_runs<SA: Scalar, SB: Scalar, P: PairDistance<D>>(
+        &mut self,
+        pa: &[[SA; D]],
+        ra: Range<usize>,
+        pb: &[[SB; D]],
+        rb: Range<usize>,
+        same: bool,
+        metric: &P,
+        admits: impl Fn(f64) -> bool,
+    ) -> Option<Aabb<f64, D>> {
+        if same {
+            return Some(Aabb::empty());
+        }
+        if ra.is_empty() || rb.is_empty() {
+            return None;
+        }
+        let box_a = self.tight[0].get(pa, ra);
+        let box_b = self.tight[1].get(pb, rb);
+        admits(metric.box_box(&box_a, &box_b).0).then_some(box_a)
     }
 }
 
@@ -95,7 +195,7 @@ pub(crate) type Run<'a, S, const D: usize> = (&'a [[S; D]], Range<usize>, &'a Aa
 #[inline]
 pub(crate) fn scan_pairs<SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D: usize>(
     block: &mut Block<D>,
-    (pa, ra, box_a): Run<'_, SA, D>,
+    (pa, ra, _): Run<'_, SA, D>,
     (pb, rb, _): Run<'_, SB, D>,
     same: bool,
     metric: &P,
@@ -103,11 +203,15 @@ pub(crate) fn scan_pairs<SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D
     boundary: Boundary,
     mut each: impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
 ) -> ControlFlow<Br> {
-    let admits = |d: f64| boundary.admits(d, r2);
+    let limit = boundary.limit(r2);
+    let admits = |d: f64| d <= limit;
+    let Some(box_a) = block.near_runs(pa, ra.clone(), pb, rb.clone(), same, metric, admits) else {
+        return ControlFlow::Continue(());
+    };
     let mut next = rb.start;
     while next < rb.end {
         let Some(tight) = gather(block, pb, &mut next, rb.end, |p| {
-            same || admits(metric.point_box(p, box_a))
+            same || admits(metric.point_box(p, &box_a))
         }) else {
             continue;
         };
@@ -146,14 +250,29 @@ fn gather<S: Scalar, const D: usize>(
 ) -> Option<Aabb<f64, D>> {
     block.len = 0;
     let mut tight = Aabb::<f64, D>::empty();
-    while *next < end && block.len < BLOCK {
-        let p = point(points, *next);
-        if keep(&p) {
-            block.push(&p, *next);
-            tight.add_point(&p);
+    let stop = end.min(*next + BLOCK);
+    // Without branches on `keep`: each point is written at the next free place, which moves on
+    // only when it is kept; the tight box grows only by kept points.
+    for at in *next..stop {
+        let p = point(points, at);
+        let j = block.len;
+        for (col, &c) in block.cols.iter_mut().zip(&p) {
+            col[j] = c;
         }
-        *next += 1;
+        block.at[j] = at;
+        let k = keep(&p);
+        // Plain comparisons (the coordinates are not NaN): one instruction each.
+        for ((lo, hi), &x) in tight.min.iter_mut().zip(&mut tight.max).zip(&p) {
+            *lo = if k && x < *lo { x } else { *lo };
+            *hi = if k && x > *hi { x } else { *hi };
+        }
+        block.len = j + usize::from(k);
+        if block.len == BLOCK {
+            *next = at + 1;
+            return Some(tight);
+        }
     }
+    *next = stop;
     (block.len > 0).then_some(tight)
 }
 
@@ -170,7 +289,7 @@ fn gather<S: Scalar, const D: usize>(
 #[inline]
 pub(crate) fn scan_counts<SA: Scalar, SB: Scalar, P: PairDistance<D>, const D: usize>(
     block: &mut Block<D>,
-    (pa, ra, box_a): Run<'_, SA, D>,
+    (pa, ra, _): Run<'_, SA, D>,
     (pb, rb, _): Run<'_, SB, D>,
     same: bool,
     metric: &P,
@@ -183,10 +302,15 @@ pub(crate) fn scan_counts<SA: Scalar, SB: Scalar, P: PairDistance<D>, const D: u
         range.start + r2[range].partition_point(|&r| !boundary.admits(d, r))
     };
     let last = r2[hi - 1];
+    let last_limit = boundary.limit(last);
+    let admits = |d: f64| d <= last_limit;
+    let Some(box_a) = block.near_runs(pa, ra.clone(), pb, rb.clone(), same, metric, admits) else {
+        return;
+    };
     let mut next = rb.start;
     while next < rb.end {
         let Some(tight) = gather(block, pb, &mut next, rb.end, |p| {
-            same || boundary.admits(metric.point_box(p, box_a), last)
+            same || admits(metric.point_box(p, &box_a))
         }) else {
             continue;
         };
@@ -213,8 +337,8 @@ pub(crate) fn scan_counts<SA: Scalar, SB: Scalar, P: PairDistance<D>, const D: u
             if l == all {
                 continue;
             }
-            let edge = r2[all - 1];
-            let mut m = block.mask(from, &q, metric, |d| boundary.admits(d, edge));
+            let edge = boundary.limit(r2[all - 1]);
+            let mut m = block.mask(from, &q, metric, |d| d <= edge);
             let found = i128::from(m.count_ones());
             while m != 0 {
                 let j = m.trailing_zeros() as usize;
