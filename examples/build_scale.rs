@@ -99,7 +99,7 @@ fn main() {
     let args = cli::parse_or_exit(USAGE, parse);
     let mut rng = SmallRng::seed_from_u64(args.seed);
     let entries: Vec<([f64; 3], u32)> = (0..args.n)
-        .map(|i| ([rng.gen(), rng.gen(), rng.gen()], i as u32))
+        .map(|i| ([rng.r#gen(), rng.r#gen(), rng.r#gen()], i as u32))
         .collect();
     let before = peak_kib();
     let mut costs = Vec::with_capacity(args.runs);

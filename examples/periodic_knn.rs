@@ -32,7 +32,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (n, queries, k) = (1_000_000, 100_000, 10);
     let mut rng = SmallRng::seed_from_u64(21);
     let torus = Torus::wrapping([0.0; 3], [1.0; 3])?;
-    let raw: Vec<[f64; 3]> = (0..n).map(|_| rng.gen()).collect();
+    let raw: Vec<[f64; 3]> = (0..n).map(|_| rng.r#gen()).collect();
     let pts = torus.prepare(&raw, OutsidePoints::Refuse)?;
     let entries: Vec<([f64; 3], usize)> = pts.iter().enumerate().map(|(i, p)| (*p, i)).collect();
     let start = Instant::now();
@@ -41,7 +41,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "build of {n} points: {:.3} s",
         start.elapsed().as_secs_f64()
     );
-    let qs: Vec<[f64; 3]> = (0..queries).map(|_| rng.gen()).collect();
+    let qs: Vec<[f64; 3]> = (0..queries).map(|_| rng.r#gen()).collect();
 
     let start = Instant::now();
     let mut sum = 0.0;

@@ -67,7 +67,7 @@ fn parse(cli: &mut Cli) -> Result<Args, CliError> {
 /// `n` points uniform in the unit square.
 fn uniform(n: usize, seed: u64) -> Vec<[f64; 2]> {
     let mut rng = SmallRng::seed_from_u64(seed);
-    (0..n).map(|_| [rng.gen(), rng.gen()]).collect()
+    (0..n).map(|_| [rng.r#gen(), rng.r#gen()]).collect()
 }
 
 /// `n` points from a few Gaussian clusters (Box-Muller), redrawn until inside the unit square.
@@ -82,7 +82,7 @@ fn clustered(n: usize, seed: u64) -> Vec<[f64; 2]> {
     let mut points = Vec::with_capacity(n);
     while points.len() < n {
         let (c, sigma) = clusters[rng.gen_range(0..clusters.len())];
-        let (u1, u2): (f64, f64) = (1.0 - rng.gen::<f64>(), rng.gen());
+        let (u1, u2): (f64, f64) = (1.0 - rng.r#gen::<f64>(), rng.r#gen());
         let r = sigma * (-2.0 * u1.ln()).sqrt();
         let t = std::f64::consts::TAU * u2;
         let p = [c[0] + r * t.cos(), c[1] + r * t.sin()];

@@ -77,7 +77,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args = cli::parse_or_exit(USAGE, parse);
     let n = args.n as usize;
     let mut rng = SmallRng::seed_from_u64(7);
-    let entries: Vec<([f64; 3], u32)> = (0..n).map(|i| (rng.gen(), i as u32)).collect();
+    let entries: Vec<([f64; 3], u32)> = (0..n).map(|i| (rng.r#gen(), i as u32)).collect();
     let (mut builds, mut par_builds, mut loads, mut saves) =
         (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let (mut opens, mut par_opens, mut touches) = (Vec::new(), Vec::new(), Vec::new());
@@ -129,7 +129,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         && back.tree() == tree.tree()
         && view.points() == tree.points()
         && (0..1000).all(|_| {
-            let q: [f64; 3] = rng.gen();
+            let q: [f64; 3] = rng.r#gen();
             let want = tree.k_nearest(&q, 10).ok();
             back.k_nearest(&q, 10).ok() == want && view.k_nearest(&q, 10).ok() == want
         });

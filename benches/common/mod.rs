@@ -42,7 +42,7 @@ impl Distribution {
 pub fn uniform<const D: usize>(n: usize, seed: u64) -> Vec<[f64; D]> {
     let mut rng = SmallRng::seed_from_u64(seed);
     (0..n)
-        .map(|_| core::array::from_fn(|_| rng.gen::<f64>()))
+        .map(|_| core::array::from_fn(|_| rng.r#gen::<f64>()))
         .collect()
 }
 
@@ -58,7 +58,7 @@ pub fn clustered<const D: usize>(
 ) -> Vec<[f64; D]> {
     let mut centre_rng = SmallRng::seed_from_u64(CENTRE_SEED);
     let centres: Vec<[f64; D]> = (0..clusters)
-        .map(|_| core::array::from_fn(|_| centre_rng.gen::<f64>()))
+        .map(|_| core::array::from_fn(|_| centre_rng.r#gen::<f64>()))
         .collect();
     let mut rng = SmallRng::seed_from_u64(seed);
     (0..n)
@@ -74,7 +74,7 @@ const CENTRE_SEED: u64 = 0x005E_EDC1;
 
 /// One standard normal sample (Box-Muller, cosine branch).
 fn standard_normal(rng: &mut SmallRng) -> f64 {
-    let u1 = 1.0 - rng.gen::<f64>(); // (0, 1]: ln is finite
-    let u2 = rng.gen::<f64>();
+    let u1 = 1.0 - rng.r#gen::<f64>(); // (0, 1]: ln is finite
+    let u2 = rng.r#gen::<f64>();
     (-2.0 * u1.ln()).sqrt() * (core::f64::consts::TAU * u2).cos()
 }

@@ -72,7 +72,7 @@ pub fn triangulated_grid(k: usize, seed: u64) -> Triangulation {
             }
             if i + 1 < k && j + 1 < k {
                 let (a, b, c, d) = (id(i, j), id(i, j + 1), id(i + 1, j + 1), id(i + 1, j));
-                if rng.gen::<bool>() {
+                if rng.r#gen::<bool>() {
                     e.push([a, c]);
                     t.extend([[a, b, c], [a, c, d]]);
                 } else {

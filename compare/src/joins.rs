@@ -65,8 +65,8 @@ pub fn surface(n: usize, seed: u64) -> Vec<[f64; 3]> {
     let tau = core::f64::consts::TAU;
     (0..n)
         .map(|_| {
-            let (x, y): (f64, f64) = (rng.gen(), rng.gen());
-            let noise = (rng.gen::<f64>() - 0.5) * 0.002;
+            let (x, y): (f64, f64) = (rng.r#gen(), rng.r#gen());
+            let noise = (rng.r#gen::<f64>() - 0.5) * 0.002;
             [
                 x,
                 y,

@@ -120,7 +120,7 @@ mod guards;
 pub use guards::shown;
 
 /// The message of a refused `raw`, naming the argument `what` and the value.
-fn named(what: &str, raw: &str) -> impl FnOnce(String) -> CliError {
+fn named(what: &str, raw: &str) -> impl FnOnce(String) -> CliError + use<> {
     let name = format!("{what} {}", shown(raw));
     move |message| CliError::new(format!("{name}: {message}"))
 }

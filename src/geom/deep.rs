@@ -277,9 +277,9 @@ mod tests {
 
     fn random_key<const D: usize>(rng: &mut impl Rng) -> DeepKey<D> {
         // Shared high bits now and then, so that keys part at every depth.
-        let base: u64 = rng.gen();
+        let base: u64 = rng.r#gen();
         core::array::from_fn(|_| match rng.gen_range(0..3) {
-            0 => rng.gen(),
+            0 => rng.r#gen(),
             1 => base ^ (1u64 << rng.gen_range(0..64)),
             _ => base,
         })

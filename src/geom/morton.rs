@@ -99,17 +99,17 @@ mod tests {
     fn fast_paths_match_the_bit_loop() {
         let mut rng = rand::rngs::SmallRng::seed_from_u64(7);
         for _ in 0..10_000 {
-            let c2 = [rng.gen::<u32>(), rng.gen::<u32>()];
+            let c2 = [rng.r#gen::<u32>(), rng.r#gen::<u32>()];
             assert_eq!(interleave(c2, 32), slow(c2, 32));
             assert_eq!(deinterleave::<2>(interleave(c2, 32), 32), c2);
             let c3 = [
-                rng.gen::<u32>() >> 11,
-                rng.gen::<u32>() >> 11,
-                rng.gen::<u32>() >> 11,
+                rng.r#gen::<u32>() >> 11,
+                rng.r#gen::<u32>() >> 11,
+                rng.r#gen::<u32>() >> 11,
             ];
             assert_eq!(interleave(c3, 21), slow(c3, 21));
             assert_eq!(deinterleave::<3>(interleave(c3, 21), 21), c3);
-            let c5 = [rng.gen::<u32>() & 0xFFF; 5];
+            let c5 = [rng.r#gen::<u32>() & 0xFFF; 5];
             assert_eq!(deinterleave::<5>(interleave(c5, 12), 12), c5);
         }
         assert_eq!(interleave([u32::MAX], 32), u32::MAX as u64);

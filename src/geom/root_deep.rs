@@ -186,8 +186,8 @@ mod tests {
             let r = g2.root_box();
             for _ in 0..3000 {
                 let x = match rng.gen_range(0..4) {
-                    0 => r.min[0] + rng.gen::<f64>() * (r.max[0] - r.min[0]),
-                    1 => g2.deep_boundary(0, rng.gen::<u64>() as u128, 64),
+                    0 => r.min[0] + rng.r#gen::<f64>() * (r.max[0] - r.min[0]),
+                    1 => g2.deep_boundary(0, rng.r#gen::<u64>() as u128, 64),
                     2 => g2.deep_boundary(0, rng.gen_range(0..1u128 << 40), 40),
                     _ => r.max[0] - rng.gen_range(0..64) as f64 * r.max[0].abs() * f64::EPSILON,
                 };

@@ -35,7 +35,7 @@ impl<'a> Line<'a> {
     }
 
     /// The fields of the content, split at spaces and tabs.
-    pub fn fields(&self) -> impl Iterator<Item = &'a str> + 'a {
+    pub fn fields(&self) -> impl Iterator<Item = &'a str> + 'a + use<'a> {
         self.content
             .split([' ', '\t'])
             .filter(|field| !field.is_empty())

@@ -65,13 +65,13 @@ fn integers_as_std_formats_them() {
         signed.extend([p - 1, p, p + 1, -p + 1, -p, -p - 1]);
     }
     for bits in 0..64 {
-        signed.extend((0..50).map(|_| rng.gen::<i64>() >> bits));
+        signed.extend((0..50).map(|_| rng.r#gen::<i64>() >> bits));
     }
     let mut unsigned: Vec<u64> = vec![0, u64::MAX, u64::MAX - 1, 1 << 63];
     unsigned.extend((0..20).map(|k| 10u64.pow(k)));
     unsigned.extend((0..20).map(|k| 10u64.pow(k) - 1));
     for bits in 0..64 {
-        unsigned.extend((0..50).map(|_| rng.gen::<u64>() >> bits));
+        unsigned.extend((0..50).map(|_| rng.r#gen::<u64>() >> bits));
     }
     let expected: String = signed.iter().map(|x| format!("{x}\n")).collect();
     assert_eq!(
@@ -136,7 +136,7 @@ fn decimals_as_std_formats_them_on_random_values() {
     let mut rng = SmallRng::seed_from_u64(11);
     let mut values = Vec::new();
     // Any bit pattern: every magnitude, subnormals, infinities and NaNs.
-    values.extend((0..20_000).map(|_| f64::from_bits(rng.gen())));
+    values.extend((0..20_000).map(|_| f64::from_bits(rng.r#gen())));
     // Pixel-sized values, where the picture's coordinates lie.
     values.extend((0..20_000).map(|_| rng.gen_range(-1e7..1e7)));
     values.extend((0..20_000).map(|_| rng.gen_range(-2.0..2.0)));

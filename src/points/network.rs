@@ -146,7 +146,7 @@ mod tests {
                     .map(|_| match rng.gen_range(0..4) {
                         0 => u64::MAX,
                         1 => rng.gen_range(0..4),
-                        _ => rng.gen(),
+                        _ => rng.r#gen(),
                     })
                     .collect();
                 let mut expected = run.clone();

@@ -215,7 +215,7 @@ mod tests {
     fn sorts_like_a_comparison_sort() {
         let mut rng = rand::rngs::SmallRng::seed_from_u64(7);
         for n in [0, 1, 23, 24, SMALL - 1, SMALL, SMALL + 1, 5000, 100_000] {
-            check((0..n).map(|_| rng.gen::<u64>()));
+            check((0..n).map(|_| rng.r#gen::<u64>()));
             // few distinct keys: long runs of equal keys, every byte consumed
             check((0..n).map(|_| rng.gen_range(0..5u64) << 40));
             // shared leading bytes (a small cluster), then random low bytes

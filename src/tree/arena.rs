@@ -133,7 +133,7 @@ impl<const D: usize> Tree<D> {
     pub fn children(
         &self,
         id: NodeId,
-    ) -> impl ExactSizeIterator<Item = NodeId> + DoubleEndedIterator {
+    ) -> impl ExactSizeIterator<Item = NodeId> + DoubleEndedIterator + use<D> {
         let first = self.first_child[id.index()];
         let n = if first == NONE {
             0

@@ -15,18 +15,18 @@ pub fn full_cloud(seed: u64, n: usize) -> Cloud<f64> {
             [
                 r.gen_range(-5.0..5.0),
                 r.gen_range(0.0..1.0),
-                r.gen::<f64>() * 1e6,
+                r.r#gen::<f64>() * 1e6,
             ]
         })
         .collect();
     let attributes = Attributes {
-        intensity: Some((0..n).map(|_| r.gen()).collect()),
-        classification: Some((0..n).map(|_| r.gen()).collect()),
-        color: Some((0..n).map(|_| [r.gen(), r.gen(), r.gen()]).collect()),
+        intensity: Some((0..n).map(|_| r.r#gen()).collect()),
+        classification: Some((0..n).map(|_| r.r#gen()).collect()),
+        color: Some((0..n).map(|_| [r.r#gen(), r.r#gen(), r.r#gen()]).collect()),
         gps_time: Some((0..n).map(|_| r.gen_range(0.0..1e9)).collect()),
         normal: Some(
             (0..n)
-                .map(|_| [r.gen(), r.gen(), -r.gen::<f32>()])
+                .map(|_| [r.r#gen(), r.r#gen(), -r.r#gen::<f32>()])
                 .collect(),
         ),
         extra: vec![Column {
@@ -46,7 +46,7 @@ pub fn integer_cloud(seed: u64, n: usize) -> Cloud<i32> {
     let mut r = rng(seed);
     let mut cloud = Cloud::from_points(
         (0..n)
-            .map(|_| [r.gen(), r.gen_range(-1000..1000), r.gen_range(0..3)])
+            .map(|_| [r.r#gen(), r.gen_range(-1000..1000), r.gen_range(0..3)])
             .collect(),
     );
     cloud.frame = Frame {

@@ -39,7 +39,7 @@ fn cloud(seed: u64, n: usize, extended: bool) -> Cloud<i32> {
                 // extremes and copies beside random points
                 0 => [i32::MIN, i32::MAX, 0],
                 1 => [7, 7, 7],
-                _ => [r.gen(), r.gen(), r.gen_range(-100..100)],
+                _ => [r.r#gen(), r.r#gen(), r.gen_range(-100..100)],
             })
             .collect(),
     );

@@ -22,7 +22,7 @@ fn las_cloud(seed: u64, n: usize, extended: bool) -> Cloud<i32> {
     let mut r = rng(seed);
     let mut c = Cloud::from_points(
         (0..n)
-            .map(|_| [r.gen(), r.gen(), r.gen_range(-100..100)])
+            .map(|_| [r.r#gen(), r.r#gen(), r.gen_range(-100..100)])
             .collect(),
     );
     c.frame = Frame {
@@ -30,11 +30,11 @@ fn las_cloud(seed: u64, n: usize, extended: bool) -> Cloud<i32> {
         offset: [600_000.0, 5_000_000.0, 100.0],
     };
     let a = &mut c.attributes;
-    a.intensity = Some((0..n).map(|_| r.gen()).collect());
+    a.intensity = Some((0..n).map(|_| r.r#gen()).collect());
     let max_class = if extended { 255 } else { 31 };
     a.classification = Some((0..n).map(|_| r.gen_range(0..=max_class)).collect());
     a.gps_time = Some((0..n).map(|_| r.gen_range(0.0..1e6)).collect());
-    a.color = Some((0..n).map(|_| [r.gen(), r.gen(), r.gen()]).collect());
+    a.color = Some((0..n).map(|_| [r.r#gen(), r.r#gen(), r.r#gen()]).collect());
     let returns = if extended { 15.0 } else { 7.0 };
     let mut int = |max: f64| {
         (0..n)

@@ -53,7 +53,7 @@ fn clustered(seed: u64, n: usize, copies: usize) -> Vec<[f64; 3]> {
                     r.gen_range(-5.0..5.0),
                 ]
             } else {
-                [r.gen::<f64>(), r.gen(), r.gen::<f64>() * 0.1]
+                [r.r#gen::<f64>(), r.r#gen(), r.r#gen::<f64>() * 0.1]
             }
         })
         .collect();

@@ -25,14 +25,14 @@ fn cloud(seed: u64, n: usize) -> Vec<([f64; 3], u32)> {
     (0..n as u32)
         .map(|i| {
             let p = match rng.gen_range(0..4) {
-                0 => [rng.gen(), rng.gen(), rng.gen()],
+                0 => [rng.r#gen(), rng.r#gen(), rng.r#gen()],
                 1 => [
-                    0.3 + 1e-4 * rng.gen::<f64>(),
+                    0.3 + 1e-4 * rng.r#gen::<f64>(),
                     0.7,
-                    0.2 + 1e-4 * rng.gen::<f64>(),
+                    0.2 + 1e-4 * rng.r#gen::<f64>(),
                 ],
                 2 => [0.25, 0.5, 0.75],
-                _ => [0.5, f64::from(rng.gen_range(0..5u8)) / 4.0, rng.gen()],
+                _ => [0.5, f64::from(rng.gen_range(0..5u8)) / 4.0, rng.r#gen()],
             };
             (p, i)
         })
@@ -165,7 +165,7 @@ fn mapped_box_queries_equal_a_scan() {
     assert_eq!(mapped.len(), pts.len());
     let mut rng = SmallRng::seed_from_u64(12);
     for q in 0..200 {
-        let (a, b): ([f64; 3], [f64; 3]) = (rng.gen(), rng.gen());
+        let (a, b): ([f64; 3], [f64; 3]) = (rng.r#gen(), rng.r#gen());
         let mut min: [f64; 3] = core::array::from_fn(|k| a[k].min(b[k]));
         let mut max: [f64; 3] = core::array::from_fn(|k| a[k].max(b[k]));
         if q % 4 == 0 {

@@ -175,13 +175,13 @@ proptest! {
         seed in any::<u64>(),
     ) {
         let mut r = rng(seed);
-        let mut points: Vec<[f64; 3]> = (0..n).map(|_| [r.gen(), r.gen(), r.gen::<f64>() * 0.5]).collect();
+        let mut points: Vec<[f64; 3]> = (0..n).map(|_| [r.r#gen(), r.r#gen(), r.r#gen::<f64>() * 0.5]).collect();
         for _ in 0..copies {
             let p = points[r.gen_range(0..points.len())];
             points.push(p);
         }
         let mut cloud = Cloud::from_points(points);
-        cloud.attributes.intensity = Some((0..cloud.len()).map(|_| r.gen()).collect());
+        cloud.attributes.intensity = Some((0..cloud.len()).map(|_| r.r#gen()).collect());
         cloud.attributes.extra.push(Column { name: "index".into(), values: (0..cloud.len()).map(|i| i as f64).collect() });
         let grid = VoxelGrid::with_size(&cloud.points, voxel).unwrap();
         let cells: Vec<Cell<3>> = cloud.points.iter().map(|p| grid.voxel_of(p)).collect();
@@ -204,10 +204,12 @@ fn one_voxel_and_one_point_clouds() {
 #[test]
 fn two_scans_xor_to_the_voxels_that_changed() {
     let mut r = rng(9);
-    let a: Vec<[f64; 3]> = (0..2000).map(|_| [r.gen(), r.gen(), r.gen()]).collect();
+    let a: Vec<[f64; 3]> = (0..2000)
+        .map(|_| [r.r#gen(), r.r#gen(), r.r#gen()])
+        .collect();
     let mut b = a.clone();
     b.truncate(1500);
-    b.extend((0..300).map(|_| [r.gen::<f64>(), r.gen(), r.gen()]));
+    b.extend((0..300).map(|_| [r.r#gen::<f64>(), r.r#gen(), r.r#gen()]));
     let all: Vec<[f64; 3]> = a.iter().chain(&b).copied().collect();
     let grid = VoxelGrid::with_size(&all, 0.1).unwrap();
     let occ_a = grid.occupancy_of(&a).unwrap();

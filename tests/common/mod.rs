@@ -200,7 +200,7 @@ pub fn face_chain<const D: usize>(depth: u8) -> Tree<D> {
 
 /// A chain toward a random point of the root.
 pub fn random_point_chain<const D: usize>(rng: &mut SmallRng, depth: u8) -> Tree<D> {
-    let target: [u64; D] = core::array::from_fn(|_| rng.gen::<u64>());
+    let target: [u64; D] = core::array::from_fn(|_| rng.r#gen::<u64>());
     chain_tree::<D>(depth, |l| {
         (0..D).fold(0, |i, a| {
             i | ((((target[a] >> (63 - l)) & 1) as usize) << a)

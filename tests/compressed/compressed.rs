@@ -300,7 +300,7 @@ fn pathological() -> Vec<(&'static str, Vec<[f64; 2]>)> {
     let mut pairs = Vec::new();
     for _ in 0..500 {
         use rand::Rng;
-        let p = [rng.gen::<f64>(), rng.gen::<f64>()];
+        let p = [rng.r#gen::<f64>(), rng.r#gen::<f64>()];
         pairs.push(p);
         pairs.push([p[0] + tiny(31), p[1]]);
     }

@@ -256,11 +256,11 @@ proptest! {
                 prop_assert!(check(&mut |p, i| t.insert(p, i).is_err() || t.remove(&p, &i)));
                 prop_assert!(t.validate().is_ok(), "{done:?}");
             }
-        } else if let Ok(mut t) = serde_json::from_value::<Comp<2>>(v) {
+        } else { if let Ok(mut t) = serde_json::from_value::<Comp<2>>(v) {
             prop_assert!(t.validate().is_ok(), "{done:?}");
             prop_assert_eq!(t.k_nearest(&[1.0, 2.0], 3).unwrap().len(), t.len().min(3));
             prop_assert!(check(&mut |p, i| t.insert(p, i).is_err() || t.remove(&p, &i)));
             prop_assert!(t.validate().is_ok(), "{done:?}");
-        }
+        }}
     }
 }

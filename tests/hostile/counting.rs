@@ -22,16 +22,25 @@ fn account(change: isize) {
 
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        account(layout.size() as isize);
-        System.alloc(layout)
+        // SAFETY: the caller keeps `GlobalAlloc`'s contract, which `System` needs in turn.
+        unsafe {
+            account(layout.size() as isize);
+            System.alloc(layout)
+        }
     }
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        account(-(layout.size() as isize));
-        System.dealloc(ptr, layout)
+        // SAFETY: the caller keeps `GlobalAlloc`'s contract, which `System` needs in turn.
+        unsafe {
+            account(-(layout.size() as isize));
+            System.dealloc(ptr, layout)
+        }
     }
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        account(new_size as isize - layout.size() as isize);
-        System.realloc(ptr, layout, new_size)
+        // SAFETY: the caller keeps `GlobalAlloc`'s contract, which `System` needs in turn.
+        unsafe {
+            account(new_size as isize - layout.size() as isize);
+            System.realloc(ptr, layout, new_size)
+        }
     }
 }
 

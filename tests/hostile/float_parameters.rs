@@ -49,13 +49,13 @@ fn extreme_points(seed: u64, n: usize) -> Vec<([f64; 2], usize)> {
     let pick = |r: &mut rand::rngs::SmallRng| -> f64 {
         let m = match r.gen_range(0..6) {
             0 => f64::MAX,
-            1 => f64::MAX * r.gen::<f64>(),
+            1 => f64::MAX * r.r#gen::<f64>(),
             2 => 10f64.powi(r.gen_range(-320..308)),
             3 => 0.0,
             4 => TINY * r.gen_range(1..4) as f64,
             _ => 1e200 * r.gen_range(1..4) as f64,
         };
-        if r.gen() {
+        if r.r#gen() {
             -m
         } else {
             m

@@ -98,7 +98,7 @@ fn check_image<const D: usize>(rng: &mut SmallRng, extent: [u32; D]) {
     assert_image(&a, extent, &pa, "from_fn");
     assert_image(&b, extent, &pb, "from_bools");
     let mut words = vec![0u64; pa.len().div_ceil(64)];
-    for (i, _) in pa.iter().enumerate().filter(|(_, &x)| x) {
+    for (i, _) in pa.iter().enumerate().filter(|&(_, &x)| x) {
         words[i / 64] |= 1 << (i % 64);
     }
     assert_eq!(RegionTree::from_packed(extent, &words).unwrap(), a);

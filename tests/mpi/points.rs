@@ -197,7 +197,7 @@ fn uniform_2d(world: &SimpleCommunicator) {
                 let mut rng = SmallRng::seed_from_u64(seed * 100 + r as u64);
                 let n = count(&mut rng, 3000);
                 (0..n)
-                    .map(|i| ([rng.gen(), rng.gen()], (r * 100_000 + i) as u32))
+                    .map(|i| ([rng.r#gen(), rng.r#gen()], (r * 100_000 + i) as u32))
                     .collect()
             })
             .collect();
@@ -265,7 +265,7 @@ fn all_on_one_rank(world: &SimpleCommunicator) {
                 let mut rng = SmallRng::seed_from_u64(5 + r as u64);
                 let n = if r == holder { 5000 } else { 0 };
                 (0..n)
-                    .map(|i| ([rng.gen_range(-3.0..5.0), rng.gen()], i as u32))
+                    .map(|i| ([rng.gen_range(-3.0..5.0), rng.r#gen()], i as u32))
                     .collect()
             })
             .collect();

@@ -147,10 +147,10 @@ proptest! {
 fn many_points_and_huge_coordinates() {
     use rand::Rng;
     let mut rng = crate::common::rng(77);
-    let pts: Vec<[f64; 2]> = (0..3000).map(|_| [rng.gen(), rng.gen()]).collect();
+    let pts: Vec<[f64; 2]> = (0..3000).map(|_| [rng.r#gen(), rng.r#gen()]).collect();
     for eps in [0.1, 0.5, 2.0] {
         for _ in 0..20 {
-            let q = [rng.gen::<f64>(), rng.gen::<f64>()];
+            let q = [rng.r#gen::<f64>(), rng.r#gen::<f64>()];
             all_trees(&pts, &q, 10, f64::INFINITY, eps);
         }
     }

@@ -15,7 +15,7 @@ use rand::Rng;
 fn random_entries<const D: usize>(seed: u64, n: usize) -> Vec<([f64; D], usize)> {
     let mut r = common::rng(seed);
     (0..n)
-        .map(|i| (core::array::from_fn(|_| r.gen::<f64>()), i))
+        .map(|i| (core::array::from_fn(|_| r.r#gen::<f64>()), i))
         .collect()
 }
 

@@ -86,7 +86,7 @@ fn check_retain<const D: usize>(
         .0
         .iter()
         .zip(&before.1)
-        .filter(|(_, &i)| i != drop_item)
+        .filter(|&(_, &i)| i != drop_item)
         .collect();
     let now: Vec<(&[f64; D], &u8)> = t.iter().collect();
     prop_assert_eq!(now, kept);

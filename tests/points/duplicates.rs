@@ -58,7 +58,7 @@ fn hundred_thousand_copies_of_one_point() {
 fn copies_among_other_points() {
     let mut r = common::rng(91);
     let mut e: Vec<([f64; 2], usize)> = (0..300)
-        .map(|i| ([r.gen::<f64>(), r.gen::<f64>()], i))
+        .map(|i| ([r.r#gen::<f64>(), r.r#gen::<f64>()], i))
         .collect();
     for i in 0..2000 {
         e.push(([0.5, 0.25], 300 + i));
@@ -90,7 +90,7 @@ fn points_one_ulp_apart() {
     // line lies between them
     let mut e: Vec<([f64; 2], usize)> = Vec::new();
     for i in 0..60 {
-        let p = [r.gen::<f64>(), r.gen::<f64>()];
+        let p = [r.r#gen::<f64>(), r.r#gen::<f64>()];
         e.push((p, 2 * i));
         e.push(([p[0], p[1].next_up()], 2 * i + 1));
     }
@@ -121,7 +121,7 @@ fn points_one_ulp_apart() {
 fn max_depth_is_respected() {
     let mut r = common::rng(93);
     let e: Vec<([f64; 2], usize)> = (0..10_000)
-        .map(|i| ([r.gen::<f64>(), r.gen::<f64>().powi(8)], i))
+        .map(|i| ([r.r#gen::<f64>(), r.r#gen::<f64>().powi(8)], i))
         .collect();
     for max_depth in [0u8, 1, 2, 5] {
         let t = Quadtree::builder()

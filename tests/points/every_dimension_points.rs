@@ -24,7 +24,7 @@ fn sample_points<const D: usize>(rng: &mut SmallRng, n: usize) -> Vec<([f64; D],
     let mut pts: Vec<[f64; D]> = Vec::new();
     for i in 0..n {
         let p = match i % 4 {
-            0 | 1 => core::array::from_fn(|_| rng.gen::<f64>()),
+            0 | 1 => core::array::from_fn(|_| rng.r#gen::<f64>()),
             2 => core::array::from_fn(|a| centre[a] + rng.gen_range(-1e-3..1e-3)),
             _ => pts[rng.gen_range(0..pts.len())],
         };
@@ -50,7 +50,7 @@ fn compressed<const D: usize>(entries: &[([f64; D], usize)]) -> CompressedTree<f
 fn sample_box<const D: usize>(rng: &mut SmallRng) -> Aabb<f64, D> {
     let (mut lo, mut hi) = ([0.0; D], [0.0; D]);
     for a in 0..D {
-        let (x, y): (f64, f64) = (rng.gen(), rng.gen());
+        let (x, y): (f64, f64) = (rng.r#gen(), rng.r#gen());
         (lo[a], hi[a]) = (x.min(y), x.max(y).max(x.min(y) + 0.3).min(1.0));
     }
     Aabb::new(lo, hi).unwrap()
@@ -82,7 +82,7 @@ macro_rules! check_queries {
             let want = scan(live, |p| b.contains(p));
             assert_eq!(got, want, "D = {}, box {:?}", D, b);
             assert_eq!(t.query_count(&b).unwrap(), want.len());
-            let centre: [f64; D] = core::array::from_fn(|_| rng.gen());
+            let centre: [f64; D] = core::array::from_fn(|_| rng.r#gen());
             let radius = rng.gen_range(0.05..0.9);
             let ball = Ball::new(centre, radius).unwrap();
             let mut got: Vec<usize> = t
@@ -134,7 +134,7 @@ fn forget<const D: usize>(live: &mut Vec<([f64; D], usize)>, item: usize) {
 /// Fresh points, with items numbered from `next`.
 fn fresh<const D: usize>(rng: &mut SmallRng, next: usize, n: usize) -> Vec<([f64; D], usize)> {
     (0..n)
-        .map(|i| (core::array::from_fn(|_| rng.gen::<f64>()), next + i))
+        .map(|i| (core::array::from_fn(|_| rng.r#gen::<f64>()), next + i))
         .collect()
 }
 
@@ -239,7 +239,7 @@ fn check_skip<const D: usize>(rng: &mut SmallRng, entries: &[([f64; D], usize)])
     }
     assert_eq!(t.len(), live.len());
     for _ in 0..8 {
-        let q: [f64; D] = core::array::from_fn(|_| rng.gen());
+        let q: [f64; D] = core::array::from_fn(|_| rng.r#gen());
         let best = live
             .iter()
             .map(|(p, _)| dist2(p, &q))

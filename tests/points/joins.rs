@@ -464,11 +464,11 @@ fn many_duplicates_and_larger_sets() {
     use rand::Rng;
     // 600 points, each drawn from 150 places: leaves of duplicates beyond the bucket size
     let places: Vec<[f64; 3]> = (0..150)
-        .map(|_| [rng.gen(), rng.gen(), rng.gen()])
+        .map(|_| [rng.r#gen(), rng.r#gen(), rng.r#gen()])
         .collect();
     let pa: Vec<[f64; 3]> = (0..600).map(|_| places[rng.gen_range(0..150)]).collect();
     let pb: Vec<[f64; 3]> = (0..300)
-        .map(|_| [rng.gen(), rng.gen(), rng.gen()])
+        .map(|_| [rng.r#gen(), rng.r#gen(), rng.r#gen()])
         .collect();
     let (a, b) = (
         PointTree::new(&entries(&pa)).unwrap(),

@@ -27,7 +27,7 @@ fn clusters<const D: usize>() -> impl Strategy<Value = Vec<[f64; D]>> {
             let spread = if e == 6 { 0.0 } else { 10f64.powi(-e) };
             for _ in 0..n {
                 out.push(core::array::from_fn(|a| {
-                    centre[a] + spread * (rng.gen::<f64>() - 0.5)
+                    centre[a] + spread * (rng.r#gen::<f64>() - 0.5)
                 }));
             }
         }
@@ -84,8 +84,12 @@ fn knn_joins_on_a_dense_surface_with_far_outliers_equal_nested_loops() {
     let mut rng = crate::common::rng(2115);
     let mut pa: Vec<[f64; 3]> = (0..700)
         .map(|_| {
-            let (x, y): (f64, f64) = (rng.gen(), rng.gen());
-            [x, y, 0.5 + 0.1 * (6.0 * x).sin() + 1e-3 * rng.gen::<f64>()]
+            let (x, y): (f64, f64) = (rng.r#gen(), rng.r#gen());
+            [
+                x,
+                y,
+                0.5 + 0.1 * (6.0 * x).sin() + 1e-3 * rng.r#gen::<f64>(),
+            ]
         })
         .collect();
     // a few points far off the surface, alone in their cells, and a pile of duplicates

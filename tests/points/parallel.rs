@@ -51,7 +51,7 @@ fn par_build_on_large_inputs_with_duplicates() {
     let mut rng = rand::rngs::SmallRng::seed_from_u64(3);
     // 200 000 points, each 8 times: the sort's parallel runs, long runs of equal keys
     let base: Vec<[f64; 3]> = (0..25_000)
-        .map(|_| [rng.gen(), rng.gen(), rng.gen()])
+        .map(|_| [rng.r#gen(), rng.r#gen(), rng.r#gen()])
         .collect();
     let entries: Vec<([f64; 3], u32)> = (0..200_000)
         .map(|i| (base[i % base.len()], i as u32))
@@ -61,7 +61,12 @@ fn par_build_on_large_inputs_with_duplicates() {
     // one cluster in a tiny corner of a given root box: leading key bytes all equal
     let root = Aabb::new([0.0; 3], [1.0; 3]).unwrap();
     let tiny: Vec<([f64; 3], u32)> = (0..100_000)
-        .map(|i| ([1e-9 * rng.gen::<f64>(), 1e-9 * rng.gen::<f64>(), 0.0], i))
+        .map(|i| {
+            (
+                [1e-9 * rng.r#gen::<f64>(), 1e-9 * rng.r#gen::<f64>(), 0.0],
+                i,
+            )
+        })
         .collect();
     let b = PointTree::builder().root_box(root);
     same_tree(&b.build(&tiny).unwrap(), &b.par_build(&tiny).unwrap());
@@ -103,9 +108,11 @@ fn par_build_reports_the_first_bad_point() {
 fn batch_queries_equal_serial_queries() {
     use rand::{Rng, SeedableRng};
     let mut rng = rand::rngs::SmallRng::seed_from_u64(5);
-    let entries: Vec<([f64; 2], u32)> = (0..20_000).map(|i| ([rng.gen(), rng.gen()], i)).collect();
+    let entries: Vec<([f64; 2], u32)> = (0..20_000)
+        .map(|i| ([rng.r#gen(), rng.r#gen()], i))
+        .collect();
     let t = PointTree::builder().par_build(&entries).unwrap();
-    let queries: Vec<[f64; 2]> = (0..500).map(|_| [rng.gen(), rng.gen()]).collect();
+    let queries: Vec<[f64; 2]> = (0..500).map(|_| [rng.r#gen(), rng.r#gen()]).collect();
     let batch = t.par_k_nearest(&queries, 7).unwrap();
     for (q, answer) in queries.iter().zip(&batch) {
         let serial = t.k_nearest(q, 7).unwrap();

@@ -43,7 +43,7 @@ fn check_lemma_14_1<const D: usize>(pts: Vec<[f64; D]>, root: Option<Aabb<f64, D
 }
 
 fn random_point<const D: usize>(r: &mut SmallRng) -> [f64; D] {
-    core::array::from_fn(|_| r.gen::<f64>())
+    core::array::from_fn(|_| r.r#gen::<f64>())
 }
 
 /// Adversarial and random sets in [0, 1]^D.

@@ -176,7 +176,7 @@ fn bucket_one_distinct_points_is_the_chapters_quadtree() {
                         r.gen_range(0..=64) as f64 / 64.0,
                     ]
                 } else {
-                    [r.gen::<f64>(), r.gen::<f64>()]
+                    [r.r#gen::<f64>(), r.r#gen::<f64>()]
                 }
             })
             .collect();
@@ -235,7 +235,12 @@ fn new_uses_the_defaults() {
     use rand::Rng;
     let mut r = common::rng(62);
     let e: Vec<([f64; 3], usize)> = (0..2000)
-        .map(|i| ([r.gen::<f64>(), r.gen::<f64>(), r.gen::<f64>() * 0.01], i))
+        .map(|i| {
+            (
+                [r.r#gen::<f64>(), r.r#gen::<f64>(), r.r#gen::<f64>() * 0.01],
+                i,
+            )
+        })
         .collect();
     let t = Octree::new(&e).unwrap();
     assert_eq!(t.bucket_size(), DEFAULT_BUCKET_SIZE);
@@ -252,7 +257,9 @@ fn new_uses_the_defaults() {
 fn a_build_keeps_no_spare_capacity() {
     use rand::{Rng, SeedableRng};
     let mut rng = rand::rngs::SmallRng::seed_from_u64(9);
-    let entries: Vec<([f64; 2], u64)> = (0..100_000).map(|i| ([rng.gen(), rng.gen()], i)).collect();
+    let entries: Vec<([f64; 2], u64)> = (0..100_000)
+        .map(|i| ([rng.r#gen(), rng.r#gen()], i))
+        .collect();
     let t = Quadtree::new(&entries).unwrap();
     let payload = entries.len() * core::mem::size_of::<([f64; 2], u64)>();
     let nodes = t.node_count();

@@ -4,12 +4,18 @@
 //! one.
 
 use super::commands::{bounds, load};
-use super::{input, scan, IndexArgs};
-use crate::limits::{human_bytes, shown};
+#[cfg(feature = "las")]
+use super::input;
+use super::{scan, IndexArgs};
+use crate::limits::human_bytes;
+#[cfg(feature = "las")]
+use crate::limits::shown;
 use crate::progress::Phase;
 use crate::Failure;
 use orthtree::geom::Aabb;
-use orthtree::io::saved::external::{ExternalBuild, ExternalReport};
+use orthtree::io::saved::external::ExternalBuild;
+#[cfg(feature = "las")]
+use orthtree::io::saved::external::ExternalReport;
 use orthtree::io::saved::{self, mapped::MappedTree};
 use orthtree::{PointSet, PointTree};
 use std::path::Path;

@@ -296,7 +296,7 @@ where
         })
         .collect();
     let queries: Vec<[f64; D]> = (0..a.queries)
-        .map(|_| core::array::from_fn(|_| rng.gen::<f64>() * side as f64))
+        .map(|_| core::array::from_fn(|_| rng.r#gen::<f64>() * side as f64))
         .collect();
     run("lattice", &lattice, &queries, a, rows);
 }

@@ -100,13 +100,13 @@ const CRATES: [&str; 3] = ["orthtree", "kiddo", "scipy"];
 fn check(row: &Row, items: bool) -> Result<(), String> {
     let ours = &row.runs[0].as_ref().expect("orthtree always runs").answer;
     for (name, run) in CRATES.iter().zip(&row.runs).skip(1) {
-        if let Some(run) = run {
-            if !ours.agrees_with(&run.answer, items) {
-                return Err(format!(
-                    "{}: {name} answered {:?}, orthtree {ours:?}",
-                    row.name, run.answer
-                ));
-            }
+        if let Some(run) = run
+            && !ours.agrees_with(&run.answer, items)
+        {
+            return Err(format!(
+                "{}: {name} answered {:?}, orthtree {ours:?}",
+                row.name, run.answer
+            ));
         }
     }
     Ok(())

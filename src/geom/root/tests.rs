@@ -98,12 +98,12 @@ fn lane_keys_agree_with_key() {
         let mut p2 = vec![[lo; 2], [lo + side; 2]];
         let mut p3 = vec![[lo; 3], [lo + side; 3]];
         for _ in 0..3001 {
-            let x = lo + side * rng.gen::<f64>();
+            let x = lo + side * rng.r#gen::<f64>();
             let j = rng.gen_range(0..1u64 << 32);
             let b = g2.boundary(0, j, 32);
             p2.push([x, [b, b.next_up(), b.next_down()][j as usize % 3]]);
             let b = g3.boundary(1, j >> 11, 21);
-            p3.push([x, b, lo + side * rng.gen::<f64>()]);
+            p3.push([x, b, lo + side * rng.r#gen::<f64>()]);
         }
         check(&g2, &p2);
         check(&g3, &p3);

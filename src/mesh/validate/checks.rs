@@ -135,7 +135,7 @@ impl<'m> Validator<'m> {
             }
         }
         let mut points: Vec<(Point, u32)> = (used.iter().enumerate())
-            .filter(|(_, &u)| u)
+            .filter(|&(_, &u)| u)
             .map(|(v, _)| (mesh.vertices[v], v as u32))
             .collect();
         points.sort_unstable();

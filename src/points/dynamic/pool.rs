@@ -99,7 +99,7 @@ impl<S: Copy + Default, const D: usize> Pool<S, D> {
         let filler = (0..points.len())
             .find(|&e| live[e])
             .map_or([S::default(); D], |e| points[e]);
-        for (p, _) in points.iter_mut().zip(live).filter(|(_, &l)| !l) {
+        for (p, _) in points.iter_mut().zip(live).filter(|&(_, &l)| !l) {
             *p = filler;
         }
         let mut pool = Pool {

@@ -91,17 +91,6 @@ impl<const D: usize> Block<D> {
         })
     }
 
-    /// Adds point `p` at position `at` (the block must not be full).
-    #[inline(always)]
-    pub(crate) fn push(&mut self, p: &[f64; D], at: usize) {
-        let j = self.len;
-        for (col, &c) in self.cols.iter_mut().zip(p) {
-            col[j] = c;
-        }
-        self.at[j] = at;
-        self.len = j + 1;
-    }
-
     /// The distances from `q` to the points `from..` of the block (kept in `dist`), and the
     /// mask of those that `admits` takes in (bit `j` for point `j`).
     ///
