@@ -76,6 +76,8 @@ pub use tree::Tree;
 /// ```
 pub mod iter {
     pub use crate::image::iter::Blocks;
+    #[cfg(feature = "las")]
+    pub use crate::io::las::entries::LasEntries;
     pub use crate::mesh::halfedge::Outgoing;
     pub use crate::points::leaves::Leaves;
     pub use crate::query::point_set::{NearestIter, RegionIter};

@@ -8,6 +8,7 @@
 use crate::common::rng;
 use orthtree::cloud::{Cloud, Frame};
 use orthtree::io::las::{self, LasError};
+use orthtree::iter::LasEntries;
 use orthtree::points::PointTreeBuilder;
 use orthtree::PointSet;
 use rand::Rng;
@@ -81,7 +82,7 @@ fn entries_are_the_full_reads_world_points_in_file_order() {
         for (i, ((p, item), w)) in entries.iter().zip(&world).enumerate() {
             assert_eq!((p, *item as usize), (w, i), "n {n}, record {i}");
         }
-        let stream = las::LasEntries::open(&file.0).unwrap();
+        let stream = LasEntries::open(&file.0).unwrap();
         assert_eq!(stream.point_count(), n);
         let streamed: Vec<([f64; 3], u32)> = stream.map(Result::unwrap).collect();
         assert_eq!(
@@ -125,7 +126,7 @@ fn a_truncated_file_names_the_first_missing_point() {
         } => assert_eq!((point, count, length), (59, 100, cut as u64)),
         other => panic!("{other}"),
     }
-    match las::LasEntries::open(&file.0).map(|_| ()).unwrap_err() {
+    match LasEntries::open(&file.0).map(|_| ()).unwrap_err() {
         LasError::Truncated { point, .. } => assert_eq!(point, 59),
         other => panic!("{other}"),
     }
@@ -148,7 +149,7 @@ fn a_header_claiming_billions_of_points_is_refused_before_allocating() {
     let file = TempFile::new("claims-more.las", &b);
     let message = las::read_entries(&file.0).unwrap_err().to_string();
     assert!(message.contains("at most 4294967294"), "{message}");
-    let message = las::LasEntries::open(&file.0).map(|_| ()).unwrap_err();
+    let message = LasEntries::open(&file.0).map(|_| ()).unwrap_err();
     assert!(
         message.to_string().contains("at most 4294967294"),
         "{message}"

@@ -112,7 +112,7 @@ pub fn run(a: &IndexArgs) -> Result<(), Failure> {
 /// file may be larger than it.
 #[cfg(feature = "las")]
 fn las_streamed(build: &ExternalBuild, path: &str, out: &Path) -> Result<ExternalReport, Failure> {
-    use orthtree::io::las::LasEntries;
+    use orthtree::iter::LasEntries;
     let named = |e: &dyn std::fmt::Display| Failure::Input(format!("{}: {e}", shown(path)));
     // The header's checks, before any pass.
     LasEntries::open(path).map_err(|e| named(&e))?;

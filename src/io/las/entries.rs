@@ -182,7 +182,7 @@ pub fn read_entries(path: impl AsRef<Path>) -> Result<Vec<([f64; 3], u32)>, LasE
 /// [`read_entries`].
 ///
 /// ```no_run
-/// use orthtree::io::las::LasEntries;
+/// use orthtree::iter::LasEntries;
 /// let mut n = 0;
 /// for entry in LasEntries::open("scan.las")? {
 ///     let (_position, record) = entry?;

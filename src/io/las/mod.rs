@@ -35,9 +35,9 @@ use smallvec::SmallVec;
 use std::io::{Read, Seek, SeekFrom};
 use std::path::Path;
 
-mod entries;
+pub(crate) mod entries;
 mod write;
-pub use entries::{read_entries, LasEntries};
+pub use entries::read_entries;
 pub use write::{write, write_to};
 
 /// The most bytes of point records read at once.
