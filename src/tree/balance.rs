@@ -96,10 +96,9 @@ impl<const D: usize> Tree<D> {
     /// met above `min_level` on the way down (calling `on_split` after each split), until the
     /// path reaches `min_level` or its end.
     ///
-    /// The search of [`Tree::neighbor_path`] and the descent of [`Tree::split_down`] in one:
-    /// the child indices to take go in one word (D bits a level: D times the deepest level is
-    /// at most 64) and the levels on the way down are counted, not read, so each step down
-    /// reads one word of the arena.
+    /// The search of [`Tree::neighbor_steps`] (the child indices to take packed in one word)
+    /// and the descent of [`Tree::split_down`] in one: the levels on the way down are counted,
+    /// not read, so each step down reads one word of the arena.
     pub(super) fn reach(
         &mut self,
         id: NodeId,
@@ -108,20 +107,9 @@ impl<const D: usize> Tree<D> {
         min_level: u8,
         mut on_split: impl FnMut(&Self, NodeId),
     ) {
-        let (mut plus, mut minus) = (direction.plus_mask(), direction.minus_mask());
-        let (mut v, mut path, mut steps) = (id, 0u64, 0u8);
-        while plus | minus != 0 {
-            let Some(parent) = self.parent(v) else {
-                return; // the step leaves the root cube
-            };
-            let c = self.child_index(v) as u8;
-            path |= u64::from(c ^ (plus | minus)) << (D * steps as usize);
-            // Axes on which the step leaves the parent's cell carry over to the parent's level.
-            plus &= c;
-            minus &= !c;
-            v = parent;
-            steps += 1;
-        }
+        let Some((mut v, path, mut steps)) = self.neighbor_steps(id, direction) else {
+            return; // the step leaves the root cube
+        };
         let mask = (1u64 << D) - 1;
         let mut level = level - steps;
         while steps > 0 && level < min_level {

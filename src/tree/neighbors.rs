@@ -51,19 +51,35 @@ impl<const D: usize> Tree<D> {
         id: NodeId,
         direction: Direction,
     ) -> Option<(NodeId, SmallVec<[u8; 64]>)> {
-        let mut path = SmallVec::new();
+        let (v, packed, steps) = self.neighbor_steps(id, direction)?;
+        let mask = (1u64 << D) - 1;
+        let path = (0..usize::from(steps))
+            .map(|s| ((packed >> (D * s)) & mask) as u8)
+            .collect();
+        Some((v, path))
+    }
+
+    /// [`Tree::neighbor_path`] with the child indices packed into one word, D bits a step, the
+    /// first step's in the lowest bits (D times the deepest level is at most 64), and the number
+    /// of steps: the search of the balance's hot loop, which allocates nothing.
+    pub(crate) fn neighbor_steps(
+        &self,
+        id: NodeId,
+        direction: Direction,
+    ) -> Option<(NodeId, u64, u8)> {
         let (mut plus, mut minus) = (direction.plus_mask(), direction.minus_mask());
-        let mut v = id;
+        let (mut v, mut path, mut steps) = (id, 0u64, 0u8);
         while plus | minus != 0 {
             let parent = self.parent(v)?;
             let c = self.child_index(v) as u8;
-            path.push(c ^ (plus | minus));
+            path |= u64::from(c ^ (plus | minus)) << (D * usize::from(steps));
             // Axes on which the step leaves the parent's cell carry over to the parent's level.
             plus &= c;
             minus &= !c;
             v = parent;
+            steps += 1;
         }
-        Some((v, path))
+        Some((v, path, steps))
     }
 
     /// Appends to `out` every leaf whose cell touches the cell of `id` across the face, edge or
