@@ -24,6 +24,13 @@
 //! against (the chapter's balance) are compiled only with the `reference` feature.
 //! [`prelude`] brings the point-set traits into scope.
 //!
+//! # Features
+//! None is on by default. `rayon` (the `par_` builds, balances, batch queries and joins), `png`
+//! (PNG images), `serde` (every tree, region tree and mesh), `saved` (the binary saved-tree
+//! format) and `mmap` (saved trees queried through a memory map), `las` and `laz` (LAS and LAZ
+//! point clouds); `full` turns all of these on. `mpi` (the forest and point tree over MPI ranks)
+//! needs OpenMPI and libclang on the system; `reference` compiles the reference algorithms.
+//!
 //! ```
 //! use orthtree::prelude::*;
 //! use orthtree::{Connectivity, Quadtree};
