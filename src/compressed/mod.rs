@@ -290,15 +290,14 @@ impl<S: Scalar, T, const D: usize> PointSet<D> for CompressedTree<S, T, D> {
     /// point's key and leaf, the leaves' lists, every leaf non-empty, every point in the domain.
     fn validate(&self) -> Result<(), ValidationError> {
         use crate::error::Invariant as I;
-        let fail = |e: ValidationError| Err(e);
         let ix = &self.index;
         let t = &ix.topology;
         if let Err(e) = t.validate() {
-            return fail(ValidationError::new(I::Topology).detail(e));
+            return Err(ValidationError::new(I::Topology).detail(e));
         }
         let n = self.len();
         if [ix.points.len(), ix.keys.len(), ix.leaf.len(), ix.prev.len()] != [n; 4] {
-            return fail(ValidationError::new(I::Lengths).detail("slot arrays"));
+            return Err(ValidationError::new(I::Lengths).detail("slot arrays"));
         }
         let mut listed = 0;
         for v in t.pre_order().filter(|&v| t.is_leaf(v)) {
@@ -306,32 +305,28 @@ impl<S: Scalar, T, const D: usize> PointSet<D> for CompressedTree<S, T, D> {
             for s in ix.leaf_slots(v) {
                 listed += 1;
                 if listed > n || ix.leaf[s] != v || ix.prev[s] != previous {
-                    return fail(ValidationError::new(I::Links).node(v).point(s));
+                    return Err(ValidationError::new(I::Links).node(v).point(s));
                 }
                 previous = s as u32;
             }
             if previous == NIL || t.node(v).tail != previous {
-                return fail(
-                    ValidationError::new(I::Links)
-                        .node(v)
-                        .detail("empty leaf or wrong tail"),
-                );
+                return Err(ValidationError::new(I::Links)
+                    .node(v)
+                    .detail("empty leaf or wrong tail"));
             }
         }
         if listed != n {
-            return fail(
-                ValidationError::new(I::Counts)
-                    .detail(format!("{listed} of {n} points are in leaves")),
-            );
+            return Err(ValidationError::new(I::Counts)
+                .detail(format!("{listed} of {n} points are in leaves")));
         }
         for (s, p) in ix.points.iter().enumerate() {
             let q = p.map(Scalar::to_f64);
             if !self.domain().contains(&q) {
-                return fail(ValidationError::new(I::InDomain).point(s));
+                return Err(ValidationError::new(I::InDomain).point(s));
             }
             let key = self.geometry().deep_key(&q);
             if key != ix.keys[s] || t.node(ix.leaf[s]).cell.anchor() != key {
-                return fail(ValidationError::new(I::InLeaf).node(ix.leaf[s]).point(s));
+                return Err(ValidationError::new(I::InLeaf).node(ix.leaf[s]).point(s));
             }
         }
         Ok(())

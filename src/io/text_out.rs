@@ -337,4 +337,4 @@ impl<'a, W: Write + ?Sized> TextOut<'a, W> {
 
 #[cfg(test)]
 #[path = "text_out_tests.rs"]
-mod tests;
+pub(crate) mod tests;

@@ -17,7 +17,7 @@ fn written<T: Copy>(values: &[T], put: impl Fn(&mut TextOut<'_, Vec<u8>>, T)) ->
 }
 
 /// `format!("{x:.3}")` less its trailing zeros and point, `-0` as `0`: what `f3` promises.
-fn reference_f3(x: f64) -> String {
+pub(crate) fn reference_f3(x: f64) -> String {
     let s = format!("{x:.3}");
     let s = if s.contains('.') {
         s.trim_end_matches('0').trim_end_matches('.')

@@ -161,7 +161,7 @@ pub fn read<S: Scalar>(input: impl Read) -> Result<Cloud<S>, XyzError> {
         if text.trim().is_empty() {
             continue;
         }
-        let Some(columns) = &layout else {
+        if layout.is_none() {
             let first: Vec<&str> = fields(text).collect();
             let numeric = first[0].parse::<f64>().is_ok();
             let names: Vec<String> = if numeric {
@@ -189,15 +189,8 @@ pub fn read<S: Scalar>(input: impl Read) -> Result<Cloud<S>, XyzError> {
             if !numeric {
                 continue;
             }
-            push_line(
-                text,
-                line_no,
-                &mut values,
-                layout.as_ref().expect("set"),
-                &mut cloud,
-            )?;
-            continue;
-        };
+        }
+        let columns = layout.as_ref().expect("the first line sets the columns");
         push_line(text, line_no, &mut values, columns, &mut cloud)?;
     }
     Ok(cloud)

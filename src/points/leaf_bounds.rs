@@ -204,22 +204,28 @@ pub(crate) fn check_leaves<S: Scalar, const D: usize>(
     leaves: &[LeafRun<D>],
     parallel: bool,
 ) -> Result<(), ValidationError> {
+    first_error(leaves, parallel, |chunk| {
+        first_bad(geometry, domain, points, chunk)
+    })
+}
+
+/// The first error `find` reports on `leaves`, in their order, found on chunks of them on
+/// rayon's threads when `parallel` (and feature `rayon`).
+fn first_error<const D: usize>(
+    leaves: &[LeafRun<D>],
+    parallel: bool,
+    find: impl Fn(&[LeafRun<D>]) -> Option<ValidationError> + Sync,
+) -> Result<(), ValidationError> {
     #[cfg(feature = "rayon")]
     if parallel && leaves.len() > CHUNK {
         use rayon::prelude::*;
-        return match leaves
+        return leaves
             .par_chunks(CHUNK)
-            .find_map_first(|chunk| first_bad(geometry, domain, points, chunk))
-        {
-            Some(e) => Err(e),
-            None => Ok(()),
-        };
+            .find_map_first(&find)
+            .map_or(Ok(()), Err);
     }
     let _ = parallel;
-    match first_bad(geometry, domain, points, leaves) {
-        Some(e) => Err(e),
-        None => Ok(()),
-    }
+    find(leaves).map_or(Ok(()), Err)
 }
 
 /// The first leaf of `leaves` whose points are out of Morton order, as the error naming it.
@@ -268,22 +274,9 @@ pub(crate) fn check_leaf_order<S: Scalar, const D: usize>(
     leaves: &[LeafRun<D>],
     parallel: bool,
 ) -> Result<(), ValidationError> {
-    #[cfg(feature = "rayon")]
-    if parallel && leaves.len() > CHUNK {
-        use rayon::prelude::*;
-        return match leaves
-            .par_chunks(CHUNK)
-            .find_map_first(|chunk| first_unordered(geometry, points, chunk))
-        {
-            Some(e) => Err(e),
-            None => Ok(()),
-        };
-    }
-    let _ = parallel;
-    match first_unordered(geometry, points, leaves) {
-        Some(e) => Err(e),
-        None => Ok(()),
-    }
+    first_error(leaves, parallel, |chunk| {
+        first_unordered(geometry, points, chunk)
+    })
 }
 
 #[cfg(test)]

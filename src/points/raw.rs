@@ -14,37 +14,31 @@ use crate::geom::{Aabb, Cell, RootGeometry, Scalar};
 use crate::tree::raw::{OwnedRawTree, RawTree};
 use crate::tree::{BalanceOptions, Tree};
 
-/// Everything a [`PointTree`] stores, by reference.
+/// Everything a [`PointTree`] stores: `Tr` its arena's arrays, then sequences of points, of
+/// items and of run ends.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct PointTreeArrays<'a, S, T, const D: usize> {
-    pub tree: RawTree<'a>,
+pub(crate) struct PointTreeFields<Tr, P, I, R, const D: usize> {
+    pub tree: Tr,
     /// The root cube's lower corner halved (rounded down) and half its side.
     pub half_lo: [f64; D],
     pub half_side: f64,
     pub domain: Aabb<f64, D>,
-    pub points: &'a [[S; D]],
-    pub items: &'a [T],
+    pub points: P,
+    pub items: I,
     /// Per node slot, the end of its run relative to its parent's start (`runs.rs`).
-    pub run_ends: &'a [u32],
+    pub run_ends: R,
     pub bucket_size: usize,
     pub max_depth: u8,
     pub balanced: Option<BalanceOptions>,
 }
 
+/// Everything a [`PointTree`] stores, by reference.
+pub(crate) type PointTreeArrays<'a, S, T, const D: usize> =
+    PointTreeFields<RawTree<'a>, &'a [[S; D]], &'a [T], &'a [u32], D>;
+
 /// The owned form of [`PointTreeArrays`], which [`PointTree::from_parts`] checks.
-#[derive(Clone, Debug)]
-pub(crate) struct PointTreeParts<S, T, const D: usize> {
-    pub tree: OwnedRawTree,
-    pub half_lo: [f64; D],
-    pub half_side: f64,
-    pub domain: Aabb<f64, D>,
-    pub points: Vec<[S; D]>,
-    pub items: Vec<T>,
-    pub run_ends: Vec<u32>,
-    pub bucket_size: usize,
-    pub max_depth: u8,
-    pub balanced: Option<BalanceOptions>,
-}
+pub(crate) type PointTreeParts<S, T, const D: usize> =
+    PointTreeFields<OwnedRawTree, Vec<[S; D]>, Vec<T>, Vec<u32>, D>;
 
 /// The root cube of `half_lo` and `half_side` ([`RootGeometry::halves`]), checked with the
 /// `domain` every point must lie in: both finite, the domain a box inside the cube. Shared by

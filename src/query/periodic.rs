@@ -301,13 +301,7 @@ impl<const D: usize> Torus<D> {
     #[inline(always)]
     pub(crate) fn offset_range(&self, axis: usize, q: f64, lo: f64, hi: f64) -> (f64, f64) {
         if !self.wraps[axis] {
-            let near = if q < lo {
-                lo - q
-            } else if q > hi {
-                q - hi
-            } else {
-                0.0
-            };
+            let near = super::metric::axis_gap(q, lo, hi);
             return (near, (q - lo).abs().max((hi - q).abs()));
         }
         let l = self.period[axis];

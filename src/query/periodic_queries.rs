@@ -4,17 +4,12 @@
 //! forms take the same metric and regions
 //! ([`ParallelQueries`](super::ParallelQueries) with [`Torus::squared_euclidean`]).
 
-use super::knn::Neighbor;
 use super::metric::SquaredEuclidean;
 use super::periodic::Torus;
 use super::periodic_metric::MinImage;
 use super::periodic_region::{PeriodicBall, PeriodicBox};
-use super::point_set::{NearestIter, PointSet, RegionIter};
+use super::point_set::{NearestIter, NeighborIn, PointSet, RegionIter};
 use super::{query_point, QueryError};
-
-/// A neighbour found in set `P`.
-type NeighborIn<'a, P, const D: usize> =
-    Neighbor<'a, <P as PointSet<D>>::Scalar, <P as PointSet<D>>::Item, D>;
 
 /// Minimum-image queries on a periodic domain, for every [`PointSet`] (in the prelude).
 ///

@@ -487,13 +487,7 @@ pub trait PointSet<const D: usize> {
         max: f64,
         metric: &M,
     ) -> Result<Vec<NeighborIn<'_, Self, D>>, QueryError> {
-        let q = query_point(p)?;
-        check_max(max)?;
-        let index = self.index();
-        Ok(k_nearest(index, &q, k, max, metric)
-            .into_iter()
-            .map(|(d, i)| with_item(self, Neighbor::at(index, d, i)))
-            .collect())
+        self.k_nearest_approx_by(p, k, max, 0.0, metric)
     }
 
     /// `k` points near `p` (squared Euclidean), sorted by distance, found by a

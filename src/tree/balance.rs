@@ -55,63 +55,73 @@ impl<const D: usize> Tree<D> {
     /// ```
     pub fn balance(&mut self, options: impl Into<BalanceOptions>) -> Vec<NodeId> {
         let options = options.into();
-        let outward = outward_directions::<D>(options.connectivity);
-        let mut levels = Levels::new(self, options);
+        let levels = Levels::new(self, options);
+        self.balance_levels(levels, options.connectivity)
+    }
+
+    /// The repair of the module doc over the internal nodes listed in `levels`.
+    pub(super) fn balance_levels(
+        &mut self,
+        mut levels: Levels,
+        connectivity: Connectivity,
+    ) -> Vec<NodeId> {
+        let outward = outward_directions::<D>(connectivity);
         while let Some((nodes, min_level)) = levels.next_level() {
             for &c in &nodes {
                 let level = self.level(c);
                 for &d in &outward[self.child_index(c)] {
-                    levels.reach(self, c, level, d, min_level);
+                    self.reach(c, level, d, min_level, |tree, leaf| {
+                        levels.record(tree, leaf)
+                    });
                 }
             }
         }
         levels.split
     }
 
-    /// Where the neighbour search from `id` in `direction` stops short: the leaf above
-    /// `min_level` it ends at, with the child indices still to take below it (innermost last), or
-    /// `None` when the search reaches `min_level` (nothing to split).
+    /// Where the neighbour search from `id` (at `level`) in `direction` stops short: the leaf
+    /// above `min_level` it ends at, as [`Tree::descend`] takes it; `None` when the search
+    /// reaches `min_level` (nothing to split).
     #[cfg(feature = "rayon")]
     pub(super) fn shortfall(
         &self,
         id: NodeId,
+        level: u8,
         direction: Direction,
         min_level: u8,
-    ) -> Option<(NodeId, Steps)> {
-        let (mut v, mut path) = self.neighbor_path(id, direction)?;
-        while let Some(&c) = path.last() {
-            if self.level(v) >= min_level {
-                return None;
-            }
-            match self.child(v, c as usize) {
-                Some(child) => v = child,
-                None => return Some((v, Steps::from_slice(&path))),
-            }
-            path.pop();
-        }
-        None
+    ) -> Option<Descent> {
+        let (v, path, steps) = self.neighbor_steps(id, direction)?;
+        let (leaf, left) = self.follow(v, path, steps);
+        let level = level - left;
+        (level < min_level).then_some((leaf, level, path, left))
     }
 
     /// Follows the neighbour search from `id` (at `level`) in `direction`, splitting every leaf
     /// met above `min_level` on the way down (calling `on_split` after each split), until the
     /// path reaches `min_level` or its end.
-    ///
-    /// The search of [`Tree::neighbor_steps`] (the child indices to take packed in one word)
-    /// and the descent of [`Tree::split_down`] in one: the levels on the way down are counted,
-    /// not read, so each step down reads one word of the arena.
     pub(super) fn reach(
         &mut self,
         id: NodeId,
         level: u8,
         direction: Direction,
         min_level: u8,
+        on_split: impl FnMut(&Self, NodeId),
+    ) {
+        if let Some((v, path, steps)) = self.neighbor_steps(id, direction) {
+            self.descend((v, level - steps, path, steps), min_level, on_split);
+        }
+    }
+
+    /// The descent of [`Tree::reach`] from `v` at `level`, taking the last `steps` child indices
+    /// of the packed `path` of [`Tree::neighbor_steps`]: the levels on the way down are counted,
+    /// not read, so each step down reads one word of the arena.
+    pub(super) fn descend(
+        &mut self,
+        (mut v, mut level, path, mut steps): Descent,
+        min_level: u8,
         mut on_split: impl FnMut(&Self, NodeId),
     ) {
-        let Some((mut v, path, mut steps)) = self.neighbor_steps(id, direction) else {
-            return; // the step leaves the root cube
-        };
         let mask = (1u64 << D) - 1;
-        let mut level = level - steps;
         while steps > 0 && level < min_level {
             steps -= 1;
             let mut first = self.first_child[v.index()];
@@ -123,32 +133,11 @@ impl<const D: usize> Tree<D> {
             level += 1;
         }
     }
-
-    /// The descent of [`Tree::reach`] from `v`, taking the child indices of `path` from its end.
-    #[cfg(feature = "rayon")]
-    pub(super) fn split_down(
-        &mut self,
-        mut v: NodeId,
-        path: &[u8],
-        min_level: u8,
-        mut on_split: impl FnMut(&Self, NodeId),
-    ) {
-        for &c in path.iter().rev() {
-            if self.level(v) >= min_level {
-                return;
-            }
-            if self.is_leaf(v) {
-                self.split(v);
-                on_split(self, v);
-            }
-            v = self.child(v, c as usize).expect("v is internal");
-        }
-    }
 }
 
-/// The child indices a neighbour search still has to take below the leaf where it stopped.
-#[cfg(feature = "rayon")]
-pub(super) type Steps = SmallVec<[u8; 8]>;
+/// Where a descent of [`Tree::descend`] starts: a node, its level, and the packed path of
+/// [`Tree::neighbor_steps`] with the number of its steps still to take.
+pub(super) type Descent = (NodeId, u8, u64, u8);
 
 /// The state of one level-by-level balance (see the module doc): the internal nodes still to
 /// examine, by level, and the splits made so far.
@@ -207,30 +196,15 @@ impl Levels {
         None
     }
 
-    /// [`Tree::reach`], recording each split and the new internal node's level.
-    pub(super) fn reach<const D: usize>(
-        &mut self,
-        tree: &mut Tree<D>,
-        id: NodeId,
-        level: u8,
-        direction: Direction,
-        min_level: u8,
-    ) {
-        tree.reach(id, level, direction, min_level, |tree, leaf| {
-            self.record(tree, leaf)
-        });
-    }
-
-    /// [`Tree::split_down`], recording each split and the new internal node's level.
+    /// [`Tree::descend`], recording each split and the new internal node's level.
     #[cfg(feature = "rayon")]
-    pub(super) fn split_down<const D: usize>(
+    pub(super) fn descend<const D: usize>(
         &mut self,
         tree: &mut Tree<D>,
-        v: NodeId,
-        path: &[u8],
+        from: Descent,
         min_level: u8,
     ) {
-        tree.split_down(v, path, min_level, |tree, leaf| self.record(tree, leaf));
+        tree.descend(from, min_level, |tree, leaf| self.record(tree, leaf));
     }
 
     fn record<const D: usize>(&mut self, tree: &Tree<D>, leaf: NodeId) {

@@ -148,7 +148,7 @@ impl<const D: usize> Tree<D> {
     /// assert!(t.is_balanced(BalanceOptions::new(Connectivity::Corner).weak()));
     /// ```
     pub fn is_balanced(&self, options: impl Into<BalanceOptions>) -> bool {
-        match Plan::new(self, options.into()) {
+        match Plan::new(self, options.into(), true) {
             Plan::Leaf => true,
             Plan::Dense(dense, rule, k) => dense.balanced(&rule, k),
             Plan::Walk(check) => check.below(&check.root()),
@@ -158,22 +158,19 @@ impl<const D: usize> Tree<D> {
     /// [`Tree::is_balanced`] by the walk, even where the dense test applies.
     #[cfg(test)]
     pub(super) fn is_balanced_walk(&self, options: BalanceOptions) -> bool {
-        let rule = Rule::new::<D>(options);
-        if self.is_leaf(NodeId::ROOT) {
-            return true;
+        match Plan::new(self, options, false) {
+            Plan::Walk(check) => check.below(&check.root()),
+            _ => true,
         }
-        let check = Check::new(self, rule, options);
-        check.below(&check.root())
     }
 
     /// [`Tree::is_balanced`] by the dense test; `None` where it does not apply.
     #[cfg(test)]
     pub(super) fn is_balanced_dense(&self, options: BalanceOptions) -> Option<bool> {
-        let rule = Rule::new::<D>(options);
-        if self.is_leaf(NodeId::ROOT) {
-            return None;
+        match Plan::new(self, options, true) {
+            Plan::Dense(dense, rule, k) => Some(dense.balanced(&rule, k)),
+            _ => None,
         }
-        Some(Dense::new(self)?.balanced(&rule, options.max_level_difference()))
     }
 
     /// [`Tree::is_balanced`] with the subtrees spread over rayon's threads: the top levels are
@@ -192,7 +189,7 @@ impl<const D: usize> Tree<D> {
     #[cfg(feature = "rayon")]
     pub fn par_is_balanced(&self, options: impl Into<BalanceOptions>) -> bool {
         use rayon::prelude::*;
-        let check = match Plan::new(self, options.into()) {
+        let check = match Plan::new(self, options.into(), true) {
             Plan::Leaf => return true,
             Plan::Dense(dense, rule, k) => return dense.par_balanced(&rule, k),
             Plan::Walk(check) => check,
@@ -227,11 +224,12 @@ enum Plan<const D: usize> {
 }
 
 impl<const D: usize> Plan<D> {
-    fn new(tree: &Tree<D>, options: BalanceOptions) -> Self {
+    /// The test for `tree`: the dense one where it applies and `dense` allows it.
+    fn new(tree: &Tree<D>, options: BalanceOptions, dense: bool) -> Self {
         let rule = Rule::new::<D>(options);
         if tree.is_leaf(NodeId::ROOT) {
             Plan::Leaf
-        } else if let Some(dense) = Dense::new(tree) {
+        } else if let Some(dense) = Dense::new(tree).filter(|_| dense) {
             Plan::Dense(dense, rule, options.max_level_difference())
         } else {
             Plan::Walk(Check::new(tree, rule, options))

@@ -13,7 +13,7 @@
 //! result is the same tree as [`Tree::balance`] (the coarsest balanced refinement is unique);
 //! node ids may differ, since splits happen in another order.
 
-use super::balance::{outward_directions, Levels, Steps};
+use super::balance::{outward_directions, Descent, Levels};
 use super::{BalanceOptions, NodeId, Tree};
 use rayon::prelude::*;
 
@@ -44,18 +44,19 @@ impl<const D: usize> Tree<D> {
         let mut levels = Levels::new(self, options);
         while let Some((nodes, min_level)) = levels.next_level() {
             let tree = &*self;
-            let short: Vec<(NodeId, Steps)> = nodes
+            let short: Vec<Descent> = nodes
                 .par_chunks(CHUNK)
                 .flat_map_iter(|chunk| {
                     chunk.iter().flat_map(|&c| {
+                        let level = tree.level(c);
                         outward[tree.child_index(c)]
                             .iter()
-                            .filter_map(move |&d| tree.shortfall(c, d, min_level))
+                            .filter_map(move |&d| tree.shortfall(c, level, d, min_level))
                     })
                 })
                 .collect();
-            for (v, steps) in short {
-                levels.split_down(self, v, &steps, min_level);
+            for from in short {
+                levels.descend(self, from, min_level);
             }
         }
         levels.split

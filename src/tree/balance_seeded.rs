@@ -9,7 +9,7 @@
 //! pass: the result is the coarsest balanced refinement of the refined tree. The cost is that of
 //! the seeds and the splits they force, not of the whole tree.
 
-use super::balance::{outward_directions, Levels};
+use super::balance::Levels;
 use super::{BalanceOptions, NodeId, Tree};
 use crate::geom::{Cell, Dim};
 
@@ -100,16 +100,7 @@ impl<const D: usize> Tree<D> {
         options: BalanceOptions,
         seeds: &[NodeId],
     ) -> Vec<NodeId> {
-        let outward = outward_directions::<D>(options.connectivity);
-        let mut levels = Levels::seeded(self, options, seeds);
-        while let Some((nodes, min_level)) = levels.next_level() {
-            for &c in &nodes {
-                let level = self.level(c);
-                for &d in &outward[self.child_index(c)] {
-                    levels.reach(self, c, level, d, min_level);
-                }
-            }
-        }
-        levels.split
+        let levels = Levels::seeded(self, options, seeds);
+        self.balance_levels(levels, options.connectivity)
     }
 }

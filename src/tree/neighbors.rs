@@ -33,35 +33,29 @@ impl<const D: usize> Tree<D> {
     /// assert_eq!(t.neighbor(sw_ne, Direction::NORTH), Some(nw));
     /// ```
     pub fn neighbor(&self, id: NodeId, direction: Direction) -> Option<NodeId> {
-        let (mut v, mut path) = self.neighbor_path(id, direction)?;
-        while let Some(c) = path.pop() {
+        let (v, path, steps) = self.neighbor_steps(id, direction)?;
+        Some(self.follow(v, path, steps).0)
+    }
+
+    /// The second half of the neighbour search: from `v`, takes the last `steps` child indices
+    /// of the packed `path` while there are children, and returns the node reached with the
+    /// number of steps left (0 unless it is a leaf).
+    pub(super) fn follow(&self, mut v: NodeId, path: u64, mut steps: u8) -> (NodeId, u8) {
+        while steps > 0 {
+            let c = (path >> (D * usize::from(steps - 1))) & ((1u64 << D) - 1);
             match self.child(v, c as usize) {
-                Some(child) => v = child,
-                None => return Some(v),
+                Some(child) => (v, steps) = (child, steps - 1),
+                None => break,
             }
         }
-        Some(v)
+        (v, steps)
     }
 
     /// The first half of the neighbour search: climbs from `id` while the step in `direction`
     /// leaves the current cell, and returns the ancestor where it stops with the child indices to
-    /// take on the way back down (innermost last); `None` when the step leaves the root cube.
-    pub(crate) fn neighbor_path(
-        &self,
-        id: NodeId,
-        direction: Direction,
-    ) -> Option<(NodeId, SmallVec<[u8; 64]>)> {
-        let (v, packed, steps) = self.neighbor_steps(id, direction)?;
-        let mask = (1u64 << D) - 1;
-        let path = (0..usize::from(steps))
-            .map(|s| ((packed >> (D * s)) & mask) as u8)
-            .collect();
-        Some((v, path))
-    }
-
-    /// [`Tree::neighbor_path`] with the child indices packed into one word, D bits a step, the
-    /// first step's in the lowest bits (D times the deepest level is at most 64), and the number
-    /// of steps: the search of the balance's hot loop, which allocates nothing.
+    /// take on the way back down packed into one word, D bits a step, the first step's in the
+    /// lowest bits (D times the deepest level is at most 64), and the number of steps; `None`
+    /// when the step leaves the root cube. Allocates nothing.
     pub(crate) fn neighbor_steps(
         &self,
         id: NodeId,

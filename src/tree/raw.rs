@@ -6,33 +6,28 @@
 use super::{NodeId, Tree, TreeError};
 use crate::geom::{Cell, Dim};
 
-/// The arrays of a [`Tree`], by reference (see the module doc).
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct RawTree<'a> {
+/// The arrays of a [`Tree`] (see the module doc), `W` a sequence of `u32` and `B` of `u8`.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct RawArrays<W, B> {
     /// Per node slot, the first child's id or `u32::MAX` for a leaf.
-    pub first_child: &'a [u32],
+    pub first_child: W,
     /// Per node slot, its level.
-    pub level: &'a [u8],
+    pub level: B,
     /// Per child block, its parent (freed blocks keep their last one).
-    pub block_parent: &'a [u32],
+    pub block_parent: W,
     /// The first ids of the freed blocks, in the order the next splits take them (last first).
-    pub free_blocks: &'a [u32],
+    pub free_blocks: W,
     /// Per level 0..=[`Cell::MAX_LEVEL`], the live child blocks whose nodes are at that level.
-    pub live_blocks: &'a [u32],
+    pub live_blocks: W,
     /// The deepest level of a node.
     pub depth: u8,
 }
 
-/// The owned arrays [`Tree::from_raw_parts`] takes (the fields of [`RawTree`]).
-#[derive(Clone, Debug, Default)]
-pub(crate) struct OwnedRawTree {
-    pub first_child: Vec<u32>,
-    pub level: Vec<u8>,
-    pub block_parent: Vec<u32>,
-    pub free_blocks: Vec<u32>,
-    pub live_blocks: Vec<u32>,
-    pub depth: u8,
-}
+/// The arrays of a [`Tree`], by reference.
+pub(crate) type RawTree<'a> = RawArrays<&'a [u32], &'a [u8]>;
+
+/// The owned arrays [`Tree::from_raw_parts`] takes.
+pub(crate) type OwnedRawTree = RawArrays<Vec<u32>, Vec<u8>>;
 
 impl<const D: usize> Tree<D> {
     /// The stored arrays, by reference.

@@ -82,11 +82,10 @@ fn read_ascii<S: Scalar>(
         })?;
         let mut found = 0;
         for (field, word) in text.split_ascii_whitespace().enumerate() {
+            found = field + 1;
             if field >= values.len() {
-                found = field + 1;
                 continue;
             }
-            found = field + 1;
             let (name, kind) = &header.properties[field];
             values[field] = parse(word, *kind).ok_or_else(|| PlyError::BadValue {
                 line: line_no,

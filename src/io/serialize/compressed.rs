@@ -19,27 +19,21 @@ use crate::{Aabb, CompressedTree, Scalar};
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-#[derive(Serialize)]
-struct CompressedRef<'a, S, T> {
-    half_lo: &'a [f64],
+/// A compressed tree's root cube, domain, points, items and order: sequences of `f64`, of
+/// coordinates, of items and of slots; slices written, vectors read back.
+#[derive(Serialize, Deserialize)]
+struct CompressedFields<F, P, I, O> {
+    half_lo: F,
     half_side: f64,
-    domain_min: &'a [f64],
-    domain_max: &'a [f64],
-    points: &'a [S],
-    items: &'a [T],
-    order: &'a [u32],
+    domain_min: F,
+    domain_max: F,
+    points: P,
+    items: I,
+    order: O,
 }
 
-#[derive(Deserialize)]
-struct CompressedOwned<S, T> {
-    half_lo: Vec<f64>,
-    half_side: f64,
-    domain_min: Vec<f64>,
-    domain_max: Vec<f64>,
-    points: Vec<S>,
-    items: Vec<T>,
-    order: Vec<u32>,
-}
+type CompressedRef<'a, S, T> = CompressedFields<&'a [f64], &'a [S], &'a [T], &'a [u32]>;
+type CompressedOwned<S, T> = CompressedFields<Vec<f64>, Vec<S>, Vec<T>, Vec<u32>>;
 
 impl<'a, S: Scalar, T> CompressedRef<'a, S, T> {
     fn new<const D: usize>(t: &'a CompressedTree<S, T, D>, half_lo: &'a [f64; D]) -> Self {
@@ -90,22 +84,17 @@ where
     }
 }
 
-#[derive(Serialize)]
-struct SkipRef<'a, S, T> {
+/// A skip quadtree's seed and base tree.
+#[derive(Serialize, Deserialize)]
+struct SkipFields<B> {
     seed: u64,
-    base: CompressedRef<'a, S, T>,
-}
-
-#[derive(Deserialize)]
-struct SkipOwned<S, T> {
-    seed: u64,
-    base: CompressedOwned<S, T>,
+    base: B,
 }
 
 impl<S: Scalar + Serialize, T: Serialize, const D: usize> Serialize for SkipQuadtree<S, T, D> {
     fn serialize<Se: Serializer>(&self, s: Se) -> Result<Se::Ok, Se::Error> {
         let half_lo = self.base().geometry().halves().0;
-        SkipRef {
+        SkipFields {
             seed: self.seed(),
             base: CompressedRef::new(self.base(), &half_lo),
         }
@@ -119,7 +108,7 @@ where
     T: Deserialize<'de>,
 {
     fn deserialize<De: Deserializer<'de>>(d: De) -> Result<Self, De::Error> {
-        let o = SkipOwned::<S, T>::deserialize(d)?;
+        let o = SkipFields::<CompressedOwned<S, T>>::deserialize(d)?;
         let skip = SkipQuadtree::with_seed(o.base.into_tree::<De::Error, D>()?, o.seed);
         skip.validate()
             .map_err(|e| De::Error::custom(format!("skip quadtree: {e}")))?;

@@ -14,35 +14,27 @@ use crate::{Aabb, DynamicPointTree, Scalar};
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-#[derive(Serialize)]
-struct DynamicRef<'a, S, T> {
-    tree: TreeRef<'a>,
-    half_lo: &'a [f64],
+/// A dynamic tree's arrays and settings: `Tr` the topology's, then sequences of `f64`, of node
+/// records, of coordinates, of slots and of items; slices written, vectors read back.
+#[derive(Serialize, Deserialize)]
+struct DynamicFields<Tr, F, N, P, U, I> {
+    tree: Tr,
+    half_lo: F,
     half_side: f64,
-    domain_min: &'a [f64],
-    domain_max: &'a [f64],
+    domain_min: F,
+    domain_max: F,
     bucket_size: u64,
     max_depth: u8,
-    nodes: &'a [[u32; 3]],
-    points: &'a [S],
-    slots: &'a [u32],
-    items: &'a [T],
+    nodes: N,
+    points: P,
+    slots: U,
+    items: I,
 }
 
-#[derive(Deserialize)]
-struct DynamicOwned<S, T> {
-    tree: TreeOwned,
-    half_lo: Vec<f64>,
-    half_side: f64,
-    domain_min: Vec<f64>,
-    domain_max: Vec<f64>,
-    bucket_size: u64,
-    max_depth: u8,
-    nodes: Vec<[u32; 3]>,
-    points: Vec<S>,
-    slots: Vec<u32>,
-    items: Vec<T>,
-}
+type DynamicRef<'a, S, T> =
+    DynamicFields<TreeRef<'a>, &'a [f64], &'a [[u32; 3]], &'a [S], &'a [u32], &'a [T]>;
+type DynamicOwned<S, T> =
+    DynamicFields<TreeOwned, Vec<f64>, Vec<[u32; 3]>, Vec<S>, Vec<u32>, Vec<T>>;
 
 impl<S: Scalar + Serialize, T: Serialize, const D: usize> Serialize for DynamicPointTree<S, T, D> {
     fn serialize<Se: Serializer>(&self, s: Se) -> Result<Se::Ok, Se::Error> {

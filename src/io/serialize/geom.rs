@@ -8,21 +8,16 @@ use crate::{Aabb, Cell, Scalar};
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-#[derive(Serialize)]
-struct BoxRef<'a, S> {
-    min: &'a [S],
-    max: &'a [S],
-}
-
-#[derive(Deserialize)]
-struct BoxOwned<S> {
-    min: Vec<S>,
-    max: Vec<S>,
+/// A box's corners: slices written, vectors read back.
+#[derive(Serialize, Deserialize)]
+struct BoxFields<V> {
+    min: V,
+    max: V,
 }
 
 impl<S: Scalar + Serialize, const D: usize> Serialize for Aabb<S, D> {
     fn serialize<Se: Serializer>(&self, s: Se) -> Result<Se::Ok, Se::Error> {
-        BoxRef {
+        BoxFields::<&[S]> {
             min: &self.min,
             max: &self.max,
         }
@@ -32,27 +27,22 @@ impl<S: Scalar + Serialize, const D: usize> Serialize for Aabb<S, D> {
 
 impl<'de, S: Scalar + Deserialize<'de>, const D: usize> Deserialize<'de> for Aabb<S, D> {
     fn deserialize<De: Deserializer<'de>>(d: De) -> Result<Self, De::Error> {
-        let b = BoxOwned::<S>::deserialize(d)?;
+        let b = BoxFields::<Vec<S>>::deserialize(d)?;
         let (min, max) = (array("box min", &b.min)?, array("box max", &b.max)?);
         Aabb::new(min, max).map_err(|e| De::Error::custom(format!("box: {e}")))
     }
 }
 
-#[derive(Serialize)]
-struct CellRef<'a> {
+/// A cell's level and coordinates: a slice written, a vector read back.
+#[derive(Serialize, Deserialize)]
+struct CellFields<V> {
     level: u8,
-    coords: &'a [u32],
-}
-
-#[derive(Deserialize)]
-struct CellOwned {
-    level: u8,
-    coords: Vec<u32>,
+    coords: V,
 }
 
 impl<const D: usize> Serialize for Cell<D> {
     fn serialize<Se: Serializer>(&self, s: Se) -> Result<Se::Ok, Se::Error> {
-        CellRef {
+        CellFields::<&[u32]> {
             level: self.level(),
             coords: &self.coords(),
         }
@@ -62,7 +52,7 @@ impl<const D: usize> Serialize for Cell<D> {
 
 impl<'de, const D: usize> Deserialize<'de> for Cell<D> {
     fn deserialize<De: Deserializer<'de>>(d: De) -> Result<Self, De::Error> {
-        let c = CellOwned::deserialize(d)?;
+        let c = CellFields::<Vec<u32>>::deserialize(d)?;
         let coords = array("cell coords", &c.coords)?;
         Cell::new(c.level, coords).ok_or_else(|| {
             De::Error::custom(format!(
@@ -74,21 +64,16 @@ impl<'de, const D: usize> Deserialize<'de> for Cell<D> {
     }
 }
 
-#[derive(Serialize)]
-struct RegionRef<'a> {
-    extent: &'a [u32],
-    nodes: &'a [u8],
-}
-
-#[derive(Deserialize)]
-struct RegionOwned {
-    extent: Vec<u32>,
-    nodes: Vec<u8>,
+/// A region tree's extent and nodes: slices written, vectors read back.
+#[derive(Serialize, Deserialize)]
+struct RegionFields<E, N> {
+    extent: E,
+    nodes: N,
 }
 
 impl<const D: usize> Serialize for RegionTree<D> {
     fn serialize<Se: Serializer>(&self, s: Se) -> Result<Se::Ok, Se::Error> {
-        RegionRef {
+        RegionFields::<&[u32], &[u8]> {
             extent: &self.extent(),
             nodes: self.nodes(),
         }
@@ -98,7 +83,7 @@ impl<const D: usize> Serialize for RegionTree<D> {
 
 impl<'de, const D: usize> Deserialize<'de> for RegionTree<D> {
     fn deserialize<De: Deserializer<'de>>(d: De) -> Result<Self, De::Error> {
-        let r = RegionOwned::deserialize(d)?;
+        let r = RegionFields::<Vec<u32>, Vec<u8>>::deserialize(d)?;
         let extent = array("region tree extent", &r.extent)?;
         RegionTree::from_nodes(extent, r.nodes)
             .map_err(|e| De::Error::custom(format!("region tree: {e}")))

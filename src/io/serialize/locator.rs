@@ -10,21 +10,16 @@ use crate::compressed::{PointLocator, Subdivision};
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-#[derive(Serialize)]
-struct SubdivisionRef<'a> {
-    vertices: &'a [[f64; 2]],
-    edges: &'a [[u32; 2]],
-}
-
-#[derive(Deserialize)]
-struct SubdivisionOwned {
-    vertices: Vec<[f64; 2]>,
-    edges: Vec<[u32; 2]>,
+/// A subdivision's vertices and edges: slices written, vectors read back.
+#[derive(Serialize, Deserialize)]
+struct SubdivisionFields<V, E> {
+    vertices: V,
+    edges: E,
 }
 
 impl Serialize for Subdivision {
     fn serialize<Se: Serializer>(&self, s: Se) -> Result<Se::Ok, Se::Error> {
-        SubdivisionRef {
+        SubdivisionFields::<&[[f64; 2]], &[[u32; 2]]> {
             vertices: self.vertices(),
             edges: self.edges(),
         }
@@ -34,25 +29,21 @@ impl Serialize for Subdivision {
 
 impl<'de> Deserialize<'de> for Subdivision {
     fn deserialize<De: Deserializer<'de>>(d: De) -> Result<Self, De::Error> {
-        let o = SubdivisionOwned::deserialize(d)?;
+        let o = SubdivisionFields::<Vec<[f64; 2]>, Vec<[u32; 2]>>::deserialize(d)?;
         Subdivision::new(o.vertices, o.edges)
             .map_err(|e| De::Error::custom(format!("subdivision: {e}")))
     }
 }
 
-#[derive(Serialize)]
-struct LocatorRef<'a> {
-    subdivision: &'a Subdivision,
-}
-
-#[derive(Deserialize)]
-struct LocatorOwned {
-    subdivision: Subdivision,
+/// A locator's subdivision: by reference written, owned read back.
+#[derive(Serialize, Deserialize)]
+struct LocatorFields<S> {
+    subdivision: S,
 }
 
 impl Serialize for PointLocator {
     fn serialize<Se: Serializer>(&self, s: Se) -> Result<Se::Ok, Se::Error> {
-        LocatorRef {
+        LocatorFields {
             subdivision: self.subdivision(),
         }
         .serialize(s)
@@ -61,7 +52,7 @@ impl Serialize for PointLocator {
 
 impl<'de> Deserialize<'de> for PointLocator {
     fn deserialize<De: Deserializer<'de>>(d: De) -> Result<Self, De::Error> {
-        let o = LocatorOwned::deserialize(d)?;
+        let o = LocatorFields::<Subdivision>::deserialize(d)?;
         PointLocator::new(o.subdivision)
             .map_err(|e| De::Error::custom(format!("point locator: {e}")))
     }

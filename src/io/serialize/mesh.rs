@@ -14,7 +14,7 @@
 //! joining two distinct vertices, on a component numbered from 1. O(T log T) for T triangles.
 
 use crate::mesh::SegmentKind;
-use crate::mesh::{Board, Component, HalfEdges, Mesh, MeshOptions, MeshSettings, Segment};
+use crate::mesh::{Board, Component, HalfEdges, Mesh, MeshOptions, MeshSettings};
 use serde::de::Error as _;
 use serde::ser::Error as _;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -22,25 +22,18 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 /// The largest vertex coordinate accepted, the largest board side (2^30).
 const MAX_COORDINATE: i64 = 1 << 30;
 
-#[derive(Serialize)]
-struct MeshRef<'a> {
-    vertices: &'a [[i64; 2]],
-    triangles: &'a [[u32; 3]],
-    regions: &'a [u32],
-    segments: &'a [Segment],
-}
-
-#[derive(Deserialize)]
-struct MeshOwned {
-    vertices: Vec<[i64; 2]>,
-    triangles: Vec<[u32; 3]>,
-    regions: Vec<u32>,
-    segments: Vec<Segment>,
+/// A mesh's arrays: slices written, vectors read back.
+#[derive(Serialize, Deserialize)]
+struct MeshFields<V, T, R, S> {
+    vertices: V,
+    triangles: T,
+    regions: R,
+    segments: S,
 }
 
 impl Serialize for Mesh {
     fn serialize<Se: Serializer>(&self, s: Se) -> Result<Se::Ok, Se::Error> {
-        MeshRef {
+        MeshFields {
             vertices: &self.vertices,
             triangles: &self.triangles,
             regions: &self.regions,
@@ -52,7 +45,7 @@ impl Serialize for Mesh {
 
 impl<'de> Deserialize<'de> for Mesh {
     fn deserialize<De: Deserializer<'de>>(d: De) -> Result<Self, De::Error> {
-        let o = MeshOwned::deserialize(d)?;
+        let o = MeshFields::<Vec<_>, Vec<_>, Vec<_>, Vec<_>>::deserialize(d)?;
         let mesh = Mesh {
             vertices: o.vertices,
             triangles: o.triangles,
@@ -103,21 +96,16 @@ fn check_mesh(mesh: &Mesh) -> Result<(), String> {
     Ok(())
 }
 
-#[derive(Serialize)]
-struct BoardRef<'a> {
+/// A board's size and components: a slice written, a vector read back.
+#[derive(Serialize, Deserialize)]
+struct BoardFields<C> {
     size: i64,
-    components: &'a [Component],
-}
-
-#[derive(Deserialize)]
-struct BoardOwned {
-    size: i64,
-    components: Vec<Component>,
+    components: C,
 }
 
 impl Serialize for Board {
     fn serialize<Se: Serializer>(&self, s: Se) -> Result<Se::Ok, Se::Error> {
-        BoardRef {
+        BoardFields::<&[Component]> {
             size: self.size(),
             components: self.components(),
         }
@@ -127,7 +115,7 @@ impl Serialize for Board {
 
 impl<'de> Deserialize<'de> for Board {
     fn deserialize<De: Deserializer<'de>>(d: De) -> Result<Self, De::Error> {
-        let o = BoardOwned::deserialize(d)?;
+        let o = BoardFields::<Vec<Component>>::deserialize(d)?;
         Board::new(o.size, o.components).map_err(|e| De::Error::custom(format!("board: {e}")))
     }
 }

@@ -10,35 +10,25 @@ use crate::{Aabb, Connectivity, PointTree, Scalar};
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-#[derive(Serialize)]
-struct PointTreeRef<'a, S, T> {
-    tree: TreeRef<'a>,
-    half_lo: &'a [f64],
+/// A point tree's arrays and settings: `Tr` the topology's, then sequences of `f64`, of
+/// coordinates, of items and of run ends; slices written, vectors read back.
+#[derive(Serialize, Deserialize)]
+struct PointTreeFields<Tr, F, P, I, R> {
+    tree: Tr,
+    half_lo: F,
     half_side: f64,
-    domain_min: &'a [f64],
-    domain_max: &'a [f64],
-    points: &'a [S],
-    items: &'a [T],
-    run_ends: &'a [u32],
+    domain_min: F,
+    domain_max: F,
+    points: P,
+    items: I,
+    run_ends: R,
     bucket_size: u64,
     max_depth: u8,
     balance: Option<(Connectivity, u8)>,
 }
 
-#[derive(Deserialize)]
-struct PointTreeOwned<S, T> {
-    tree: TreeOwned,
-    half_lo: Vec<f64>,
-    half_side: f64,
-    domain_min: Vec<f64>,
-    domain_max: Vec<f64>,
-    points: Vec<S>,
-    items: Vec<T>,
-    run_ends: Vec<u32>,
-    bucket_size: u64,
-    max_depth: u8,
-    balance: Option<(Connectivity, u8)>,
-}
+type PointTreeRef<'a, S, T> = PointTreeFields<TreeRef<'a>, &'a [f64], &'a [S], &'a [T], &'a [u32]>;
+type PointTreeOwned<S, T> = PointTreeFields<TreeOwned, Vec<f64>, Vec<S>, Vec<T>, Vec<u32>>;
 
 impl<S: Scalar + Serialize, T: Serialize, const D: usize> Serialize for PointTree<S, T, D> {
     fn serialize<Se: Serializer>(&self, s: Se) -> Result<Se::Ok, Se::Error> {

@@ -19,24 +19,19 @@ use crate::Connectivity;
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-#[derive(Serialize)]
-struct TorusRef<'a> {
+/// A torus's bounds (`None` where not finite) and wrapping axes: a slice written, a vector
+/// read back.
+#[derive(Serialize, Deserialize)]
+struct TorusFields<W> {
     lo: Vec<Option<f64>>,
     hi: Vec<Option<f64>>,
-    wraps: &'a [bool],
-}
-
-#[derive(Deserialize)]
-struct TorusOwned {
-    lo: Vec<Option<f64>>,
-    hi: Vec<Option<f64>>,
-    wraps: Vec<bool>,
+    wraps: W,
 }
 
 impl<const D: usize> Serialize for Torus<D> {
     fn serialize<Se: Serializer>(&self, s: Se) -> Result<Se::Ok, Se::Error> {
         let finite = |v: &[f64; D]| v.iter().map(|x| x.is_finite().then_some(*x)).collect();
-        TorusRef {
+        TorusFields::<&[bool]> {
             lo: finite(self.lo()),
             hi: finite(self.hi()),
             wraps: self.wraps(),
@@ -47,7 +42,7 @@ impl<const D: usize> Serialize for Torus<D> {
 
 impl<'de, const D: usize> Deserialize<'de> for Torus<D> {
     fn deserialize<De: Deserializer<'de>>(d: De) -> Result<Self, De::Error> {
-        let o = TorusOwned::deserialize(d)?;
+        let o = TorusFields::<Vec<bool>>::deserialize(d)?;
         let lo: [Option<f64>; D] = array("torus lo", &o.lo)?;
         let hi: [Option<f64>; D] = array("torus hi", &o.hi)?;
         let wraps: [bool; D] = array("torus wraps", &o.wraps)?;

@@ -6,29 +6,24 @@ use crate::Tree;
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-/// The arena's arrays, by reference (also the `tree` field of a point tree).
-#[derive(Serialize)]
-pub(super) struct TreeRef<'a> {
+/// The arena's arrays (also the `tree` field of a point tree): slices written, vectors read
+/// back.
+#[derive(Serialize, Deserialize)]
+pub(super) struct TreeFields<W, B> {
     dimension: usize,
-    first_child: &'a [u32],
-    level: &'a [u8],
-    block_parent: &'a [u32],
-    free_blocks: &'a [u32],
-    live_blocks: &'a [u32],
+    first_child: W,
+    level: B,
+    block_parent: W,
+    free_blocks: W,
+    live_blocks: W,
     depth: u8,
 }
 
+/// The arena's arrays, by reference.
+pub(super) type TreeRef<'a> = TreeFields<&'a [u32], &'a [u8]>;
+
 /// The arena's arrays as read, not yet checked.
-#[derive(Deserialize)]
-pub(super) struct TreeOwned {
-    dimension: usize,
-    first_child: Vec<u32>,
-    level: Vec<u8>,
-    block_parent: Vec<u32>,
-    free_blocks: Vec<u32>,
-    live_blocks: Vec<u32>,
-    depth: u8,
-}
+pub(super) type TreeOwned = TreeFields<Vec<u32>, Vec<u8>>;
 
 impl<'a> TreeRef<'a> {
     pub(super) fn new<const D: usize>(raw: RawTree<'a>) -> Self {

@@ -66,6 +66,13 @@ fn px<W: Write + ?Sized>(o: &mut TextOut<'_, W>, x: f64) {
     o.f3(clamp_px(x));
 }
 
+/// Appends the pixel column and row of the plane point `p`, as `x y`.
+fn xy<W: Write + ?Sized>(o: &mut TextOut<'_, W>, svg: &Svg, p: [f64; 2]) {
+    px(o, svg.x(p[0]));
+    o.sp();
+    px(o, svg.y(p[1]));
+}
+
 /// Opens a `<g>` with `style`'s attributes.
 fn open_group<W: Write + ?Sized>(o: &mut TextOut<'_, W>, style: &Style) -> io::Result<()> {
     o.s("<g").s(&style.attributes()).s(">").nl()
@@ -149,13 +156,9 @@ fn write_long_edges<W: Write + ?Sized>(
             o.s("<path d=\"");
             for [p, q] in chunk {
                 o.s("M");
-                px(o, svg.x(p[0]));
-                o.sp();
-                px(o, svg.y(p[1]));
+                xy(o, svg, *p);
                 o.s("L");
-                px(o, svg.x(q[0]));
-                o.sp();
-                px(o, svg.y(q[1]));
+                xy(o, svg, *q);
             }
             o.s("\"/>").nl()?;
         }
@@ -265,9 +268,7 @@ fn write_ring<W: Write + ?Sized>(
 ) -> io::Result<()> {
     for (k, p) in ring.iter().enumerate() {
         o.s(if k == 0 { "M" } else { "L" });
-        px(o, svg.x(p[0] as f64));
-        o.sp();
-        px(o, svg.y(p[1] as f64));
+        xy(o, svg, p.map(|c| c as f64));
         o.spill()?;
     }
     o.s("Z");

@@ -17,15 +17,7 @@ fn all_zero_dash_is_solid_and_numbers_are_short() {
 fn numbers_are_clamped_short_decimals() {
     // What `num` promised when it was written with `format!`: the clamped value to three
     // decimals, trailing zeros and point trimmed, no `-0`.
-    let by_format = |x: f64| {
-        let s = format!("{:.3}", format::clamp_px(x));
-        let s = if s.contains('.') {
-            s.trim_end_matches('0').trim_end_matches('.')
-        } else {
-            &s
-        };
-        if s == "-0" { "0" } else { s }.to_string()
-    };
+    let by_format = |x: f64| crate::io::text_out::tests::reference_f3(format::clamp_px(x));
     for x in [
         0.0,
         -0.0,

@@ -266,20 +266,17 @@ impl<S: Scalar, T, const D: usize> PointSet<D> for DynamicPointTree<S, T, D> {
     /// cell and the domain; chunks inside the pool and disjoint; slots and positions inverse.
     fn validate(&self) -> Result<(), ValidationError> {
         use crate::error::Invariant as I;
-        let fail = |e: ValidationError| Err(e);
         let ix = &self.index;
         if let Err(e) = ix.tree.validate() {
-            return fail(ValidationError::new(I::Topology).detail(e.to_string()));
+            return Err(ValidationError::new(I::Topology).detail(e.to_string()));
         }
         if ix.nodes.len() < ix.tree.node_count() || self.pos.len() != self.items.len() {
-            return fail(
-                ValidationError::new(I::Lengths)
-                    .detail("one record per node and one position per item"),
-            );
+            return Err(ValidationError::new(I::Lengths)
+                .detail("one record per node and one position per item"));
         }
         if ix.nodes[0].count as usize != self.len() {
-            return fail(
-                ValidationError::new(I::Counts).detail("the root does not count every point"),
+            return Err(
+                ValidationError::new(I::Counts).detail("the root does not count every point")
             );
         }
         let mut owned = vec![false; ix.pool.len()];
@@ -288,18 +285,14 @@ impl<S: Scalar, T, const D: usize> PointSet<D> for DynamicPointTree<S, T, D> {
             if let Some(first) = ix.tree.child(id, 0) {
                 let sum: u32 = (0..1 << D).map(|i| ix.nodes[first.index() + i].count).sum();
                 if sum != d.count {
-                    return fail(
-                        ValidationError::new(I::Counts)
-                            .node(id.0)
-                            .detail(format!("its children count {sum} of {}", d.count)),
-                    );
+                    return Err(ValidationError::new(I::Counts)
+                        .node(id.0)
+                        .detail(format!("its children count {sum} of {}", d.count)));
                 }
                 if d.count as usize <= self.bucket_size {
-                    return fail(
-                        ValidationError::new(I::SplitNeeded)
-                            .node(id.0)
-                            .detail(format!("holds {} points", d.count)),
-                    );
+                    return Err(ValidationError::new(I::SplitNeeded)
+                        .node(id.0)
+                        .detail(format!("holds {} points", d.count)));
                 }
                 continue;
             }
@@ -309,55 +302,45 @@ impl<S: Scalar, T, const D: usize> PointSet<D> for DynamicPointTree<S, T, D> {
                 self.bucket_size,
                 self.max_depth,
             ) {
-                return fail(
-                    ValidationError::new(I::LeafSize)
-                        .node(id.0)
-                        .detail(format!("holds {} points", d.count)),
-                );
+                return Err(ValidationError::new(I::LeafSize)
+                    .node(id.0)
+                    .detail(format!("holds {} points", d.count)));
             }
             if d.count > d.cap || (d.start + d.cap) as usize > ix.pool.len() {
-                return fail(
-                    ValidationError::new(I::Links)
-                        .node(id.0)
-                        .detail("its chunk is too small or outside the pool"),
-                );
+                return Err(ValidationError::new(I::Links)
+                    .node(id.0)
+                    .detail("its chunk is too small or outside the pool"));
             }
             for e in d.start..d.start + d.cap {
                 if std::mem::replace(&mut owned[e as usize], true) {
-                    return fail(
-                        ValidationError::new(I::Links)
-                            .node(id.0)
-                            .detail(format!("entry {e} belongs to two chunks")),
-                    );
+                    return Err(ValidationError::new(I::Links)
+                        .node(id.0)
+                        .detail(format!("entry {e} belongs to two chunks")));
                 }
                 let slot = ix.pool.slots[e as usize];
                 if e >= d.start + d.count {
                     continue;
                 }
                 if slot as usize >= self.len() || self.pos[slot as usize] != e {
-                    return fail(
-                        ValidationError::new(I::Links)
-                            .point(slot as usize)
-                            .detail(format!("entry {e} and its slot disagree")),
-                    );
+                    return Err(ValidationError::new(I::Links)
+                        .point(slot as usize)
+                        .detail(format!("entry {e} and its slot disagree")));
                 }
                 let p = ix.pool.points[e as usize].map(Scalar::to_f64);
                 if !self.domain.contains(&p) {
-                    return fail(ValidationError::new(I::InDomain).point(slot as usize));
+                    return Err(ValidationError::new(I::InDomain).point(slot as usize));
                 }
                 let key = ix.geometry.key(&p);
                 if Cell::from_aligned_key(key, cell.level()) != cell {
-                    return fail(
-                        ValidationError::new(I::InLeaf)
-                            .node(id.0)
-                            .point(slot as usize),
-                    );
+                    return Err(ValidationError::new(I::InLeaf)
+                        .node(id.0)
+                        .point(slot as usize));
                 }
             }
         }
         if let Some(e) = (0..ix.pool.len()).find(|&e| !owned[e] && ix.pool.slots[e] != GAP) {
-            return fail(
-                ValidationError::new(I::Links).detail(format!("free entry {e} holds a slot")),
+            return Err(
+                ValidationError::new(I::Links).detail(format!("free entry {e} holds a slot"))
             );
         }
         Ok(())

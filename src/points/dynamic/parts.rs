@@ -24,10 +24,11 @@ use crate::query::PointSet;
 use crate::tree::raw::{OwnedRawTree, RawTree};
 use crate::tree::Tree;
 
-/// Everything a [`DynamicPointTree`] stores, by reference (the node records copied).
+/// Everything a [`DynamicPointTree`] stores: `Tr` its arena's arrays, then sequences of
+/// points, of slots and of items.
 #[derive(Clone, Debug)]
-pub(crate) struct DynamicView<'a, S, T, const D: usize> {
-    pub tree: RawTree<'a>,
+pub(crate) struct DynamicFields<Tr, P, U, I, const D: usize> {
+    pub tree: Tr,
     /// The root cube's lower corner halved (rounded down) and half its side.
     pub half_lo: [f64; D],
     pub half_side: f64,
@@ -37,26 +38,19 @@ pub(crate) struct DynamicView<'a, S, T, const D: usize> {
     /// Per node of the arena: its count of points, its chunk's start and size.
     pub nodes: Vec<[u32; 3]>,
     /// The chunk array: a point and its item's slot per entry (`u32::MAX` for free space).
-    pub points: &'a [[S; D]],
-    pub slots: &'a [u32],
+    pub points: P,
+    pub slots: U,
     /// The items in slot order.
-    pub items: &'a [T],
+    pub items: I,
 }
 
+/// Everything a [`DynamicPointTree`] stores, by reference (the node records copied).
+pub(crate) type DynamicView<'a, S, T, const D: usize> =
+    DynamicFields<RawTree<'a>, &'a [[S; D]], &'a [u32], &'a [T], D>;
+
 /// The owned form of [`DynamicView`], which [`DynamicPointTree::from_parts`] checks.
-#[derive(Clone, Debug)]
-pub(crate) struct DynamicParts<S, T, const D: usize> {
-    pub tree: OwnedRawTree,
-    pub half_lo: [f64; D],
-    pub half_side: f64,
-    pub domain: Aabb<f64, D>,
-    pub bucket_size: usize,
-    pub max_depth: u8,
-    pub nodes: Vec<[u32; 3]>,
-    pub points: Vec<[S; D]>,
-    pub slots: Vec<u32>,
-    pub items: Vec<T>,
-}
+pub(crate) type DynamicParts<S, T, const D: usize> =
+    DynamicFields<OwnedRawTree, Vec<[S; D]>, Vec<u32>, Vec<T>, D>;
 
 impl<S: Scalar, T, const D: usize> DynamicPointTree<S, T, D> {
     /// The stored arrays and settings.
