@@ -19,6 +19,7 @@
 //! grown to the largest pool seen.
 
 use super::bounds::PairDistance;
+use super::knn_cands::Cands;
 use super::traverse::{children, SCAN};
 use crate::geom::{Aabb, Scalar};
 use crate::query::SpatialIndex;
@@ -127,20 +128,18 @@ impl<N: Copy, const D: usize> Pool<N, D> {
         self.used = self.staged.len().div_ceil(CHUNK);
     }
 
-    /// Appends to `buf[*held..]` every point of the pool within `bound` of `q` as (distance,
-    /// position), but the position `skip`; `buf` holds at least `*held + CHUNK` entries. After
-    /// each chunk, when `*held` reaches `full`, calls `shrink(buf, held)`, which keeps the best
-    /// and returns the new bound.
+    /// Offers `cands` every point of the pool within `bound` of `q`, but the position `skip`;
+    /// `cands` has room for `full` and a chunk's worth. After each chunk, when `full` are held,
+    /// keeps the best `k` ([`Cands::shrink`]) and tightens the bound to the `k`-th distance.
     #[inline(always)]
     pub(crate) fn scan<P: PairDistance<D>>(
         &self,
         metric: &P,
         (q, skip): (&[f64; D], usize),
         mut bound: f64,
-        (buf, held): (&mut [(u64, usize)], &mut usize),
+        cands: &mut Cands,
         full: usize,
-        mut shrink: impl FnMut(&mut [(u64, usize)], &mut usize) -> f64,
-    ) -> f64 {
+    ) {
         for c in &self.chunks[..self.used] {
             if metric.point_box(q, &c.tight) > bound {
                 continue;
@@ -158,14 +157,12 @@ impl<N: Copy, const D: usize> Pool<N, D> {
             while mask != 0 {
                 let j = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
-                buf[*held] = (dist[j].to_bits(), c.at[j]);
-                *held += usize::from(c.at[j] != skip);
+                cands.push(dist[j].to_bits(), c.at[j], skip);
             }
-            if *held >= full {
-                bound = shrink(buf, held);
+            if cands.held >= full {
+                bound = cands.shrink();
             }
         }
-        bound
     }
 }
 
