@@ -20,11 +20,17 @@
 //! - A selection ([`Cands::shrink`]) keeps the `k` first by key; it is exact unless a key left
 //!   out shares its high bits with the `k`-th, which then sends the selection to an exact sort
 //!   of the entries.
+//! - Selections are mostly avoided by a guess: the candidates within a guessed distance (near)
+//!   fill the buffer from its front, the others (far) from its back. Once `k` are near, the far
+//!   ones are all farther than the `k`-th and are forgotten; if fewer than `k` end near, the far
+//!   ones join them. Either way the `k` first are among those kept, so the guess only decides
+//!   how many are ordered.
 
 /// The sorting network's width: the most candidates ordered without a selection first.
 const NET: usize = 32;
 
-/// The candidates of one query point: entries and keys (see the module doc), `held` of them.
+/// The candidates of one query point: entries and keys (see the module doc), the near ones at
+/// the front of the buffer, the far ones at its back.
 pub(crate) struct Cands {
     keys: Vec<u64>,
     entries: Vec<(u64, usize)>,
@@ -32,8 +38,12 @@ pub(crate) struct Cands {
     spare: Vec<(u64, usize)>,
     /// The low bits of a key that hold its buffer place.
     low: u64,
-    /// The candidates held.
-    pub(crate) held: usize,
+    /// The near candidates: places `..front`.
+    front: usize,
+    /// The far candidates: places `back..room`.
+    back: usize,
+    /// The places of the buffer.
+    room: usize,
     /// The candidates kept by a selection.
     k: usize,
 }
@@ -46,13 +56,15 @@ impl Cands {
             entries: Vec::new(),
             spare: Vec::new(),
             low: 0,
-            held: 0,
+            front: 0,
+            back: 0,
+            room: 0,
             k: 0,
         }
     }
 
-    /// Empties the buffer, for a point keeping `k` (at least 1) of up to `room` candidates held
-    /// at once.
+    /// Empties the buffer, for a point keeping `k` (at least 1) of up to `room - 1` candidates
+    /// held at once.
     pub(crate) fn reset(&mut self, k: usize, room: usize) {
         if self.keys.len() < room {
             self.keys.resize(room, 0);
@@ -60,23 +72,61 @@ impl Cands {
         }
         let bits = usize::BITS - (room.max(2) - 1).leading_zeros();
         self.low = (1u64 << bits) - 1;
-        self.held = 0;
+        self.front = 0;
+        self.back = room;
+        self.room = room;
         self.k = k;
     }
 
-    /// Writes a candidate at distance bits `bits` and position `at` in the next free place, and
-    /// keeps it unless `at` is `skip`; the buffer must have a free place.
+    /// The candidates held, near and far.
     #[inline(always)]
-    pub(crate) fn push(&mut self, bits: u64, at: usize, skip: usize) {
-        let i = self.held;
+    pub(crate) fn held(&self) -> usize {
+        self.front + (self.room - self.back)
+    }
+
+    /// The near candidates held.
+    #[inline(always)]
+    pub(crate) fn near(&self) -> usize {
+        self.front
+    }
+
+    /// Writes a candidate at distance bits `bits` and position `at` in the next free place of
+    /// the front (`near`) or of the back, and keeps it unless `at` is `skip`; the buffer must
+    /// have a free place. Without branches: it is written at both, and one end moves.
+    #[inline(always)]
+    pub(crate) fn push(&mut self, bits: u64, at: usize, skip: usize, near: bool) {
+        let (i, j) = (self.front, self.back - 1);
+        self.entries[j] = (bits, at);
+        self.keys[j] = (bits & !self.low) | j as u64;
         self.entries[i] = (bits, at);
         self.keys[i] = (bits & !self.low) | i as u64;
-        self.held = i + usize::from(at != skip);
+        let keep = at != skip;
+        self.front = i + usize::from(keep & near);
+        self.back = j + 1 - usize::from(keep & !near);
+    }
+
+    /// Forgets the far candidates: at least `k` near ones are held, all of them nearer.
+    #[inline]
+    pub(crate) fn drop_far(&mut self) {
+        self.back = self.room;
+    }
+
+    /// Moves the far candidates after the near ones, all of them near now.
+    fn merge_far(&mut self) {
+        let low = self.low;
+        for j in self.back..self.room {
+            let (i, e) = (self.front, self.entries[j]);
+            self.entries[i] = e;
+            self.keys[i] = (e.0 & !low) | i as u64;
+            self.front += 1;
+        }
+        self.back = self.room;
     }
 
     /// Keeps the `k` first candidates by `(distance, position)` (in no particular order) and
     /// returns the `k`-th distance; at least `k` must be held.
     pub(crate) fn shrink(&mut self) -> f64 {
+        self.merge_far();
         self.select();
         let kth = self.entries[..self.k].iter().map(|e| e.0).max();
         f64::from_bits(kth.unwrap_or(0))
@@ -86,12 +136,18 @@ impl Cands {
     /// position); at least `k` must be held.
     pub(crate) fn ordered(&mut self) -> impl Iterator<Item = (u64, usize)> + '_ {
         let k = self.k;
-        if self.held <= NET {
+        if self.front >= k {
+            self.drop_far();
+        } else {
+            self.merge_far();
+        }
+        let n = self.front;
+        if n <= NET {
             let mut net = [u64::MAX; NET];
-            net[..self.held].copy_from_slice(&self.keys[..self.held]);
+            net[..n].copy_from_slice(&self.keys[..n]);
             batcher(&mut net);
-            self.keys[..self.held].copy_from_slice(&net[..self.held]);
-            self.fix_runs(self.held);
+            self.keys[..n].copy_from_slice(&net[..n]);
+            self.fix_runs(n);
         } else {
             self.select();
             let keys = &mut self.keys[..k];
@@ -125,10 +181,10 @@ impl Cands {
         }
     }
 
-    /// Keeps the `k` first candidates by `(distance, position)` in the first `k` places of the
-    /// buffer, entries and keys (in no particular order), and holds only them.
+    /// Keeps the `k` first near candidates by `(distance, position)` in the first `k` places of
+    /// the buffer, entries and keys (in no particular order), and holds only them.
     fn select(&mut self) {
-        let (k, n, low) = (self.k, self.held, self.low);
+        let (k, n, low) = (self.k, self.front, self.low);
         let keys = &mut self.keys[..n];
         keys.select_nth_unstable(k - 1);
         let edge = keys[k - 1] & !low;
@@ -151,7 +207,7 @@ impl Cands {
             }
             self.entries[..k].copy_from_slice(&self.spare);
         }
-        self.held = k;
+        self.front = k;
     }
 }
 
@@ -216,15 +272,18 @@ mod tests {
             if kept.len() < k {
                 continue;
             }
+            // Near: within a threshold that keeps fewer or more than `k`.
+            let edge = kept[rng.gen_range(0..kept.len())].0;
             c.reset(k, n + 1);
             for &(bits, at) in &all {
-                c.push(bits, at, skip);
+                c.push(bits, at, skip, bits <= edge);
             }
-            assert_eq!(c.held, kept.len());
+            assert_eq!(c.held(), kept.len());
+            assert_eq!(c.near(), kept.iter().filter(|e| e.0 <= edge).count());
             if round % 2 == 1 {
                 let kth = c.shrink();
                 assert_eq!(kth.to_bits(), kept[k - 1].0, "round {round}");
-                assert_eq!(c.held, k);
+                assert_eq!(c.held(), k);
             }
             let got: Vec<(u64, usize)> = c.ordered().collect();
             assert_eq!(got, kept[..k], "round {round}: k {k}, n {n}");

@@ -13,7 +13,10 @@
 //!    neighbours: `k` other points, so a true bound) or from `g`, keeps the pool's points within
 //!    the bound in a buffer of `2k` (when it fills, a selection keeps its `k` first by
 //!    `(distance, position)` and the `k`-th tightens the bound), and ends by ordering its `k`
-//!    first ([`Cands`]: one-word keys and a sorting network). Consecutive points of a group are
+//!    first ([`Cands`]: one-word keys and a sorting network). The candidates within 1.3 times
+//!    the `k`-th distance of the point before it are held apart as near; once `k` are, the
+//!    bound tightens to that distance and the others are dropped, so that most points order
+//!    few candidates and select none. Consecutive points of a group are
 //!    close (the runs are in the tree's order), so the bound is tight from the first candidate
 //!    on, and few candidates reach the buffer.
 //! 4. A point whose `k`-th distance in the pool exceeds `g` (or which found fewer than `k`) may
@@ -204,10 +207,17 @@ impl<N: Copy, const D: usize> Search<N, D> {
     ) -> Option<f64> {
         let q = self.qs[qi];
         let skip = if same { first + qi } else { usize::MAX };
+        let near = match (qi, self.last.is_empty()) {
+            (0, true) => f64::INFINITY,
+            (0, false) => self.last[k - 1].0 * NEAR,
+            _ if !self.done[qi - 1] => f64::INFINITY,
+            _ => self.lists[qi * k - 1].0 * NEAR,
+        };
         self.cands.reset(k, 2 * k + CHUNK);
+        let cands = &mut self.cands;
         self.pool
-            .scan(metric, (&q, skip), bound, &mut self.cands, 2 * k);
-        if self.cands.held < k {
+            .scan(metric, (&q, skip), (bound, near), cands, (k, 2 * k));
+        if cands.held() < k {
             return None;
         }
         let mut kth = 0;
@@ -226,3 +236,7 @@ impl<N: Copy, const D: usize> Search<N, D> {
 /// (squared distances: 1.41 times the distance); the largest `k`-th distance of nearby groups
 /// varies, and a group whose points need more gathers its pool again.
 const MARGIN: f64 = 2.0;
+
+/// The factor from the `k`-th distance of the point searched before to the distance within
+/// which a point's candidates are near (squared distances).
+const NEAR: f64 = 1.3;

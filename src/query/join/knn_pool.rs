@@ -128,17 +128,19 @@ impl<N: Copy, const D: usize> Pool<N, D> {
         self.used = self.staged.len().div_ceil(CHUNK);
     }
 
-    /// Offers `cands` every point of the pool within `bound` of `q`, but the position `skip`;
-    /// `cands` has room for `full` and a chunk's worth. After each chunk, when `full` are held,
-    /// keeps the best `k` ([`Cands::shrink`]) and tightens the bound to the `k`-th distance.
+    /// Offers `cands` every point of the pool within `bound` of `q`, but the position `skip`,
+    /// as near when within `near` too; `cands` has room for `full` and a chunk's worth. After
+    /// each chunk, once `k` near ones are held, the bound tightens to `near` and the far ones
+    /// are forgotten; when `full` are held, the best `k` are kept ([`Cands::shrink`]) and the
+    /// bound tightens to the `k`-th distance.
     #[inline(always)]
     pub(crate) fn scan<P: PairDistance<D>>(
         &self,
         metric: &P,
         (q, skip): (&[f64; D], usize),
-        mut bound: f64,
+        (mut bound, mut near): (f64, f64),
         cands: &mut Cands,
-        full: usize,
+        (k, full): (usize, usize),
     ) {
         for c in &self.chunks[..self.used] {
             if metric.point_box(q, &c.tight) > bound {
@@ -157,10 +159,15 @@ impl<N: Copy, const D: usize> Pool<N, D> {
             while mask != 0 {
                 let j = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
-                cands.push(dist[j].to_bits(), c.at[j], skip);
+                cands.push(dist[j].to_bits(), c.at[j], skip, dist[j] <= near);
             }
-            if cands.held >= full {
+            if near < bound && cands.near() >= k {
+                bound = near;
+                cands.drop_far();
+            }
+            if cands.held() >= full {
                 bound = cands.shrink();
+                near = bound;
             }
         }
     }
