@@ -99,9 +99,11 @@ impl<N: Copy, const D: usize> Pool<N, D> {
         B: SpatialIndex<D, Node = N>,
         P: PairDistance<D>,
     {
-        self.staged.clear();
         self.stack.clear();
         let points = b.points();
+        // The points kept are `staged[..kept]`; each point looked at is written at `kept`,
+        // which moves on when it is kept (no branch on the test).
+        let mut kept = 0;
         self.stack.extend(b.root());
         while let Some(side) = self.stack.pop() {
             if metric.box_box(gbox, &side.1).0 > g {
@@ -112,20 +114,23 @@ impl<N: Copy, const D: usize> Pool<N, D> {
                 self.stack.extend(kids);
                 continue;
             }
-            for at in b.run(side.0) {
+            let run = b.run(side.0);
+            if self.staged.len() < kept + run.len() {
+                self.staged.resize(kept + run.len(), ([0.0; D], 0));
+            }
+            for at in run {
                 let p = points[at].map(Scalar::to_f64);
-                if metric.point_box(&p, gbox) <= g {
-                    self.staged.push((p, at));
-                }
+                self.staged[kept] = (p, at);
+                kept += usize::from(metric.point_box(&p, gbox) <= g);
             }
         }
-        for (i, part) in self.staged.chunks(CHUNK).enumerate() {
+        for (i, part) in self.staged[..kept].chunks(CHUNK).enumerate() {
             if i == self.chunks.len() {
                 self.chunks.push(Chunk::new());
             }
             self.chunks[i].fill(part);
         }
-        self.used = self.staged.len().div_ceil(CHUNK);
+        self.used = kept.div_ceil(CHUNK);
     }
 
     /// Offers `cands` every point of the pool within `bound` of `q`, but the position `skip`,
