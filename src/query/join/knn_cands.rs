@@ -143,19 +143,13 @@ impl Cands {
         }
         let n = self.front;
         if n <= NET {
-            let mut net = [u64::MAX; NET];
-            net[..n].copy_from_slice(&self.keys[..n]);
-            batcher(&mut net);
-            self.keys[..n].copy_from_slice(&net[..n]);
+            network(&mut self.keys[..n]);
             self.fix_runs(n);
         } else {
             self.select();
             let keys = &mut self.keys[..k];
             if k <= NET {
-                let mut net = [u64::MAX; NET];
-                net[..k].copy_from_slice(keys);
-                batcher(&mut net);
-                keys.copy_from_slice(&net[..k]);
+                network(keys);
             } else {
                 keys.sort_unstable();
             }
@@ -211,11 +205,27 @@ impl Cands {
     }
 }
 
-/// Sorts `a` by Batcher's odd-even merge sort network: sorted runs of `p` merged into runs of
-/// `2p` by exchanges at distances `p, p/2, .., 1`, each between places of the same run of `2p`.
-/// The loops have fixed bounds, so the compiler lays the exchanges out in a straight line.
+/// Sorts `keys` (at most [`NET`]) by the network of [`batcher`] of the smallest width among 16,
+/// 24 and 32 that holds them.
+fn network(keys: &mut [u64]) {
+    let mut net = [u64::MAX; NET];
+    net[..keys.len()].copy_from_slice(keys);
+    match keys.len() {
+        ..=16 => batcher::<16>(&mut net),
+        17..=24 => batcher::<24>(&mut net),
+        _ => batcher::<NET>(&mut net),
+    }
+    keys.copy_from_slice(&net[..keys.len()]);
+}
+
+/// Sorts the first `W` places of `a` (the rest holding `u64::MAX`) by Batcher's odd-even merge
+/// sort network of [`NET`] places: sorted runs of `p` merged into runs of `2p` by exchanges at
+/// distances `p, p/2, .., 1`, each between places of the same run of `2p`. An exchange reaching
+/// a place from `W` on is left out: that place holds `u64::MAX`, which no exchange moves (the
+/// larger key goes to the later place), so the exchange would change nothing. The loops have
+/// fixed bounds, so the compiler lays the exchanges out in a straight line.
 #[inline(always)]
-fn batcher(a: &mut [u64; NET]) {
+fn batcher<const W: usize>(a: &mut [u64; NET]) {
     let mut p = 1;
     while p < NET {
         let mut d = p;
@@ -223,7 +233,7 @@ fn batcher(a: &mut [u64; NET]) {
             let mut j = d % p;
             while j + d < NET {
                 for i in j..(j + d).min(NET - d) {
-                    if i / (2 * p) == (i + d) / (2 * p) {
+                    if i + d < W && i / (2 * p) == (i + d) / (2 * p) {
                         let (x, y) = (a[i], a[i + d]);
                         a[i] = x.min(y);
                         a[i + d] = x.max(y);
