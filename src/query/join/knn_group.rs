@@ -12,8 +12,11 @@
 //!    `k`-th distance taken from the point before it (the farthest of that point and its `k`
 //!    neighbours: `k` other points, so a true bound) or from `g`, keeps the pool's points within
 //!    the bound in a buffer of `2k` (when it fills, a selection keeps its `k` first by
-//!    `(distance, position)` and the `k`-th tightens the bound), and ends by selecting and
-//!    sorting its `k` first (sorting all when they are few). Consecutive points of a group are
+//!    `(distance, position)` and the `k`-th tightens the bound), and ends by ordering its `k`
+//!    first ([`Cands`]: one-word keys and a sorting network). The candidates within 1.3 times
+//!    the `k`-th distance of the point before it are held apart as near; once `k` are, the
+//!    bound tightens to that distance and the others are dropped, so that most points order
+//!    few candidates and select none. Consecutive points of a group are
 //!    close (the runs are in the tree's order), so the bound is tight from the first candidate
 //!    on, and few candidates reach the buffer.
 //! 4. A point whose `k`-th distance in the pool exceeds `g` (or which found fewer than `k`) may
@@ -34,6 +37,7 @@
 //! nothing is allocated per group or per point once they have grown.
 
 use super::bounds::PairDistance;
+use super::knn_cands::Cands;
 use super::knn_pool::{radius_of, Pool, CHUNK};
 use crate::geom::{Aabb, Scalar};
 use crate::query::SpatialIndex;
@@ -49,7 +53,7 @@ pub(crate) struct Search<N, const D: usize> {
     /// Per point of the group: whether its list is final.
     done: Vec<bool>,
     /// The candidates of the point being searched: `2k` and a chunk's worth of room.
-    buf: Vec<(u64, usize)>,
+    cands: Cands,
     /// The candidate pool of the group.
     pool: Pool<N, D>,
     /// The list of the last point of the last group searched (empty before the first).
@@ -68,7 +72,7 @@ impl<N: Copy, const D: usize> Search<N, D> {
             qs: Vec::new(),
             lists: Vec::new(),
             done: Vec::new(),
-            buf: Vec::new(),
+            cands: Cands::new(),
             pool: Pool::new(),
             last: Vec::new(),
             last_q: [0.0; D],
@@ -113,8 +117,6 @@ impl<N: Copy, const D: usize> Search<N, D> {
         self.lists.resize(m * k, (f64::INFINITY, usize::MAX));
         self.done.clear();
         self.done.resize(m, false);
-        self.buf.clear();
-        self.buf.resize(2 * k + CHUNK, (u64::MAX, usize::MAX));
         let need = k + usize::from(same);
         let mut g = if self.guess.is_finite() {
             self.guess
@@ -205,29 +207,28 @@ impl<N: Copy, const D: usize> Search<N, D> {
     ) -> Option<f64> {
         let q = self.qs[qi];
         let skip = if same { first + qi } else { usize::MAX };
-        let mut held = 0;
-        let shrink = |buf: &mut [(u64, usize)], held: &mut usize| {
-            buf[..*held].select_nth_unstable(k - 1);
-            *held = k;
-            f64::from_bits(buf[k - 1].0)
+        let near = match (qi, self.last.is_empty()) {
+            (0, true) => f64::INFINITY,
+            (0, false) => self.last[k - 1].0 * NEAR,
+            _ if !self.done[qi - 1] => f64::INFINITY,
+            _ => self.lists[qi * k - 1].0 * NEAR,
         };
-        let buf = &mut self.buf;
+        self.cands.reset(k, 2 * k + CHUNK);
+        let cands = &mut self.cands;
         self.pool
-            .scan(metric, (&q, skip), bound, (buf, &mut held), 2 * k, shrink);
-        if held < k {
+            .scan(metric, (&q, skip), (bound, near), cands, (k, 2 * k));
+        if cands.held() < k {
             return None;
         }
-        let cands = &mut self.buf[..held];
-        if held > SORT_ALL {
-            cands.select_nth_unstable(k - 1);
-            cands[..k].sort_unstable();
-        } else {
-            cands.sort_unstable();
-        }
-        for (l, &(d, at)) in self.lists[qi * k..(qi + 1) * k].iter_mut().zip(&*cands) {
+        let mut kth = 0;
+        for (l, (d, at)) in self.lists[qi * k..(qi + 1) * k]
+            .iter_mut()
+            .zip(self.cands.ordered())
+        {
             *l = (f64::from_bits(d), at);
+            kth = d;
         }
-        Some(f64::from_bits(cands[k - 1].0))
+        Some(f64::from_bits(kth))
     }
 }
 
@@ -236,6 +237,6 @@ impl<N: Copy, const D: usize> Search<N, D> {
 /// varies, and a group whose points need more gathers its pool again.
 const MARGIN: f64 = 2.0;
 
-/// Up to this many candidates, a point's are sorted whole; above, the `k` first are selected
-/// before they are sorted.
-const SORT_ALL: usize = 20;
+/// The factor from the `k`-th distance of the point searched before to the distance within
+/// which a point's candidates are near (squared distances).
+const NEAR: f64 = 1.3;

@@ -19,6 +19,7 @@
 //! grown to the largest pool seen.
 
 use super::bounds::PairDistance;
+use super::knn_cands::Cands;
 use super::traverse::{children, SCAN};
 use crate::geom::{Aabb, Scalar};
 use crate::query::SpatialIndex;
@@ -98,9 +99,11 @@ impl<N: Copy, const D: usize> Pool<N, D> {
         B: SpatialIndex<D, Node = N>,
         P: PairDistance<D>,
     {
-        self.staged.clear();
         self.stack.clear();
         let points = b.points();
+        // The points kept are `staged[..kept]`; each point looked at is written at `kept`,
+        // which moves on when it is kept (no branch on the test).
+        let mut kept = 0;
         self.stack.extend(b.root());
         while let Some(side) = self.stack.pop() {
             if metric.box_box(gbox, &side.1).0 > g {
@@ -111,36 +114,39 @@ impl<N: Copy, const D: usize> Pool<N, D> {
                 self.stack.extend(kids);
                 continue;
             }
-            for at in b.run(side.0) {
+            let run = b.run(side.0);
+            if self.staged.len() < kept + run.len() {
+                self.staged.resize(kept + run.len(), ([0.0; D], 0));
+            }
+            for at in run {
                 let p = points[at].map(Scalar::to_f64);
-                if metric.point_box(&p, gbox) <= g {
-                    self.staged.push((p, at));
-                }
+                self.staged[kept] = (p, at);
+                kept += usize::from(metric.point_box(&p, gbox) <= g);
             }
         }
-        for (i, part) in self.staged.chunks(CHUNK).enumerate() {
+        for (i, part) in self.staged[..kept].chunks(CHUNK).enumerate() {
             if i == self.chunks.len() {
                 self.chunks.push(Chunk::new());
             }
             self.chunks[i].fill(part);
         }
-        self.used = self.staged.len().div_ceil(CHUNK);
+        self.used = kept.div_ceil(CHUNK);
     }
 
-    /// Appends to `buf[*held..]` every point of the pool within `bound` of `q` as (distance,
-    /// position), but the position `skip`; `buf` holds at least `*held + CHUNK` entries. After
-    /// each chunk, when `*held` reaches `full`, calls `shrink(buf, held)`, which keeps the best
-    /// and returns the new bound.
+    /// Offers `cands` every point of the pool within `bound` of `q`, but the position `skip`,
+    /// as near when within `near` too; `cands` has room for `full` and a chunk's worth. After
+    /// each chunk, once `k` near ones are held, the bound tightens to `near` and the far ones
+    /// are forgotten; when `full` are held, the best `k` are kept ([`Cands::shrink`]) and the
+    /// bound tightens to the `k`-th distance.
     #[inline(always)]
     pub(crate) fn scan<P: PairDistance<D>>(
         &self,
         metric: &P,
         (q, skip): (&[f64; D], usize),
-        mut bound: f64,
-        (buf, held): (&mut [(u64, usize)], &mut usize),
-        full: usize,
-        mut shrink: impl FnMut(&mut [(u64, usize)], &mut usize) -> f64,
-    ) -> f64 {
+        (mut bound, mut near): (f64, f64),
+        cands: &mut Cands,
+        (k, full): (usize, usize),
+    ) {
         for c in &self.chunks[..self.used] {
             if metric.point_box(q, &c.tight) > bound {
                 continue;
@@ -158,14 +164,17 @@ impl<N: Copy, const D: usize> Pool<N, D> {
             while mask != 0 {
                 let j = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
-                buf[*held] = (dist[j].to_bits(), c.at[j]);
-                *held += usize::from(c.at[j] != skip);
+                cands.push(dist[j].to_bits(), c.at[j], skip, dist[j] <= near);
             }
-            if *held >= full {
-                bound = shrink(buf, held);
+            if near < bound && cands.near() >= k {
+                bound = near;
+                cands.drop_far();
+            }
+            if cands.held() >= full {
+                bound = cands.shrink();
+                near = bound;
             }
         }
-        bound
     }
 }
 

@@ -15,6 +15,7 @@
 
 mod bounds;
 mod knn;
+mod knn_cands;
 mod knn_group;
 mod knn_pool;
 mod pairs;
