@@ -61,6 +61,7 @@ pub mod mesh;
 pub mod points;
 mod prefetch;
 pub mod query;
+mod sort_network;
 pub mod tree;
 
 pub use compressed::{CompressedTree, SkipQuadtree};

@@ -11,7 +11,6 @@ mod dynamic;
 mod index;
 pub(crate) mod leaf_bounds;
 pub(crate) mod leaves;
-mod network;
 #[cfg(feature = "rayon")]
 mod parallel;
 mod radix;

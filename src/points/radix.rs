@@ -16,7 +16,22 @@
 //!
 //! Time O(n × bytes used) plus the small sorts; memory one buffer of n pairs.
 
-use super::network::sort_short;
+use crate::sort_network::sort_by_network;
+
+/// The longest run [`sort_short`] sorts with a network: from 24 keys up the standard library's
+/// own sort is as fast on these runs.
+const NETWORK_MAX: usize = 23;
+
+/// Sorts a short run: by a network ([`sort_by_network`]) up to [`NETWORK_MAX`] pairs, else by
+/// `sort_unstable`.
+#[inline]
+fn sort_short<P: Packed>(run: &mut [P]) {
+    if run.len() <= NETWORK_MAX {
+        sort_by_network(run, P::MAX);
+    } else {
+        run.sort_unstable();
+    }
+}
 
 /// Runs this short are sorted by comparison ([`sort_short`]). A byte pass over a short run pays
 /// for 256 counters and up to 256 runs of a few pairs each; below a few hundred pairs a
@@ -54,7 +69,7 @@ impl Packed for u64 {
 /// Sorts `pairs` by key, then index (a `u64` by value).
 pub(crate) fn sort_keyed<P: Packed>(pairs: &mut [P]) {
     if pairs.len() <= SMALL {
-        sort_short(pairs, P::MAX);
+        sort_short(pairs);
         return;
     }
     let mut buffer = vec![P::default(); pairs.len()];
@@ -66,7 +81,7 @@ pub(crate) fn sort_keyed<P: Packed>(pairs: &mut [P]) {
 pub(super) fn par_sort_keyed<P: Packed>(pairs: &mut [P]) {
     use rayon::prelude::*;
     if pairs.len() <= SMALL {
-        sort_short(pairs, P::MAX);
+        sort_short(pairs);
         return;
     }
     let mut shift = 56u32;
@@ -138,7 +153,7 @@ fn sort_run<P: Packed>(pairs: &mut [P], buffer: &mut [P], shift: u32, in_pairs: 
         };
         let (src, dst) = (&mut src[start..end], &mut dst[start..end]);
         if end - start <= SMALL {
-            sort_short(src, P::MAX);
+            sort_short(src);
             if !in_pairs {
                 dst.copy_from_slice(src);
             }

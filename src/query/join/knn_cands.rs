@@ -9,8 +9,8 @@
 //! no branch per comparison; the keys are all distinct.
 //!
 //! - The final order of up to 32 candidates is a sorting network (Batcher's odd-even merge
-//!   sort, "Sorting networks and their applications", 1968) over the keys padded with
-//!   `u64::MAX`: a fixed sequence of minimum-maximum exchanges, without branches on the data.
+//!   sort, "Sorting networks and their applications", 1968; the crate's `sort_network`, shared
+//!   with the radix sort of the build) over the keys padded with `u64::MAX`: a fixed sequence of minimum-maximum exchanges, without branches on the data.
 //!   More are first cut down to `k` by a selection.
 //! - Two keys whose distances agree but for the low bits are ordered by buffer place, not by
 //!   `(distance, position)`: one pass over the sorted keys re-orders each run of keys with equal
@@ -26,8 +26,10 @@
 //!   ones join them. Either way the `k` first are among those kept, so the guess only decides
 //!   how many are ordered.
 
+use crate::sort_network::{sort_by_network, WIDEST};
+
 /// The sorting network's width: the most candidates ordered without a selection first.
-const NET: usize = 32;
+const NET: usize = WIDEST;
 
 /// The candidates of one query point: entries and keys (see the module doc), the near ones at
 /// the front of the buffer, the far ones at its back.
@@ -143,13 +145,13 @@ impl Cands {
         }
         let n = self.front;
         if n <= NET {
-            network(&mut self.keys[..n]);
+            sort_by_network(&mut self.keys[..n], u64::MAX);
             self.fix_runs(n);
         } else {
             self.select();
             let keys = &mut self.keys[..k];
             if k <= NET {
-                network(keys);
+                sort_by_network(keys, u64::MAX);
             } else {
                 keys.sort_unstable();
             }
@@ -202,48 +204,6 @@ impl Cands {
             self.entries[..k].copy_from_slice(&self.spare);
         }
         self.front = k;
-    }
-}
-
-/// Sorts `keys` (at most [`NET`]) by the network of [`batcher`] of the smallest width among 16,
-/// 24 and 32 that holds them.
-fn network(keys: &mut [u64]) {
-    let mut net = [u64::MAX; NET];
-    net[..keys.len()].copy_from_slice(keys);
-    match keys.len() {
-        ..=16 => batcher::<16>(&mut net),
-        17..=24 => batcher::<24>(&mut net),
-        _ => batcher::<NET>(&mut net),
-    }
-    keys.copy_from_slice(&net[..keys.len()]);
-}
-
-/// Sorts the first `W` places of `a` (the rest holding `u64::MAX`) by Batcher's odd-even merge
-/// sort network of [`NET`] places: sorted runs of `p` merged into runs of `2p` by exchanges at
-/// distances `p, p/2, .., 1`, each between places of the same run of `2p`. An exchange reaching
-/// a place from `W` on is left out: that place holds `u64::MAX`, which no exchange moves (the
-/// larger key goes to the later place), so the exchange would change nothing. The loops have
-/// fixed bounds, so the compiler lays the exchanges out in a straight line.
-#[inline(always)]
-fn batcher<const W: usize>(a: &mut [u64; NET]) {
-    let mut p = 1;
-    while p < NET {
-        let mut d = p;
-        while d >= 1 {
-            let mut j = d % p;
-            while j + d < NET {
-                for i in j..(j + d).min(NET - d) {
-                    if i + d < W && i / (2 * p) == (i + d) / (2 * p) {
-                        let (x, y) = (a[i], a[i + d]);
-                        a[i] = x.min(y);
-                        a[i + d] = x.max(y);
-                    }
-                }
-                j += 2 * d;
-            }
-            d /= 2;
-        }
-        p *= 2;
     }
 }
 

@@ -1,19 +1,25 @@
-//! Sorting networks for the short runs the radix sort (`radix.rs`) leaves behind: Batcher's
-//! odd-even merge sort ("Sorting networks and their applications", AFIPS Spring Joint Computer
-//! Conference, 1968) for 8, 16 and 32 inputs, the run padded with the greatest value.
+//! Sorting networks for short runs: Batcher's odd-even merge sort ("Sorting networks and their
+//! applications", AFIPS Spring Joint Computer Conference, 1968) for up to 32 inputs, the run
+//! padded with the greatest value. Two users: the short runs the radix sort leaves behind
+//! (`points/radix.rs`) and each point's candidates in the k-nearest joins
+//! (`query/join/knn_cands.rs`).
 //!
 //! A uniform 2D build ends with about 65 000 runs of some 15 keys. The standard library sorts runs
 //! that short by insertion, whose exits are data-dependent branches that mispredict about once a
 //! key (about 9 ns a key on the development machine); a network compares fixed positions with
 //! branch-free minimum and maximum, 63 comparators for 16 inputs, and sorts the same runs in
-//! under half the time. From 24 keys up the standard library's own networks are as fast.
+//! under half the time.
 //!
 //! The networks for 8 and 16 inputs are written out comparator by comparator (`unrolled!`),
 //! so that the values stay in registers: looping over a table of comparators goes through
-//! memory and was 20% slower on the whole sort. A test checks them against `batcher`.
+//! memory and was 20% slower on the whole sort. Those for 24 and 32 inputs are loops with fixed
+//! bounds ([`padded`]), which the compiler lays out in a straight line the same way. Tests check
+//! the written-out ones against [`batcher`] and every width by the 0-1 principle and on random
+//! runs.
 
 /// The comparators of Batcher's odd-even merge sort for `n` inputs (a power of two, at most 32),
-/// in order, and how many there are.
+/// in order, and how many there are: the reference the written-out networks are checked against.
+#[cfg(test)]
 const fn batcher(n: usize) -> ([(u8, u8); 191], usize) {
     let mut pairs = [(0u8, 0u8); 191];
     let mut count = 0;
@@ -40,8 +46,6 @@ const fn batcher(n: usize) -> ([(u8, u8); 191], usize) {
     }
     (pairs, count)
 }
-
-const NET32: ([(u8, u8); 191], usize) = batcher(32);
 
 /// `unrolled!(name, PAIRS, n; (i, j), ...)` defines `fn name(run, greatest)`, which sorts a run
 /// of at most `n` values through the comparators `(i, j)` written out one by one, and (in tests)
@@ -80,33 +84,54 @@ unrolled!(sort16, NET16, 16;
     (13, 14),
 );
 
-/// The longest run [`sort_short`] sorts with a network; longer ones go to `sort_unstable`.
-pub(super) const NETWORK_MAX: usize = 23;
+/// The most values [`sort_by_network`] sorts with a network.
+pub(crate) const WIDEST: usize = 32;
 
-/// Sorts `run` (any length): by a network when it has at most [`NETWORK_MAX`] values, else by
-/// `sort_unstable`. `greatest` must be at least every value (it pads the network's inputs).
+/// Sorts `run` by the network of the smallest width among 8, 16, 24 and 32 that holds it; a run
+/// longer than [`WIDEST`] goes to `sort_unstable`. `greatest` must be at least every value (it
+/// pads the network's inputs).
 #[inline]
-pub(super) fn sort_short<P: Copy + Ord>(run: &mut [P], greatest: P) {
+pub(crate) fn sort_by_network<P: Copy + Ord>(run: &mut [P], greatest: P) {
     match run.len() {
         0..=1 => {}
         2..=8 => sort8(run, greatest),
         9..=16 => sort16(run, greatest),
-        17..=NETWORK_MAX => through::<P, 32>(run, greatest, &NET32.0[..NET32.1]),
+        17..=24 => padded::<P, 24>(run, greatest),
+        25..=WIDEST => padded::<P, WIDEST>(run, greatest),
         _ => run.sort_unstable(),
     }
 }
 
-/// Sorts `run` (at most `N` values) through the network `pairs` for `N` inputs, a table.
+/// Sorts `run` (at most `W` values, `W` at most [`WIDEST`]) by Batcher's network of [`WIDEST`]
+/// places with the exchanges that reach a place from `W` on left out: sorted runs of `p` are
+/// merged into runs of `2p` by exchanges at distances `p, p/2, .., 1`, each between places of
+/// the same run of `2p`. A place from `W` on holds `greatest`, which no exchange moves (the
+/// larger value goes to the later place), so the exchanges left out would change nothing. The
+/// loops have fixed bounds, so the compiler lays the exchanges out in a straight line.
 #[inline(always)]
-fn through<P: Copy + Ord, const N: usize>(run: &mut [P], greatest: P, pairs: &[(u8, u8)]) {
-    let mut v = [greatest; N];
-    v[..run.len()].copy_from_slice(run);
-    for &(i, j) in pairs {
-        let (a, b) = (v[i as usize], v[j as usize]);
-        v[i as usize] = a.min(b);
-        v[j as usize] = a.max(b);
+fn padded<P: Copy + Ord, const W: usize>(run: &mut [P], greatest: P) {
+    let mut a = [greatest; WIDEST];
+    a[..run.len()].copy_from_slice(run);
+    let mut p = 1;
+    while p < WIDEST {
+        let mut d = p;
+        while d >= 1 {
+            let mut j = d % p;
+            while j + d < WIDEST {
+                for i in j..(j + d).min(WIDEST - d) {
+                    if i + d < W && i / (2 * p) == (i + d) / (2 * p) {
+                        let (x, y) = (a[i], a[i + d]);
+                        a[i] = x.min(y);
+                        a[i + d] = x.max(y);
+                    }
+                }
+                j += 2 * d;
+            }
+            d /= 2;
+        }
+        p *= 2;
     }
-    run.copy_from_slice(&v[..run.len()]);
+    run.copy_from_slice(&a[..run.len()]);
 }
 
 #[cfg(test)]
@@ -116,10 +141,10 @@ mod tests {
 
     #[test]
     fn the_networks_are_batchers() {
-        let (eight, sixteen) = (batcher(8), batcher(16));
+        let (eight, sixteen, widest) = (batcher(8), batcher(16), batcher(WIDEST));
         assert_eq!(NET8, &eight.0[..eight.1]);
         assert_eq!(NET16, &sixteen.0[..sixteen.1]);
-        assert_eq!((NET8.len(), NET16.len(), NET32.1), (19, 63, 191));
+        assert_eq!((NET8.len(), NET16.len(), widest.1), (19, 63, 191));
     }
 
     /// The 0-1 principle: a network that sorts every sequence of zeros and ones sorts every
@@ -131,7 +156,7 @@ mod tests {
                 let mut run: Vec<u8> = (0..m).map(|i| (bits >> i & 1) as u8).collect();
                 let mut expected = run.clone();
                 expected.sort_unstable();
-                sort_short(&mut run, u8::MAX);
+                sort_by_network(&mut run, u8::MAX);
                 assert_eq!(run, expected, "length {m}, input {bits:b}");
             }
         }
@@ -151,7 +176,7 @@ mod tests {
                     .collect();
                 let mut expected = run.clone();
                 expected.sort_unstable();
-                sort_short(&mut run, u64::MAX);
+                sort_by_network(&mut run, u64::MAX);
                 assert_eq!(run, expected);
             }
         }
