@@ -3,7 +3,7 @@
 //! dual-tree k-nearest join of Gray and Moore, "N-body problems in statistical learning", NIPS
 //! 2001), with a guessed radius checked afterwards.
 //!
-//! 1. Pick a radius `g` (a squared distance): twice the largest `k`-th distance of the group
+//! 1. Pick a radius `g` (a squared distance): 1.5 times the largest `k`-th distance of the group
 //!    searched before by this [`Search`] (nearby groups have nearby densities), or, for the
 //!    first, one that surely holds ([`radius_of`]).
 //! 2. Gather the candidate pool: the points of the other tree within `g` of the group's box, in
@@ -233,9 +233,9 @@ impl<N: Copy, const D: usize> Search<N, D> {
 }
 
 /// The factor from the largest `k`-th distance of a group to the radius the next group tries
-/// (squared distances: 1.41 times the distance); the largest `k`-th distance of nearby groups
+/// (squared distances: 1.22 times the distance); the largest `k`-th distance of nearby groups
 /// varies, and a group whose points need more gathers its pool again.
-const MARGIN: f64 = 2.0;
+const MARGIN: f64 = 1.5;
 
 /// The factor from the `k`-th distance of the point searched before to the distance within
 /// which a point's candidates are near (squared distances).
