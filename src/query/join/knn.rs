@@ -75,37 +75,35 @@ impl KnnTable {
     }
 }
 
-/// A group of the querying tree: the positions of its points and their tight box.
-pub(crate) type Group<const D: usize> = (Range<usize>, Aabb<f64, D>);
+/// A group of the querying tree: the positions of its points (their tight box is computed by
+/// [`fill`], on the thread that searches the group).
+pub(crate) type Group = Range<usize>;
 
 /// The groups of `index` (see the module doc), in traversal order.
-pub(crate) fn groups<I: SpatialIndex<D>, const D: usize>(index: &I) -> Vec<Group<D>> {
+pub(crate) fn groups<I: SpatialIndex<D>, const D: usize>(index: &I) -> Vec<Group> {
     let mut out = Vec::new();
     let mut stack: Vec<Side<I::Node, D>> = index.root().into_iter().collect();
-    let points = index.points();
     while let Some(side) = stack.pop() {
         let kids = children(index, &side, SCAN);
         if kids.is_empty() {
             let run = index.run(side.0);
-            if let Some(first) = run.clone().next() {
-                let mut b = Aabb {
-                    min: points[first].map(Scalar::to_f64),
-                    max: points[first].map(Scalar::to_f64),
-                };
-                for p in &points[run.clone()] {
-                    for (axis, c) in p.iter().enumerate() {
-                        let c = c.to_f64();
-                        b.min[axis] = b.min[axis].min(c);
-                        b.max[axis] = b.max[axis].max(c);
-                    }
-                }
-                out.push((run, b));
+            if !run.is_empty() {
+                out.push(run);
             }
         } else {
             stack.extend(kids.into_iter().rev());
         }
     }
     out
+}
+
+/// The tight box of `points` as `f64`.
+fn tight_box<S: Scalar, const D: usize>(points: &[[S; D]]) -> Aabb<f64, D> {
+    let mut b = Aabb::empty();
+    for p in points {
+        b.add_point(&p.map(Scalar::to_f64));
+    }
+    b
 }
 
 /// The width of the table of `k` neighbours in a set of `len` points (`len - 1` others in a
@@ -116,18 +114,18 @@ pub(crate) fn width(k: usize, len: usize, same: bool) -> usize {
 
 /// One group's share of a join: the group and its rows of the table in group order (slots
 /// of the other set and distances, `k` per point).
-pub(crate) type Part<'t, const D: usize> = (&'t Group<D>, &'t mut [usize], &'t mut [f64]);
+pub(crate) type Part<'t> = (&'t Group, &'t mut [usize], &'t mut [f64]);
 
 /// The rows of a table of `k` per point cut into the parts of `groups`, in group order.
-pub(crate) fn parts<'t, const D: usize>(
-    groups: &'t [Group<D>],
+pub(crate) fn parts<'t>(
+    groups: &'t [Group],
     k: usize,
     mut slots: &'t mut [usize],
     mut distances: &'t mut [f64],
-) -> Vec<Part<'t, D>> {
+) -> Vec<Part<'t>> {
     let mut out = Vec::with_capacity(groups.len());
     for g in groups {
-        let n = g.0.len() * k;
+        let n = g.len() * k;
         let (s, rest_s) = core::mem::take(&mut slots).split_at_mut(n);
         let (d, rest_d) = core::mem::take(&mut distances).split_at_mut(n);
         slots = rest_s;
@@ -142,7 +140,7 @@ pub(crate) fn parts<'t, const D: usize>(
 pub(crate) fn fill<A, B, P, const D: usize>(
     search: &mut Search<<B::Index as SpatialIndex<D>>::Node, D>,
     (a, b, metric): (&A, &B, &P),
-    (group, slots, distances): Part<'_, D>,
+    (group, slots, distances): Part<'_>,
     k: usize,
     same: bool,
 ) where
@@ -150,11 +148,12 @@ pub(crate) fn fill<A, B, P, const D: usize>(
     B: PointSet<D>,
     P: PairDistance<D>,
 {
+    let gbox = tight_box(&a.index().points()[group.clone()]);
     search.group(
         a.index(),
         b.index(),
         metric,
-        (group.0.clone(), &group.1),
+        (group.clone(), &gbox),
         k,
         same,
     );
@@ -172,15 +171,20 @@ pub(crate) fn fill<A, B, P, const D: usize>(
 /// identity (row `i` is slot `i`, as in a [`PointTree`](crate::PointTree)).
 pub(crate) fn row_slots<A: PointSet<D>, const D: usize>(
     a: &A,
-    groups: &[Group<D>],
+    groups: &[Group],
 ) -> Option<Vec<usize>> {
     let qa = a.index().payloads();
-    let order: Vec<usize> = groups
-        .iter()
-        .flat_map(|g| g.0.clone())
-        .map(|i| a.slot_of(i, &qa[i]))
-        .collect();
-    (!order.iter().enumerate().all(|(r, &s)| r == s)).then_some(order)
+    let order = || {
+        groups
+            .iter()
+            .flat_map(|g| g.clone())
+            .map(|i| a.slot_of(i, &qa[i]))
+    };
+    // Checked before anything is allocated: the identity is the common case.
+    if order().enumerate().all(|(r, s)| r == s) {
+        return None;
+    }
+    Some(order().collect())
 }
 
 /// The row of the table in group order that holds slot `s`, for every slot: the inverse of
