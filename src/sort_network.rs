@@ -13,38 +13,34 @@
 //! The networks for 8 and 16 inputs are written out comparator by comparator (`unrolled!`),
 //! so that the values stay in registers: looping over a table of comparators goes through
 //! memory and was 20% slower on the whole sort. Those for 24 and 32 inputs are loops with fixed
-//! bounds ([`padded`]), which the compiler lays out in a straight line the same way. Tests check
-//! the written-out ones against [`batcher`] and every width by the 0-1 principle and on random
-//! runs.
+//! bounds ([`padded`] through [`batcher`]), which the compiler lays out in a straight line the
+//! same way. Tests check the written-out ones against [`batcher`] and every width by the 0-1
+//! principle and on random runs.
 
-/// The comparators of Batcher's odd-even merge sort for `n` inputs (a power of two, at most 32),
-/// in order, and how many there are: the reference the written-out networks are checked against.
-#[cfg(test)]
-const fn batcher(n: usize) -> ([(u8, u8); 191], usize) {
-    let mut pairs = [(0u8, 0u8); 191];
-    let mut count = 0;
+/// Calls `exchange(i, j)` for each comparator of Batcher's odd-even merge sort for `n` inputs
+/// (a power of two), in order: sorted runs of `p` are merged into runs of `2p` by comparators at
+/// distances `p, p/2, .., 1`, each between places of the same run of `2p`. Inlined with a
+/// constant `n`, its loops have fixed bounds and the compiler lays the comparators out in a
+/// straight line.
+#[inline(always)]
+fn batcher(n: usize, mut exchange: impl FnMut(usize, usize)) {
     let mut p = 1;
     while p < n {
-        let mut k = p;
-        while k >= 1 {
-            let mut j = k % p;
-            while j + k < n {
-                let mut i = 0;
-                while i < k && i + j + k < n {
-                    // only within one merged block of 2p inputs
-                    if (i + j) / (2 * p) == (i + j + k) / (2 * p) {
-                        pairs[count] = ((i + j) as u8, (i + j + k) as u8);
-                        count += 1;
+        let mut d = p;
+        while d >= 1 {
+            let mut j = d % p;
+            while j + d < n {
+                for i in j..(j + d).min(n - d) {
+                    if i / (2 * p) == (i + d) / (2 * p) {
+                        exchange(i, i + d);
                     }
-                    i += 1;
                 }
-                j += 2 * k;
+                j += 2 * d;
             }
-            k /= 2;
+            d /= 2;
         }
         p *= 2;
     }
-    (pairs, count)
 }
 
 /// `unrolled!(name, PAIRS, n; (i, j), ...)` defines `fn name(run, greatest)`, which sorts a run
@@ -103,34 +99,20 @@ pub(crate) fn sort_by_network<P: Copy + Ord>(run: &mut [P], greatest: P) {
 }
 
 /// Sorts `run` (at most `W` values, `W` at most [`WIDEST`]) by Batcher's network of [`WIDEST`]
-/// places with the exchanges that reach a place from `W` on left out: sorted runs of `p` are
-/// merged into runs of `2p` by exchanges at distances `p, p/2, .., 1`, each between places of
-/// the same run of `2p`. A place from `W` on holds `greatest`, which no exchange moves (the
-/// larger value goes to the later place), so the exchanges left out would change nothing. The
-/// loops have fixed bounds, so the compiler lays the exchanges out in a straight line.
+/// places ([`batcher`]) with the exchanges that reach a place from `W` on left out: a place from
+/// `W` on holds `greatest`, which no exchange moves (the larger value goes to the later place),
+/// so the exchanges left out would change nothing.
 #[inline(always)]
 fn padded<P: Copy + Ord, const W: usize>(run: &mut [P], greatest: P) {
     let mut a = [greatest; WIDEST];
     a[..run.len()].copy_from_slice(run);
-    let mut p = 1;
-    while p < WIDEST {
-        let mut d = p;
-        while d >= 1 {
-            let mut j = d % p;
-            while j + d < WIDEST {
-                for i in j..(j + d).min(WIDEST - d) {
-                    if i + d < W && i / (2 * p) == (i + d) / (2 * p) {
-                        let (x, y) = (a[i], a[i + d]);
-                        a[i] = x.min(y);
-                        a[i + d] = x.max(y);
-                    }
-                }
-                j += 2 * d;
-            }
-            d /= 2;
+    batcher(WIDEST, |i, j| {
+        if j < W {
+            let (x, y) = (a[i], a[j]);
+            a[i] = x.min(y);
+            a[j] = x.max(y);
         }
-        p *= 2;
-    }
+    });
     run.copy_from_slice(&a[..run.len()]);
 }
 
@@ -141,10 +123,17 @@ mod tests {
 
     #[test]
     fn the_networks_are_batchers() {
-        let (eight, sixteen, widest) = (batcher(8), batcher(16), batcher(WIDEST));
-        assert_eq!(NET8, &eight.0[..eight.1]);
-        assert_eq!(NET16, &sixteen.0[..sixteen.1]);
-        assert_eq!((NET8.len(), NET16.len(), widest.1), (19, 63, 191));
+        let pairs = |n: usize| {
+            let mut out = Vec::new();
+            batcher(n, |i, j| out.push((i as u8, j as u8)));
+            out
+        };
+        assert_eq!(NET8, &pairs(8)[..]);
+        assert_eq!(NET16, &pairs(16)[..]);
+        assert_eq!(
+            (NET8.len(), NET16.len(), pairs(WIDEST).len()),
+            (19, 63, 191)
+        );
     }
 
     /// The 0-1 principle: a network that sorts every sequence of zeros and ones sorts every
