@@ -230,10 +230,7 @@ impl<S: Scalar + Pod, const D: usize> DistPointTreeBuilder<S, D> {
 
         let (_, bucket_size, max_depth) = self.inner.settings();
         let partition = Partition::gather(&comm, points.len(), first_key(&points))?;
-        let mut b = Aabb::empty();
-        for p in &points {
-            b.add_point(&p.map(Scalar::to_f64));
-        }
+        let b = Aabb::around(&points);
         let local = PointTree::from_sorted_parts(
             (geometry, domain, points, items),
             bucket_size,

@@ -132,10 +132,7 @@ impl<S: Scalar, T, const D: usize> DistPointTree<S, T, D> {
             }
             previous_last = w[2];
         }
-        let mut b = Aabb::empty();
-        for p in pts {
-            b.add_point(&p.map(Scalar::to_f64));
-        }
+        let b = Aabb::around(pts);
         let ours = &self.boxes[rank];
         if !pts.is_empty() && (b.min != ours.min || b.max != ours.max) {
             return fail(format!("rank {rank}'s box differs from its points' bounds"));

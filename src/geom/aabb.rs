@@ -160,6 +160,16 @@ impl<const D: usize> Aabb<f64, D> {
         }
     }
 
+    /// The tight box of `points` as `f64` (empty for no points).
+    #[inline]
+    pub(crate) fn around<S: Scalar>(points: &[[S; D]]) -> Self {
+        let mut b = Self::empty();
+        for p in points {
+            b.add_point(&p.map(Scalar::to_f64));
+        }
+        b
+    }
+
     /// Grows the box to hold `p`.
     #[inline]
     pub(crate) fn add_point(&mut self, p: &[f64; D]) {

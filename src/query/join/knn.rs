@@ -18,7 +18,7 @@
 use super::bounds::PairDistance;
 use super::knn_group::Search;
 use super::traverse::{children, Side, SCAN};
-use crate::geom::{Aabb, Scalar};
+use crate::geom::Aabb;
 use crate::query::{PointSet, SpatialIndex};
 use core::ops::Range;
 
@@ -97,15 +97,6 @@ pub(crate) fn groups<I: SpatialIndex<D>, const D: usize>(index: &I) -> Vec<Group
     out
 }
 
-/// The tight box of `points` as `f64`.
-fn tight_box<S: Scalar, const D: usize>(points: &[[S; D]]) -> Aabb<f64, D> {
-    let mut b = Aabb::empty();
-    for p in points {
-        b.add_point(&p.map(Scalar::to_f64));
-    }
-    b
-}
-
 /// The width of the table of `k` neighbours in a set of `len` points (`len - 1` others in a
 /// self-join).
 pub(crate) fn width(k: usize, len: usize, same: bool) -> usize {
@@ -148,7 +139,7 @@ pub(crate) fn fill<A, B, P, const D: usize>(
     B: PointSet<D>,
     P: PairDistance<D>,
 {
-    let gbox = tight_box(&a.index().points()[group.clone()]);
+    let gbox = Aabb::around(&a.index().points()[group.clone()]);
     search.group(
         a.index(),
         b.index(),

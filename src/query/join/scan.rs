@@ -68,12 +68,8 @@ impl<const D: usize> TightBoxes<D> {
         let slot = ((run.start as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
             >> (64 - SLOTS.trailing_zeros())) as usize;
         if self.runs[slot] != run {
-            let mut b = Aabb::<f64, D>::empty();
-            for p in &points[run.clone()] {
-                b.add_point(&p.map(Scalar::to_f64));
-            }
+            self.boxes[slot] = Aabb::around(&points[run.clone()]);
             self.runs[slot] = run;
-            self.boxes[slot] = b;
         }
         self.boxes[slot]
     }
