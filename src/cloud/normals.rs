@@ -106,27 +106,19 @@ pub fn pca_normal(neighbourhood: &[[f64; 3]]) -> Option<[f64; 3]> {
 /// [`CloudError::ZeroNeighbors`] for `k == 0`.
 ///
 /// # Complexity
-/// [`Joins::k_nearest_self`], then O(k) per point.
+/// [`Joins::k_nearest_self`], then O(k) per point; memory: the normals, no neighbour table
+/// ([`Joins::map_k_nearest_self`]).
 pub fn normals<P: Joins<3>>(set: &P, k: usize) -> Result<Vec<[f64; 3]>, CloudError> {
     if k == 0 {
         return Err(CloudError::ZeroNeighbors);
     }
-    let table = set.k_nearest_self(k);
     let mut hood = Vec::with_capacity(k + 1);
-    Ok((0..set.len())
-        .map(|s| {
-            hood.clear();
-            hood.push(set.point(s).map(Scalar::to_f64));
-            hood.extend(
-                table
-                    .row(s)
-                    .0
-                    .iter()
-                    .map(|&t| set.point(t).map(Scalar::to_f64)),
-            );
-            pca_normal(&hood).expect("the neighbourhood holds the point")
-        })
-        .collect())
+    Ok(set.map_k_nearest_self(k, |s, others, _| {
+        hood.clear();
+        hood.push(set.point(s).map(Scalar::to_f64));
+        hood.extend(others.iter().map(|&t| set.point(t).map(Scalar::to_f64)));
+        pca_normal(&hood).expect("the neighbourhood holds the point")
+    }))
 }
 
 /// Sets the cloud's normal column from its `k` nearest neighbours in world coordinates.

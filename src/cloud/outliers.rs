@@ -4,10 +4,11 @@
 //! other points; a point is kept when its score is at most the cloud's mean score plus
 //! `std_ratio` times their standard deviation (the sample deviation, `n - 1`, as Open3D).
 //!
-//! The neighbours come from the k-nearest self-join ([`Joins::k_nearest_self`]), one dual-tree
-//! traversal for the whole cloud. Unlike Open3D, a point is not its own neighbour (Open3D counts
-//! it among its `k`, at distance 0), and a point whose neighbours all coincide with it is kept
-//! (Open3D drops points whose mean is exactly 0).
+//! The neighbours come from the k-nearest self-join ([`Joins::map_k_nearest_self`]), one
+//! dual-tree traversal for the whole cloud, each point's mean taken as its group is searched,
+//! so no neighbour table is held. Unlike Open3D, a point is not its own neighbour (Open3D
+//! counts it among its `k`, at distance 0), and a point whose neighbours all coincide with it
+//! is kept (Open3D drops points whose mean is exactly 0).
 
 use super::{Cloud, CloudError};
 use crate::geom::Scalar;
@@ -33,8 +34,8 @@ pub struct Outliers {
 /// [`CloudError::ZeroNeighbors`] for `k == 0`; [`CloudError::InvalidStdRatio`] for a NaN ratio.
 ///
 /// # Complexity
-/// That of [`Joins::k_nearest_self`], about O(n (log n + k)); the neighbour table takes
-/// `16 k` bytes per point.
+/// That of [`Joins::k_nearest_self`], about O(n (log n + k)); memory: the scores and
+/// verdicts (9 bytes per point), no neighbour table ([`Joins::map_k_nearest_self`]).
 ///
 /// ```
 /// use orthtree::cloud::outliers;
@@ -57,17 +58,13 @@ pub fn statistical<P: Joins<D>, const D: usize>(
     if std_ratio.is_nan() {
         return Err(CloudError::InvalidStdRatio(std_ratio));
     }
-    let table = set.k_nearest_self(k);
-    let mean_distances: Vec<f64> = (0..set.len())
-        .map(|s| {
-            let (_, d2) = table.row(s);
-            if d2.is_empty() {
-                0.0
-            } else {
-                d2.iter().map(|d| d.sqrt()).sum::<f64>() / d2.len() as f64
-            }
-        })
-        .collect();
+    let mean_distances = set.map_k_nearest_self(k, |_, _, d2| {
+        if d2.is_empty() {
+            0.0
+        } else {
+            d2.iter().map(|d| d.sqrt()).sum::<f64>() / d2.len() as f64
+        }
+    });
     let n = mean_distances.len() as f64;
     let mean = mean_distances.iter().sum::<f64>() / n.max(1.0);
     let var = if mean_distances.len() > 1 {

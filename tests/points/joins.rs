@@ -1,7 +1,7 @@
 //! The tree-against-tree queries ([`Joins`], and [`ParallelJoins`] under the `rayon` feature)
 //! against nested loops over the points, through one generic check run on every point tree:
 //! the k-nearest join against brute force and against one `k_nearest` per point (ties
-//! included), the self-join without the point itself, all pairs within a radius (of one tree,
+//! included), its map forms against its table, the self-join without the point itself, all pairs within a radius (of one tree,
 //! each unordered pair once, and between two), the counts over sorted radii, the sparse distance
 //! matrix and its CSR form, both boundaries, early stop, the parameter errors, and the parallel
 //! forms equal to the serial ones (the tables, counts and matrices exactly; the pairs of the
@@ -60,6 +60,26 @@ pub(crate) fn check_knn<A: Set<D>, B: Set<D>, const D: usize>(
     } else {
         a.k_nearest_join(b, k)
     };
+    // The map forms hand each slot its row of the table and keep the values in slot order.
+    let row = |s: usize, t: &[usize], d: &[f64]| (s, t.to_vec(), d.to_vec());
+    let rows: Vec<_> = (0..a.len())
+        .map(|s| (s, table.row(s).0.to_vec(), table.row(s).1.to_vec()))
+        .collect();
+    let mapped = if same {
+        a.map_k_nearest_self(k, row)
+    } else {
+        a.map_k_nearest_join(b, k, row)
+    };
+    assert_eq!(mapped, rows, "the map form sees the table's rows");
+    #[cfg(feature = "rayon")]
+    {
+        let mapped = if same {
+            a.par_map_k_nearest_self(k, row)
+        } else {
+            a.par_map_k_nearest_join(b, k, row)
+        };
+        assert_eq!(mapped, rows, "the parallel map form sees the table's rows");
+    }
     let others = if same {
         pb.len().saturating_sub(1)
     } else {

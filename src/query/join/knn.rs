@@ -12,11 +12,13 @@
 //!
 //! The groups are independent, the unit of the parallel form: each writes its own rows of one
 //! table laid out in group order ([`parts`]), which is the table itself when the rows of the
-//! groups are the slots in order (a [`PointTree`](crate::PointTree)), and is otherwise permuted
-//! into slot order at the end.
+//! groups are the slots in order (a [`PointTree`](crate::PointTree)), and is otherwise put
+//! into slot order at the end, in place
+//! ([`to_slot_order`](super::knn_map::to_slot_order)).
 
 use super::bounds::PairDistance;
 use super::knn_group::Search;
+use super::knn_map::{swap_rows, to_slot_order};
 use super::traverse::{children, Side, SCAN};
 use crate::geom::Aabb;
 use crate::query::{PointSet, SpatialIndex};
@@ -178,16 +180,6 @@ pub(crate) fn row_slots<A: PointSet<D>, const D: usize>(
     Some(order().collect())
 }
 
-/// The row of the table in group order that holds slot `s`, for every slot: the inverse of
-/// [`row_slots`].
-pub(crate) fn inverse(order: &[usize]) -> Vec<usize> {
-    let mut inv = vec![0; order.len()];
-    for (r, &s) in order.iter().enumerate() {
-        inv[s] = r;
-    }
-    inv
-}
-
 /// A table of `rows` rows of `k` entries from its entries row after row.
 pub(crate) fn table(k: usize, rows: usize, slots: Vec<usize>, distances: Vec<f64>) -> KnnTable {
     KnnTable {
@@ -216,20 +208,11 @@ pub(crate) fn knn_join<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, const
     for part in parts(&gs, w, &mut slots, &mut distances) {
         fill(&mut search, (a, b, metric), part, w, same);
     }
-    let Some(order) = row_slots(a, &gs) else {
-        return table(w, n, slots, distances);
-    };
-    let inv = inverse(&order);
-    let mut t = table(w, n, vec![0; n * w], vec![0.0; n * w]);
-    for (s, (ts, td)) in t
-        .slots
-        .chunks_mut(w)
-        .zip(t.distances.chunks_mut(w))
-        .enumerate()
-    {
-        let at = inv[s] * w..(inv[s] + 1) * w;
-        ts.copy_from_slice(&slots[at.clone()]);
-        td.copy_from_slice(&distances[at]);
+    if let Some(mut order) = row_slots(a, &gs) {
+        to_slot_order(&mut order, |x, y| {
+            swap_rows(&mut slots, x, y, w);
+            swap_rows(&mut distances, x, y, w);
+        });
     }
-    t
+    table(w, n, slots, distances)
 }

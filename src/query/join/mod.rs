@@ -17,6 +17,7 @@ mod bounds;
 mod knn;
 mod knn_cands;
 mod knn_group;
+mod knn_map;
 mod knn_pool;
 mod pairs;
 #[cfg(feature = "rayon")]
@@ -99,6 +100,60 @@ pub trait Joins<const D: usize>: PointSet<D> {
         Self: Sized,
     {
         knn::knn_join(self, self, &Euclid, k, true)
+    }
+
+    /// `f(s, neighbours, distances)` for every slot `s` of this set, with the row that
+    /// [`Joins::k_nearest_join`] would give it (the slots of its `k` nearest in `other`, sorted,
+    /// and their squared distances), and only `f`'s values kept: one per slot, in slot order.
+    /// For a few numbers per point (a mean distance, a density, a normal) without the table's
+    /// `16 k` bytes per point. `f` is called once per slot, in no particular order.
+    ///
+    /// # Complexity
+    /// That of [`Joins::k_nearest_join`]; memory: the values, and the rows of one group of at
+    /// most a few dozen points at a time.
+    ///
+    /// ```
+    /// use orthtree::prelude::*;
+    /// use orthtree::Quadtree;
+    /// let a = Quadtree::new(&[([0.0, 0.0], ()), ([9.0, 9.0], ())]).unwrap();
+    /// let b = Quadtree::new(&[([8.0, 8.0], ()), ([1.0, 0.0], ()), ([0.0, 2.0], ())]).unwrap();
+    /// let nearest = a.map_k_nearest_join(&b, 2, |_, _, d2| d2[0]);
+    /// let s = |p: [f64; 2]| (0..2).find(|&s| *a.point(s) == p).unwrap();
+    /// assert_eq!((nearest[s([0.0, 0.0])], nearest[s([9.0, 9.0])]), (1.0, 2.0));
+    /// ```
+    fn map_k_nearest_join<B: PointSet<D>, T>(
+        &self,
+        other: &B,
+        k: usize,
+        f: impl FnMut(usize, &[usize], &[f64]) -> T,
+    ) -> Vec<T>
+    where
+        Self: Sized,
+    {
+        knn_map::knn_map((self, other, &Euclid), k, false, f)
+    }
+
+    /// [`Joins::map_k_nearest_join`] for the self-join: `f(s, neighbours, distances)` with the
+    /// row of [`Joins::k_nearest_self`] (slot `s` itself excluded), one value per slot, in slot
+    /// order.
+    ///
+    /// # Complexity
+    /// That of [`Joins::k_nearest_self`], with the memory of [`Joins::map_k_nearest_join`].
+    ///
+    /// ```
+    /// use orthtree::prelude::*;
+    /// use orthtree::PointTree;
+    /// let t = PointTree::new(&[([0.0], 'a'), ([1.0], 'b'), ([3.0], 'c'), ([7.0], 'd')]).unwrap();
+    /// // the mean distance to the two nearest others, per slot
+    /// let mean = t.map_k_nearest_self(2, |_, _, d2| d2.iter().map(|d| d.sqrt()).sum::<f64>() / 2.0);
+    /// let by_item = |c: char| mean[t.items().iter().position(|&x| x == c).unwrap()];
+    /// assert_eq!((by_item('a'), by_item('b'), by_item('d')), (2.0, 1.5, 5.0));
+    /// ```
+    fn map_k_nearest_self<T>(&self, k: usize, f: impl FnMut(usize, &[usize], &[f64]) -> T) -> Vec<T>
+    where
+        Self: Sized,
+    {
+        knn_map::knn_map((self, self, &Euclid), k, true, f)
     }
 
     /// Calls `visit(s, t, d)` for every unordered pair of distinct slots `s < t` whose points

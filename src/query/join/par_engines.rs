@@ -15,8 +15,9 @@
 //! traversal's stack and a block of 64 gathered points.
 
 use super::bounds::PairDistance;
-use super::knn::{fill, groups, inverse, parts, row_slots, table, width, KnnTable};
+use super::knn::{fill, groups, parts, row_slots, table, width, KnnTable};
 use super::knn_group::Search;
+use super::knn_map::{swap_rows, to_slot_order};
 use super::pairs::{CountWithin, PairsWithin};
 use super::radius::{squared_radii, squared_radius, Boundary};
 use super::scan::Block;
@@ -62,20 +63,13 @@ where
         .for_each_init(Search::new, |search, part| {
             fill(search, (a, b, metric), part, w, same);
         });
-    let Some(order) = row_slots(a, &gs) else {
-        return table(w, n, slots, distances);
-    };
-    let inv = inverse(&order);
-    let (mut ts, mut td) = (vec![0; n * w], vec![0.0; n * w]);
-    ts.par_chunks_mut(w)
-        .zip(td.par_chunks_mut(w))
-        .enumerate()
-        .for_each(|(s, (rs, rd))| {
-            let at = inv[s] * w..(inv[s] + 1) * w;
-            rs.copy_from_slice(&slots[at.clone()]);
-            rd.copy_from_slice(&distances[at]);
+    if let Some(mut order) = row_slots(a, &gs) {
+        to_slot_order(&mut order, |x, y| {
+            swap_rows(&mut slots, x, y, w);
+            swap_rows(&mut distances, x, y, w);
         });
-    table(w, n, ts, td)
+    }
+    table(w, n, slots, distances)
 }
 
 /// The visitor of the pairs within `r2` between `a` and `b` under `metric` (`same`: `b` is `a`,

@@ -7,6 +7,7 @@
 
 use super::bounds::Euclid;
 use super::knn::KnnTable;
+use super::knn_map::par_knn_map;
 use super::par_engines::{par_count, par_fold_pairs, par_knn, par_pairs, par_sparse};
 use super::radius::Boundary;
 use super::sparse::SparseDistances;
@@ -47,6 +48,51 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
         Self: Sized,
     {
         par_knn(self, self, &Euclid, k, true)
+    }
+
+    /// [`Joins::map_k_nearest_join`] on rayon's threads: the same values, `f` called from
+    /// several threads at once.
+    ///
+    /// ```
+    /// use orthtree::prelude::*;
+    /// use orthtree::Quadtree;
+    /// let pts: Vec<([f64; 2], ())> = (0..500).map(|i| ([(i % 25) as f64, (i / 25) as f64], ())).collect();
+    /// let (a, b) = (Quadtree::new(&pts[..200]).unwrap(), Quadtree::new(&pts[100..]).unwrap());
+    /// let far = |_: usize, _: &[usize], d2: &[f64]| d2[2];
+    /// assert_eq!(a.par_map_k_nearest_join(&b, 3, far), a.map_k_nearest_join(&b, 3, far));
+    /// ```
+    fn par_map_k_nearest_join<B: PointSet<D> + Sync, T: Send>(
+        &self,
+        other: &B,
+        k: usize,
+        f: impl Fn(usize, &[usize], &[f64]) -> T + Sync,
+    ) -> Vec<T>
+    where
+        Self: Sized,
+    {
+        par_knn_map((self, other, &Euclid), k, false, f)
+    }
+
+    /// [`Joins::map_k_nearest_self`] on rayon's threads: the same values, `f` called from
+    /// several threads at once.
+    ///
+    /// ```
+    /// use orthtree::prelude::*;
+    /// use orthtree::Quadtree;
+    /// let pts: Vec<([f64; 2], ())> = (0..500).map(|i| ([(i % 25) as f64, (i / 25) as f64], ())).collect();
+    /// let t = Quadtree::new(&pts).unwrap();
+    /// let first = |_: usize, s: &[usize], _: &[f64]| s[0];
+    /// assert_eq!(t.par_map_k_nearest_self(4, first), t.map_k_nearest_self(4, first));
+    /// ```
+    fn par_map_k_nearest_self<T: Send>(
+        &self,
+        k: usize,
+        f: impl Fn(usize, &[usize], &[f64]) -> T + Sync,
+    ) -> Vec<T>
+    where
+        Self: Sized,
+    {
+        par_knn_map((self, self, &Euclid), k, true, f)
     }
 
     /// [`Joins::pairs_within`] on rayon's threads: calls `visit(s, t, d)` for every unordered

@@ -1,0 +1,185 @@
+//! The k-nearest joins without their table: each point's `k` nearest neighbours are handed to a
+//! function as soon as its group (see [`knn`](super::knn)) has been searched, and only the
+//! function's value is kept, one per point. Statistical outlier scores, normals and the like
+//! need a few numbers per point, not the `16 k` bytes per point of a [`KnnTable`]
+//! (`super::knn::KnnTable`): at `10^8` points and `k = 20` the table alone would take 32 GB.
+//!
+//! The values come out in group order and are put into slot order by following the cycles of
+//! the permutation in place ([`to_slot_order`]), which also serves the table's rows: nothing is
+//! copied when the rows are already the slots (a [`PointTree`](crate::PointTree)).
+
+use super::bounds::PairDistance;
+use super::knn::{fill, groups, row_slots, width, Group};
+use super::knn_group::Search;
+use crate::query::{PointSet, SpatialIndex};
+
+/// One thread's buffers: the group searcher and one group's rows (slots and distances).
+pub(crate) struct Scratch<N, const D: usize> {
+    search: Search<N, D>,
+    slots: Vec<usize>,
+    distances: Vec<f64>,
+}
+
+impl<N: Copy, const D: usize> Scratch<N, D> {
+    pub(crate) fn new() -> Self {
+        Scratch {
+            search: Search::new(),
+            slots: Vec::new(),
+            distances: Vec::new(),
+        }
+    }
+}
+
+/// Searches `group` of `a` in `b` (`w` neighbours per point, at least 1) and pushes
+/// `f(slot in a, neighbour slots in b, squared distances)` for each of its points, in
+/// position order, onto `out`.
+pub(crate) fn map_group<A, B, P, T, const D: usize>(
+    scratch: &mut Scratch<<B::Index as SpatialIndex<D>>::Node, D>,
+    (a, b, metric): (&A, &B, &P),
+    group: &Group,
+    (w, same): (usize, bool),
+    f: &mut impl FnMut(usize, &[usize], &[f64]) -> T,
+    out: &mut Vec<T>,
+) where
+    A: PointSet<D>,
+    B: PointSet<D>,
+    P: PairDistance<D>,
+{
+    let n = group.len() * w;
+    scratch.slots.resize(n, 0);
+    scratch.distances.resize(n, 0.0);
+    let (slots, distances) = (&mut scratch.slots[..n], &mut scratch.distances[..n]);
+    fill(
+        &mut scratch.search,
+        (a, b, metric),
+        (group, &mut *slots, &mut *distances),
+        w,
+        same,
+    );
+    let qa = a.index().payloads();
+    let rows = slots.chunks(w).zip(distances.chunks(w));
+    for (i, (s, d)) in group.clone().zip(rows) {
+        out.push(f(a.slot_of(i, &qa[i]), s, d));
+    }
+}
+
+/// `f(slot, neighbour slots, squared distances)` for every slot of `a`, its `k` nearest in `b`
+/// under `metric` (`same`: the others of `a`, `b` being `a`), serially; the values in slot
+/// order.
+pub(crate) fn knn_map<A, B, P, T, const D: usize>(
+    (a, b, metric): (&A, &B, &P),
+    k: usize,
+    same: bool,
+    mut f: impl FnMut(usize, &[usize], &[f64]) -> T,
+) -> Vec<T>
+where
+    A: PointSet<D>,
+    B: PointSet<D>,
+    P: PairDistance<D>,
+{
+    let w = width(k, b.len(), same);
+    if w == 0 {
+        return (0..a.len()).map(|s| f(s, &[], &[])).collect();
+    }
+    let gs = groups(a.index());
+    let mut out = Vec::with_capacity(a.len());
+    let mut scratch = Scratch::new();
+    for g in &gs {
+        map_group(&mut scratch, (a, b, metric), g, (w, same), &mut f, &mut out);
+    }
+    if let Some(mut order) = row_slots(a, &gs) {
+        to_slot_order(&mut order, |x, y| out.swap(x, y));
+    }
+    out
+}
+
+/// [`knn_map`] with the groups on rayon's threads; `f` is called from several threads at
+/// once, in no particular order.
+#[cfg(feature = "rayon")]
+pub(crate) fn par_knn_map<A, B, P, T, const D: usize>(
+    (a, b, metric): (&A, &B, &P),
+    k: usize,
+    same: bool,
+    f: impl Fn(usize, &[usize], &[f64]) -> T + Sync,
+) -> Vec<T>
+where
+    A: PointSet<D> + Sync,
+    B: PointSet<D> + Sync,
+    P: PairDistance<D>,
+    T: Send,
+{
+    use rayon::prelude::*;
+    let w = width(k, b.len(), same);
+    if w == 0 {
+        return (0..a.len())
+            .into_par_iter()
+            .map(|s| f(s, &[], &[]))
+            .collect();
+    }
+    let gs = groups(a.index());
+    let mut out: Vec<T> = gs
+        .par_iter()
+        .map_init(Scratch::new, |scratch, g| {
+            let mut values = Vec::with_capacity(g.len());
+            let mut each = |s: usize, t: &[usize], d: &[f64]| f(s, t, d);
+            map_group(
+                scratch,
+                (a, b, metric),
+                g,
+                (w, same),
+                &mut each,
+                &mut values,
+            );
+            values
+        })
+        .flatten_iter()
+        .collect();
+    if let Some(mut order) = row_slots(a, &gs) {
+        to_slot_order(&mut order, |x, y| out.swap(x, y));
+    }
+    out
+}
+
+/// Puts rows into slot order: row `r` belongs to slot `order[r]` (a permutation), and
+/// `swap(x, y)` exchanges rows `x` and `y`; the permutation's cycles are followed, so each row
+/// moves once, with no second buffer. `order` ends as the identity.
+///
+/// # Complexity
+/// At most `order.len()` swaps.
+pub(crate) fn to_slot_order(order: &mut [usize], mut swap: impl FnMut(usize, usize)) {
+    for r in 0..order.len() {
+        // Row `r` goes to `order[r]`; the row found there comes to `r` and goes on in turn.
+        while order[r] != r {
+            let s = order[r];
+            swap(r, s);
+            order.swap(r, s);
+        }
+    }
+}
+
+/// Swaps rows `x` and `y` (different) of `width` entries each.
+pub(crate) fn swap_rows<T>(rows: &mut [T], x: usize, y: usize, width: usize) {
+    let (lo, hi) = (x.min(y), x.max(y));
+    let (head, tail) = rows.split_at_mut(hi * width);
+    head[lo * width..(lo + 1) * width].swap_with_slice(&mut tail[..width]);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{swap_rows, to_slot_order};
+
+    #[test]
+    fn rows_move_to_their_slots() {
+        // rows in group order: row r belongs to slot order[r]
+        let order = [3, 0, 4, 1, 2, 6, 5];
+        let mut rows: Vec<(usize, usize)> = order.iter().flat_map(|&s| [(s, 0), (s, 1)]).collect();
+        let mut o = order.to_vec();
+        to_slot_order(&mut o, |x, y| swap_rows(&mut rows, x, y, 2));
+        let want: Vec<(usize, usize)> = (0..7).flat_map(|s| [(s, 0), (s, 1)]).collect();
+        assert_eq!(rows, want);
+        assert_eq!(o, [0, 1, 2, 3, 4, 5, 6]);
+        let mut single = order.to_vec();
+        to_slot_order(&mut order.to_vec(), |x, y| single.swap(x, y));
+        assert_eq!(single, [0, 1, 2, 3, 4, 5, 6]);
+    }
+}
