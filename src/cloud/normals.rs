@@ -113,12 +113,49 @@ pub fn normals<P: Joins<3>>(set: &P, k: usize) -> Result<Vec<[f64; 3]>, CloudErr
         return Err(CloudError::ZeroNeighbors);
     }
     let mut hood = Vec::with_capacity(k + 1);
-    Ok(set.map_k_nearest_self(k, |s, others, _| {
-        hood.clear();
-        hood.push(set.point(s).map(Scalar::to_f64));
-        hood.extend(others.iter().map(|&t| set.point(t).map(Scalar::to_f64)));
-        pca_normal(&hood).expect("the neighbourhood holds the point")
+    Ok(set.map_k_nearest_self(k, |s, others, _| normal_of(set, s, others, &mut hood)))
+}
+
+/// [`normals`] with the self-join on rayon's threads (feature `rayon`): the same normals.
+///
+/// # Errors
+/// As [`normals`].
+///
+/// # Complexity
+/// That of [`normals`], shared among the threads.
+///
+/// ```
+/// use orthtree::cloud::normals;
+/// use orthtree::PointTree;
+/// let pts: Vec<([f64; 3], usize)> = (0..400).map(|i| ([(i % 20) as f64, (i / 20) as f64, (i % 7) as f64 * 0.1], i)).collect();
+/// let tree = PointTree::new(&pts).unwrap();
+/// assert_eq!(normals::par_normals(&tree, 8), normals::normals(&tree, 8));
+/// ```
+#[cfg(feature = "rayon")]
+pub fn par_normals<P: crate::query::ParallelJoins<3>>(
+    set: &P,
+    k: usize,
+) -> Result<Vec<[f64; 3]>, CloudError> {
+    if k == 0 {
+        return Err(CloudError::ZeroNeighbors);
+    }
+    Ok(set.par_map_k_nearest_self(k, |s, others, _| {
+        normal_of(set, s, others, &mut Vec::with_capacity(k + 1))
     }))
+}
+
+/// The normal of slot `s` of `set` from its point and those of the slots `others`, with
+/// `hood` as scratch.
+fn normal_of<P: Joins<3>>(
+    set: &P,
+    s: usize,
+    others: &[usize],
+    hood: &mut Vec<[f64; 3]>,
+) -> [f64; 3] {
+    hood.clear();
+    hood.push(set.point(s).map(Scalar::to_f64));
+    hood.extend(others.iter().map(|&t| set.point(t).map(Scalar::to_f64)));
+    pca_normal(hood).expect("the neighbourhood holds the point")
 }
 
 /// Sets the cloud's normal column from its `k` nearest neighbours in world coordinates.

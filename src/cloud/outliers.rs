@@ -52,19 +52,62 @@ pub fn statistical<P: Joins<D>, const D: usize>(
     k: usize,
     std_ratio: f64,
 ) -> Result<Outliers, CloudError> {
+    check(k, std_ratio)?;
+    Ok(verdict(set.map_k_nearest_self(k, mean_distance), std_ratio))
+}
+
+/// [`statistical`] with the self-join on rayon's threads (feature `rayon`): the same scores
+/// and verdicts.
+///
+/// # Errors
+/// As [`statistical`].
+///
+/// # Complexity
+/// That of [`statistical`], shared among the threads.
+///
+/// ```
+/// use orthtree::cloud::outliers;
+/// use orthtree::PointTree;
+/// let pts: Vec<([f64; 3], usize)> = (0..1000).map(|i| ([(i % 10) as f64, (i / 10 % 10) as f64, (i / 100) as f64 * 1.5], i)).collect();
+/// let tree = PointTree::new(&pts).unwrap();
+/// assert_eq!(outliers::par_statistical(&tree, 6, 0.5), outliers::statistical(&tree, 6, 0.5));
+/// ```
+#[cfg(feature = "rayon")]
+pub fn par_statistical<P: crate::query::ParallelJoins<D>, const D: usize>(
+    set: &P,
+    k: usize,
+    std_ratio: f64,
+) -> Result<Outliers, CloudError> {
+    check(k, std_ratio)?;
+    Ok(verdict(
+        set.par_map_k_nearest_self(k, mean_distance),
+        std_ratio,
+    ))
+}
+
+/// The parameter checks of [`statistical`].
+fn check(k: usize, std_ratio: f64) -> Result<(), CloudError> {
     if k == 0 {
         return Err(CloudError::ZeroNeighbors);
     }
     if std_ratio.is_nan() {
         return Err(CloudError::InvalidStdRatio(std_ratio));
     }
-    let mean_distances = set.map_k_nearest_self(k, |_, _, d2| {
-        if d2.is_empty() {
-            0.0
-        } else {
-            d2.iter().map(|d| d.sqrt()).sum::<f64>() / d2.len() as f64
-        }
-    });
+    Ok(())
+}
+
+/// A point's score: the mean of the square roots of its neighbours' squared distances (0
+/// without neighbours).
+fn mean_distance(_: usize, _: &[usize], d2: &[f64]) -> f64 {
+    if d2.is_empty() {
+        0.0
+    } else {
+        d2.iter().map(|d| d.sqrt()).sum::<f64>() / d2.len() as f64
+    }
+}
+
+/// The threshold and verdicts of the scores `mean_distances`.
+fn verdict(mean_distances: Vec<f64>, std_ratio: f64) -> Outliers {
     let n = mean_distances.len() as f64;
     let mean = mean_distances.iter().sum::<f64>() / n.max(1.0);
     let var = if mean_distances.len() > 1 {
@@ -78,11 +121,11 @@ pub fn statistical<P: Joins<D>, const D: usize>(
     };
     let threshold = mean + std_ratio * var.sqrt();
     let keep = mean_distances.iter().map(|&d| d <= threshold).collect();
-    Ok(Outliers {
+    Outliers {
         mean_distances,
         threshold,
         keep,
-    })
+    }
 }
 
 /// The cloud without its statistical outliers ([`statistical`] on its world coordinates),
@@ -99,10 +142,45 @@ pub fn remove_statistical<S: Scalar>(
     k: usize,
     std_ratio: f64,
 ) -> Result<(Cloud<S>, Vec<usize>), CloudError> {
+    remove_by(cloud, |entries| {
+        let tree = PointTree::new(entries)?;
+        let verdict = statistical(&tree, k, std_ratio)?;
+        Ok((tree, verdict))
+    })
+}
+
+/// [`remove_statistical`] with the tree's build ([`PointTreeBuilder::par_build`]) and the
+/// self-join on rayon's threads (feature `rayon`): the same cloud and indices.
+///
+/// # Errors
+/// As [`remove_statistical`].
+///
+/// # Complexity
+/// That of [`remove_statistical`], shared among the threads.
+///
+/// [`PointTreeBuilder::par_build`]: crate::points::PointTreeBuilder::par_build
+#[cfg(feature = "rayon")]
+pub fn par_remove_statistical<S: Scalar + Send + Sync>(
+    cloud: &Cloud<S>,
+    k: usize,
+    std_ratio: f64,
+) -> Result<(Cloud<S>, Vec<usize>), CloudError> {
+    remove_by(cloud, |entries| {
+        let tree = PointTree::builder().par_build(entries)?;
+        let verdict = par_statistical(&tree, k, std_ratio)?;
+        Ok((tree, verdict))
+    })
+}
+
+/// The cloud of the points that `score` (a tree of the world coordinates, items the input
+/// indices, and its verdicts) keeps, in the input order, and their indices.
+fn remove_by<S: Scalar>(
+    cloud: &Cloud<S>,
+    score: impl FnOnce(&[([f64; 3], u32)]) -> Result<(PointTree<f64, u32, 3>, Outliers), CloudError>,
+) -> Result<(Cloud<S>, Vec<usize>), CloudError> {
     cloud.attributes.check(cloud.len())?;
     let world = Cloud::from_points(cloud.world_points());
-    let tree = PointTree::new(&world.entries()?)?;
-    let verdict = statistical(&tree, k, std_ratio)?;
+    let (tree, verdict) = score(&world.entries()?)?;
     let mut kept: Vec<usize> = (0..tree.len())
         .filter(|&s| verdict.keep[s])
         .map(|s| tree.items()[s] as usize)

@@ -1,10 +1,11 @@
 //! Outlier removal and normals against a k-nearest scan: every point's k nearest other points
-//! found by sorting all distances, on random clouds with duplicates and clusters.
+//! found by sorting all distances, on random clouds with duplicates and clusters, through a plain
+//! and a compressed tree, serially and on rayon's threads.
 
 use crate::common::rng;
 use orthtree::cloud::normals::{pca_normal, symmetric_eigen};
 use orthtree::cloud::{normals, outliers, Cloud};
-use orthtree::{PointSet, PointTree};
+use orthtree::{CompressedTree, PointSet, PointTree};
 use proptest::prelude::*;
 use rand::Rng;
 
@@ -82,7 +83,7 @@ proptest! {
         let (kept_cloud, kept) = outliers::remove_statistical(&cloud, k, ratio).unwrap();
         let expect: Vec<usize> = (0..pts.len()).filter(|&i| keep[i]).collect();
         prop_assert_eq!(&kept, &expect);
-        prop_assert_eq!(kept_cloud, cloud.select(&expect));
+        prop_assert_eq!(&kept_cloud, &cloud.select(&expect));
         // the scores per slot, through the tree's items
         let entries: Vec<([f64; 3], usize)> = pts.iter().copied().zip(0..).collect();
         let tree = PointTree::new(&entries).unwrap();
@@ -90,6 +91,22 @@ proptest! {
         for s in 0..tree.len() {
             let i = tree.items()[s];
             prop_assert!((o.mean_distances[s] - scores[i]).abs() <= 1e-12 * (1.0 + scores[i]));
+        }
+        // a tree whose slots are not its traversal order: the scores still by slot
+        let compressed = CompressedTree::new(&entries).unwrap();
+        let c = outliers::statistical(&compressed, k, ratio).unwrap();
+        for s in 0..compressed.len() {
+            let i = compressed.items()[s];
+            prop_assert!((c.mean_distances[s] - scores[i]).abs() <= 1e-12 * (1.0 + scores[i]));
+            prop_assert_eq!(c.keep[s], keep[i]);
+        }
+        #[cfg(feature = "rayon")]
+        {
+            prop_assert_eq!(outliers::par_statistical(&tree, k, ratio).unwrap(), o);
+            prop_assert_eq!(outliers::par_statistical(&compressed, k, ratio).unwrap(), c);
+            let (par_cloud, par_kept) = outliers::par_remove_statistical(&cloud, k, ratio).unwrap();
+            prop_assert_eq!(par_kept, kept);
+            prop_assert_eq!(&par_cloud, &kept_cloud);
         }
     }
 
@@ -119,6 +136,12 @@ proptest! {
                 core::array::from_fn(|c| 3.0 + a * u[c] + b * w[c])
             })
             .collect();
+        #[cfg(feature = "rayon")]
+        {
+            let entries: Vec<([f64; 3], usize)> = pts.iter().copied().zip(0..).collect();
+            let tree = CompressedTree::new(&entries).unwrap();
+            prop_assert_eq!(normals::par_normals(&tree, k), normals::normals(&tree, k));
+        }
         let mut cloud = Cloud::from_points(pts);
         normals::estimate(&mut cloud, k).unwrap();
         for m in cloud.attributes.normal.unwrap() {

@@ -214,13 +214,17 @@ pub fn downsample(a: &DownsampleArgs) -> Result<(), Failure> {
 /// `orthtree cloud outliers`.
 pub fn outliers(a: &OutliersArgs) -> Result<(), Failure> {
     let (cloud, name) = load(a.input.as_deref(), &a.source, 0)?;
-    let table = cloud.len() as f64 * (16.0 * a.k as f64 + 8.0 + BYTES_PER_POINT);
-    limits::check_memory(&format!("--k {} on {} points", a.k, cloud.len()), table)
+    // The scores and verdicts (9 bytes per point) beside the tree: no neighbour table is held.
+    let need = cloud.len() as f64 * (9.0 + BYTES_PER_POINT);
+    limits::check_memory(&format!("--k {} on {} points", a.k, cloud.len()), need)
         .map_err(Failure::Usage)?;
     let start = Instant::now();
     let phase = Phase::start("finding the outliers");
-    let (kept, _) = outliers::remove_statistical(&cloud, a.k, a.ratio)
-        .map_err(|e| cloud_failure(&name, "--k", e))?;
+    #[cfg(feature = "rayon")]
+    let removed = outliers::par_remove_statistical(&cloud, a.k, a.ratio);
+    #[cfg(not(feature = "rayon"))]
+    let removed = outliers::remove_statistical(&cloud, a.k, a.ratio);
+    let (kept, _) = removed.map_err(|e| cloud_failure(&name, "--k", e))?;
     drop(phase);
     say!(
         "outliers:    {} of {} points removed ({} kept; k = {}, ratio {}) in {}",

@@ -110,7 +110,8 @@ fn voxel_orthtree(cloud: &Cloud<f64>, voxel: f64, reps: usize) -> Result<Side, S
     Ok(Side { ms, count, dist2 })
 }
 
-/// orthtree's statistical outlier removal with `k - 1` others.
+/// orthtree's statistical outlier removal with `k - 1` others, on rayon's threads with the
+/// `rayon` feature.
 fn outliers_orthtree(
     cloud: &Cloud<f64>,
     k: usize,
@@ -118,8 +119,11 @@ fn outliers_orthtree(
     reps: usize,
 ) -> Result<Side, String> {
     let run = || -> Result<(usize, f64), String> {
-        let (kept, _) =
-            outliers::remove_statistical(cloud, k - 1, ratio).map_err(|e| e.to_string())?;
+        #[cfg(feature = "rayon")]
+        let removed = outliers::par_remove_statistical(cloud, k - 1, ratio);
+        #[cfg(not(feature = "rayon"))]
+        let removed = outliers::remove_statistical(cloud, k - 1, ratio);
+        let (kept, _) = removed.map_err(|e| e.to_string())?;
         Ok((kept.len(), sum_of_squares(&kept.points)))
     };
     let (ms, out) = timing::time(reps, run);
