@@ -50,6 +50,7 @@
 
 pub mod cloud;
 pub mod compressed;
+mod cpu;
 #[cfg(feature = "mpi")]
 pub mod dist;
 pub mod error;

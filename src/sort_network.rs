@@ -86,7 +86,7 @@ pub(crate) const WIDEST: usize = 32;
 /// Sorts `run` by the network of the smallest width among 8, 16, 24 and 32 that holds it; a run
 /// longer than [`WIDEST`] goes to `sort_unstable`. `greatest` must be at least every value (it
 /// pads the network's inputs).
-#[inline]
+#[inline(always)]
 pub(crate) fn sort_by_network<P: Copy + Ord>(run: &mut [P], greatest: P) {
     match run.len() {
         0..=1 => {}

@@ -129,8 +129,51 @@ pub(crate) fn parts<'t>(
 }
 
 /// Searches one part's group ([`Search::group`]) and writes its rows: the neighbours' slots in
-/// `b` and their distances. `k` is at least 1.
+/// `b` and their distances. `k` is at least 1. Runs the copy compiled for x86-64-v3 where the
+/// processor has it ([`cpu`](crate::cpu)): the same rows.
 pub(crate) fn fill<A, B, P, const D: usize>(
+    search: &mut Search<<B::Index as SpatialIndex<D>>::Node, D>,
+    sets: (&A, &B, &P),
+    part: Part<'_>,
+    k: usize,
+    same: bool,
+) where
+    A: PointSet<D>,
+    B: PointSet<D>,
+    P: PairDistance<D>,
+{
+    #[cfg(target_arch = "x86_64")]
+    if crate::cpu::has_v3() {
+        // SAFETY: `fill_v3` is `fill_rows` compiled for the features `has_v3` has just found
+        // on this processor.
+        #[allow(unsafe_code)]
+        unsafe {
+            return fill_v3(search, sets, part, k, same);
+        }
+    }
+    fill_rows(search, sets, part, k, same);
+}
+
+/// [`fill_rows`] compiled for x86-64-v3 (see [`cpu`](crate::cpu)).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx,avx2,bmi1,bmi2,lzcnt,popcnt")]
+fn fill_v3<A, B, P, const D: usize>(
+    search: &mut Search<<B::Index as SpatialIndex<D>>::Node, D>,
+    sets: (&A, &B, &P),
+    part: Part<'_>,
+    k: usize,
+    same: bool,
+) where
+    A: PointSet<D>,
+    B: PointSet<D>,
+    P: PairDistance<D>,
+{
+    fill_rows(search, sets, part, k, same);
+}
+
+/// The work of [`fill`], compiled into each of its copies.
+#[inline(always)]
+fn fill_rows<A, B, P, const D: usize>(
     search: &mut Search<<B::Index as SpatialIndex<D>>::Node, D>,
     (a, b, metric): (&A, &B, &P),
     (group, slots, distances): Part<'_>,
@@ -215,4 +258,54 @@ pub(crate) fn knn_join<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, const
         });
     }
     table(w, n, slots, distances)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{fill_rows, groups, parts, Search};
+    use crate::query::join::bounds::Euclid;
+    use crate::query::PointSet;
+    use crate::{CompressedTree, PointTree};
+    use rand::{rngs::SmallRng, Rng, SeedableRng};
+
+    /// Every part's rows through `fill` (the copy the processor runs) and through the baseline
+    /// copy: the same slots and the same distances, bit for bit.
+    fn both_copies_agree<P: PointSet<3>>(set: &P, k: usize) {
+        let gs = groups(set.index());
+        let n = set.len() * k;
+        let (mut s1, mut d1) = (vec![0; n], vec![0.0; n]);
+        let (mut s2, mut d2) = (vec![0; n], vec![0.0; n]);
+        let (mut search1, mut search2) = (Search::new(), Search::new());
+        let sets = (set, set, &Euclid);
+        for (p1, p2) in parts(&gs, k, &mut s1, &mut d1)
+            .into_iter()
+            .zip(parts(&gs, k, &mut s2, &mut d2))
+        {
+            super::fill(&mut search1, sets, p1, k, true);
+            fill_rows(&mut search2, sets, p2, k, true);
+        }
+        assert_eq!(s1, s2);
+        assert!(d1.iter().zip(&d2).all(|(x, y)| x.to_bits() == y.to_bits()));
+    }
+
+    #[test]
+    fn the_fast_copy_fills_the_baseline_rows() {
+        let mut rng = SmallRng::seed_from_u64(11);
+        let mut pts: Vec<([f64; 3], usize)> = (0..3000)
+            .map(|i| (core::array::from_fn(|_| rng.gen_range(-1.0..1.0)), i))
+            .collect();
+        // duplicates and points on a grid (ties, split lines)
+        for i in 0..600 {
+            let p = if i % 2 == 0 {
+                pts[rng.gen_range(0..pts.len())].0
+            } else {
+                core::array::from_fn(|_| f64::from(rng.gen_range(-4i8..=4)) / 4.0)
+            };
+            pts.push((p, 3000 + i));
+        }
+        for k in [1, 7, 16] {
+            both_copies_agree(&PointTree::new(&pts).unwrap(), k);
+            both_copies_agree(&CompressedTree::new(&pts).unwrap(), k);
+        }
+    }
 }

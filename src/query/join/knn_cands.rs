@@ -67,6 +67,7 @@ impl Cands {
 
     /// Empties the buffer, for a point keeping `k` (at least 1) of up to `room - 1` candidates
     /// held at once.
+    #[inline(always)]
     pub(crate) fn reset(&mut self, k: usize, room: usize) {
         if self.keys.len() < room {
             self.keys.resize(room, 0);
@@ -108,12 +109,13 @@ impl Cands {
     }
 
     /// Forgets the far candidates: at least `k` near ones are held, all of them nearer.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn drop_far(&mut self) {
         self.back = self.room;
     }
 
     /// Moves the far candidates after the near ones, all of them near now.
+    #[inline(always)]
     fn merge_far(&mut self) {
         let low = self.low;
         for j in self.back..self.room {
@@ -127,6 +129,7 @@ impl Cands {
 
     /// Keeps the `k` first candidates by `(distance, position)` (in no particular order) and
     /// returns the `k`-th distance; at least `k` must be held.
+    #[inline(always)]
     pub(crate) fn shrink(&mut self) -> f64 {
         self.merge_far();
         self.select();
@@ -136,6 +139,7 @@ impl Cands {
 
     /// The `k` first candidates by `(distance, position)`, in that order, as (distance bits,
     /// position); at least `k` must be held.
+    #[inline(always)]
     pub(crate) fn ordered(&mut self) -> impl Iterator<Item = (u64, usize)> + '_ {
         let k = self.k;
         if self.front >= k {
@@ -163,6 +167,7 @@ impl Cands {
 
     /// Re-orders the runs of keys with equal high bits among the sorted `keys[..len]` by their
     /// entries, an insertion sort that moves nothing across two runs.
+    #[inline(always)]
     fn fix_runs(&mut self, len: usize) {
         let (keys, entries, low) = (&mut self.keys, &self.entries, self.low);
         for r in 1..len {
@@ -179,6 +184,7 @@ impl Cands {
 
     /// Keeps the `k` first near candidates by `(distance, position)` in the first `k` places of
     /// the buffer, entries and keys (in no particular order), and holds only them.
+    #[inline(always)]
     fn select(&mut self) {
         let (k, n, low) = (self.k, self.front, self.low);
         let keys = &mut self.keys[..n];

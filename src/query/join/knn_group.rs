@@ -90,6 +90,7 @@ impl<N: Copy, const D: usize> Search<N, D> {
     /// points lie in the closed box `gbox`), into the lists of [`Search::list`]. `same`: `b` is
     /// `a`, and a point skips its own position. `k` must be at least 1 and at most what `b`
     /// holds (others, when `same`).
+    #[inline(always)]
     pub(crate) fn group<A, B, P>(
         &mut self,
         a: &A,
@@ -165,6 +166,7 @@ impl<N: Copy, const D: usize> Search<N, D> {
     /// farthest distance to that point's neighbours and, when `same`, to that point itself, but
     /// `qi`'s own position: at least `k` other points of `b` (whose points are `pb`). Infinite
     /// when there is no such point.
+    #[inline(always)]
     fn seed<S: Scalar, P: PairDistance<D>>(
         &self,
         qi: usize,
@@ -197,6 +199,7 @@ impl<N: Copy, const D: usize> Search<N, D> {
     /// distance, or the pool's radius) and, when it finds `k`, writes its list and returns its
     /// `k`-th distance; `None` when fewer than `k` are within `bound`. `first`: the position of
     /// the group's first point (to skip a point itself when `same`).
+    #[inline(always)]
     fn point<P: PairDistance<D>>(
         &mut self,
         qi: usize,

@@ -55,6 +55,7 @@ impl<const D: usize> Chunk<D> {
 
     /// Takes in `part` (1 to [`CHUNK`] points with their positions) in place of its points;
     /// the lanes past them repeat the first.
+    #[inline(always)]
     fn fill(&mut self, part: &[([f64; D], usize)]) {
         self.len = part.len();
         self.live = u64::MAX >> (64 - self.len);
@@ -94,6 +95,7 @@ impl<N: Copy, const D: usize> Pool<N, D> {
 
     /// Gathers the points of `b` within `g` of `gbox` (see the module doc) in place of the pool's
     /// points.
+    #[inline(always)]
     pub(crate) fn gather<B, P>(&mut self, b: &B, metric: &P, gbox: &Aabb<f64, D>, g: f64)
     where
         B: SpatialIndex<D, Node = N>,
