@@ -91,10 +91,10 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
             let (k, max) = (r.get::<u64>() as usize, r.get::<f64>());
             let p: [S; D] = r.point();
             // checked on its rank; a NaN bound is never sent
-            if let Ok(q) = query_point(&p) {
-                if !max.is_nan() {
-                    search(&q, k, max, hits);
-                }
+            if let Ok(q) = query_point(&p)
+                && !max.is_nan()
+            {
+                search(&q, k, max, hits);
             }
         };
         let first: Vec<(usize, usize)> = (0..queries.len())

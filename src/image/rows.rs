@@ -181,10 +181,10 @@ impl RowBuilder {
         }
         let mut black = row.to_vec();
         let width = self.extent[0] as usize;
-        if width % 64 != 0 {
-            if let Some(last) = black.last_mut() {
-                *last &= (1u64 << (width % 64)) - 1;
-            }
+        if !width.is_multiple_of(64)
+            && let Some(last) = black.last_mut()
+        {
+            *last &= (1u64 << (width % 64)) - 1;
         }
         let band = Band {
             black,
@@ -239,7 +239,7 @@ impl RowBuilder {
                 return Ok(());
             }
             let slot = usize::from(level);
-            if index % 2 == 0 {
+            if index.is_multiple_of(2) {
                 self.held += band.bytes();
                 self.check(0)?;
                 self.pending[slot] = Some(band);

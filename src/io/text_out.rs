@@ -126,7 +126,7 @@ fn put_f3(dst: &mut [u8], x: f64) -> Option<usize> {
     let mut fraction = (q % 1000) as u32;
     if fraction != 0 {
         let mut digits = 3;
-        while fraction % 10 == 0 {
+        while fraction.is_multiple_of(10) {
             fraction /= 10;
             digits -= 1;
         }

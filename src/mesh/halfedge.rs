@@ -343,7 +343,7 @@ impl<'a> HalfEdges<'a> {
     /// The previous half-edge around the same triangle.
     pub fn prev(&self, h: u32) -> u32 {
         let _ = self.twins[h as usize];
-        if h % 3 == 0 {
+        if h.is_multiple_of(3) {
             h + 2
         } else {
             h - 1

@@ -129,13 +129,13 @@ pub(super) fn check_nesting(components: &[Component]) -> Result<(), BoardError> 
             }
             next_in += 1;
         }
-        if let Some(left) = active.range(..key).next_back() {
-            if left.down {
-                return Err(BoardError::ComponentInside {
-                    component: ci + 1,
-                    other: left.component + 1,
-                });
-            }
+        if let Some(left) = active.range(..key).next_back()
+            && left.down
+        {
+            return Err(BoardError::ComponentInside {
+                component: ci + 1,
+                other: left.component + 1,
+            });
         }
     }
     Ok(())

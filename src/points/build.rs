@@ -235,13 +235,13 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
         if self.bucket_size == 0 {
             return Err(Error::ZeroBucketSize);
         }
-        if let Some(requested) = self.max_depth {
-            if requested > Cell::<D>::MAX_LEVEL {
-                return Err(Error::MaxDepthTooLarge {
-                    requested,
-                    limit: Cell::<D>::MAX_LEVEL,
-                });
-            }
+        if let Some(requested) = self.max_depth
+            && requested > Cell::<D>::MAX_LEVEL
+        {
+            return Err(Error::MaxDepthTooLarge {
+                requested,
+                limit: Cell::<D>::MAX_LEVEL,
+            });
         }
         if n >= u32::MAX as usize {
             return Err(Error::TooManyPoints { len: n });

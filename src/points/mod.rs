@@ -380,10 +380,10 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         let leaves = run_walk::walk_runs::<D>(arrays, sizes)?;
         leaf_bounds::check_leaves(&self.geometry, &self.domain, &self.points, &leaves, true)?;
         leaf_bounds::check_leaf_order(&self.geometry, &self.points, &leaves, true)?;
-        if let Some(options) = self.balanced {
-            if !self.tree.is_balanced(options) {
-                return Err(ValidationError::new(I::Balanced));
-            }
+        if let Some(options) = self.balanced
+            && !self.tree.is_balanced(options)
+        {
+            return Err(ValidationError::new(I::Balanced));
         }
         Ok(())
     }

@@ -75,7 +75,7 @@ pub(crate) fn walk_runs<const D: usize>(
         || arrays.level.len() != slots
         || arrays.run_ends.len() != slots
         || arrays.block_parent.len() != blocks
-        || (slots - 1) % children != 0
+        || !(slots - 1).is_multiple_of(children)
         || sizes.points > u32::MAX as usize
     {
         return Err(ValidationError::new(Invariant::Lengths).detail(format!(
@@ -130,7 +130,7 @@ pub(crate) fn walk_runs<const D: usize>(
             ));
         }
         let f = first as usize;
-        if f == 0 || (f - 1) % children != 0 || f + children > slots {
+        if f == 0 || !(f - 1).is_multiple_of(children) || f + children > slots {
             return Err(topology(
                 v,
                 format!("its first child {first} does not start a block of the {slots} slots"),

@@ -221,11 +221,11 @@ fn search<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
     let Some((root, b)) = index.root() else {
         return best.list;
     };
-    if let Some(torus) = metric.torus() {
-        if let Some(images) = Images::new(torus, metric, q, &b) {
-            images.search(index, q, metric, &mut best, (root, b), &cut);
-            return best.list;
-        }
+    if let Some(torus) = metric.torus()
+        && let Some(images) = Images::new(torus, metric, q, &b)
+    {
+        images.search(index, q, metric, &mut best, (root, b), &cut);
+        return best.list;
     }
     seeded(index, (q, metric), (q, metric), &mut best, (root, b), &cut);
     best.list
@@ -381,11 +381,11 @@ fn scan_run<S: Scalar, M: Metric<D>, const D: usize>(
 ) -> f64 {
     let start = run.start;
     if best.k == 1 {
-        if let Some((near, at)) = nearest_in(&points[run.clone()], q, metric) {
-            if near <= bound {
-                best.offer(near, start + at);
-                bound = best.bound();
-            }
+        if let Some((near, at)) = nearest_in(&points[run.clone()], q, metric)
+            && near <= bound
+        {
+            best.offer(near, start + at);
+            bound = best.bound();
         }
         return bound;
     }

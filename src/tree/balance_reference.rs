@@ -48,10 +48,11 @@ impl<const D: usize> Tree<D> {
             let child_level = self.level(first);
             work.extend(self.children(leaf));
             for &d in &directions {
-                if let Some(n) = self.neighbor(leaf, d) {
-                    if self.is_leaf(n) && self.level(n) + k < child_level {
-                        work.push(n);
-                    }
+                if let Some(n) = self.neighbor(leaf, d)
+                    && self.is_leaf(n)
+                    && self.level(n) + k < child_level
+                {
+                    work.push(n);
                 }
             }
         }

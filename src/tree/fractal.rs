@@ -16,7 +16,7 @@ use crate::geom::Cell;
 /// Whether the fractal at `level` refines a cell of level `l` that is child `child` of its
 /// parent.
 fn refines(level: u8, l: u8, child: usize) -> bool {
-    l < level.saturating_sub(4) || (l < level && child.count_ones() % 2 == 0)
+    l < level.saturating_sub(4) || (l < level && child.count_ones().is_multiple_of(2))
 }
 
 /// The fractal tree at `level`, refined depth first from the root.

@@ -214,7 +214,7 @@ impl<const D: usize> Tree<D> {
         let mut free = vec![false; self.block_parents().len()];
         for &first in &self.free_blocks {
             let f = first as usize;
-            if f == 0 || f >= slots || (f - 1) % n != 0 || free[(f - 1) / n] {
+            if f == 0 || f >= slots || !(f - 1).is_multiple_of(n) || free[(f - 1) / n] {
                 return Err(TreeError::FreeList(first));
             }
             free[(f - 1) / n] = true;
@@ -267,7 +267,7 @@ impl<const D: usize> Tree<D> {
     ) -> Result<(), TreeError> {
         let n = Dim::<D>::CHILDREN;
         let f = first as usize;
-        if f == 0 || f >= self.first_child.len() || (f - 1) % n != 0 {
+        if f == 0 || f >= self.first_child.len() || !(f - 1).is_multiple_of(n) {
             return Err(TreeError::FirstChild {
                 node: v,
                 first_child: first,

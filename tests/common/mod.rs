@@ -223,10 +223,10 @@ pub fn brute_violation<const D: usize>(
             if m.level() <= l.level() + opts.max_level_difference() {
                 continue;
             }
-            if let Some(k) = contact(l, m) {
-                if allowed(opts.connectivity, k) {
-                    return Some((*l, *m));
-                }
+            if let Some(k) = contact(l, m)
+                && allowed(opts.connectivity, k)
+            {
+                return Some((*l, *m));
             }
         }
     }

@@ -437,7 +437,7 @@ fn rows_streamed_in_build_the_same_tree_as_the_dense_bitmap() {
                 seed ^= seed >> 7;
                 seed ^= seed << 17;
                 // runs of a few pixels, so the tree has leaves of every size
-                (i / 5 + (seed % 7 == 0) as u32) % 2 == 0
+                (i / 5 + seed.is_multiple_of(7) as u32).is_multiple_of(2)
             })
             .collect();
         let dense = ImageTree::from_bools(extent, &pixels).unwrap();

@@ -49,13 +49,13 @@ fn reference_edge(mesh: &Mesh) -> String {
     }
     for s in &mesh.segments {
         let [a, b] = s.vertices;
-        if let Some(&k) = index.get(&(a.min(b), a.max(b))) {
-            if edges[k].1 <= 1 {
-                edges[k].1 = match s.kind {
-                    SegmentKind::Boundary => 1,
-                    SegmentKind::Component(i) => 1 + u64::from(i),
-                };
-            }
+        if let Some(&k) = index.get(&(a.min(b), a.max(b)))
+            && edges[k].1 <= 1
+        {
+            edges[k].1 = match s.kind {
+                SegmentKind::Boundary => 1,
+                SegmentKind::Component(i) => 1 + u64::from(i),
+            };
         }
     }
     let mut out = format!("{} 1\n", edges.len());

@@ -166,21 +166,21 @@ type Entry = ([f64; 3], u32);
 /// other input read whole.
 fn entries_of(a: &IndexArgs) -> Result<(Vec<Entry>, String), Failure> {
     #[cfg(feature = "las")]
-    if let Some(path) = a.input.as_deref() {
-        if input::format_of(path)? == input::Format::Las {
-            let start = Instant::now();
-            let phase = Phase::start(&format!("reading {}", shown(path)));
-            let entries = orthtree::io::las::read_entries(path)
-                .map_err(|e| Failure::Input(format!("{}: {e}", shown(path))))?;
-            drop(phase);
-            say!(
-                "input:       {}: {} points (coordinates only), read in {}",
-                shown(path),
-                entries.len(),
-                ms(start.elapsed().as_secs_f64())
-            );
-            return Ok((entries, shown(path)));
-        }
+    if let Some(path) = a.input.as_deref()
+        && input::format_of(path)? == input::Format::Las
+    {
+        let start = Instant::now();
+        let phase = Phase::start(&format!("reading {}", shown(path)));
+        let entries = orthtree::io::las::read_entries(path)
+            .map_err(|e| Failure::Input(format!("{}: {e}", shown(path))))?;
+        drop(phase);
+        say!(
+            "input:       {}: {} points (coordinates only), read in {}",
+            shown(path),
+            entries.len(),
+            ms(start.elapsed().as_secs_f64())
+        );
+        return Ok((entries, shown(path)));
     }
     let (cloud, name) = load(a.input.as_deref(), &a.source, 0)?;
     let entries = cloud

@@ -94,7 +94,7 @@ pub(super) fn flat_points<E: serde::de::Error, S: Copy, const D: usize>(
     what: &str,
     flat: Vec<S>,
 ) -> Result<Vec<[S; D]>, E> {
-    if flat.len() % D != 0 {
+    if !flat.len().is_multiple_of(D) {
         return Err(E::custom(format!(
             "{what}: {} coordinates are not whole points of {D}",
             flat.len()

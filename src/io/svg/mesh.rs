@@ -216,10 +216,10 @@ fn detailed(mesh: &Mesh, board: &Board) -> Svg {
     for tri in &mesh.triangles {
         for i in 0..3 {
             let (a, b) = (tri[i], tri[(i + 1) % 3]);
-            if seen.insert((a.min(b), a.max(b)), ()).is_none() {
-                if let (Some(p), Some(q)) = (point(a), point(b)) {
-                    edges.push([p, q]);
-                }
+            if seen.insert((a.min(b), a.max(b)), ()).is_none()
+                && let (Some(p), Some(q)) = (point(a), point(b))
+            {
+                edges.push([p, q]);
             }
         }
     }

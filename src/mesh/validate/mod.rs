@@ -296,7 +296,7 @@ fn incircle(a: Point, b: Point, c: Point, d: Point) -> i128 {
 fn half(doubled: i128) -> String {
     let sign = if doubled < 0 { "-" } else { "" };
     let m = doubled.unsigned_abs();
-    if m % 2 == 0 {
+    if m.is_multiple_of(2) {
         format!("{sign}{}", m / 2)
     } else {
         format!("{sign}{}.5", m / 2)

@@ -20,7 +20,7 @@
 
 use super::bounds::PairDistance;
 use super::knn_cands::Cands;
-use super::traverse::{children, SCAN};
+use super::traverse::{push_children, SCAN};
 use crate::geom::{Aabb, Scalar};
 use crate::query::SpatialIndex;
 
@@ -111,9 +111,9 @@ impl<N: Copy, const D: usize> Pool<N, D> {
             if metric.box_box(gbox, &side.1).0 > g {
                 continue;
             }
-            let kids = children(b, &side, SCAN);
-            if !kids.is_empty() {
-                self.stack.extend(kids);
+            let before = self.stack.len();
+            push_children(b, &side, SCAN, &mut self.stack);
+            if self.stack.len() > before {
                 continue;
             }
             let run = b.run(side.0);

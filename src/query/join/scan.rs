@@ -176,9 +176,55 @@ pub(crate) type Run<'a, S, const D: usize> = (&'a [[S; D]], Range<usize>, &'a Aa
 /// Calls `each(i, j, d)` for every pair of positions `i` of run `a` and `j` of run `b` whose
 /// distance `d` is within `r2` (under `boundary`); with `same` (one run paired with itself),
 /// for every `i < j` of it. Stops at the first [`ControlFlow::Break`].
+///
+/// Runs the copy compiled for x86-64-v4 (AVX-512) where the processor has it
+/// ([`cpu`](crate::cpu)):
+/// the same pairs and distances.
 #[allow(clippy::too_many_arguments)]
 #[inline]
 pub(crate) fn scan_pairs<SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D: usize>(
+    block: &mut Block<D>,
+    a: Run<'_, SA, D>,
+    b: Run<'_, SB, D>,
+    same: bool,
+    metric: &P,
+    r2: f64,
+    boundary: Boundary,
+    each: impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
+) -> ControlFlow<Br> {
+    #[cfg(target_arch = "x86_64")]
+    if crate::cpu::has_v4() {
+        // SAFETY: `scan_pairs_v4` is `pairs_in` compiled for the features `has_v4` has just
+        // found on this processor.
+        #[allow(unsafe_code)]
+        unsafe {
+            return scan_pairs_v4(block, a, b, same, metric, r2, boundary, each);
+        }
+    }
+    pairs_in(block, a, b, same, metric, r2, boundary, each)
+}
+
+/// [`pairs_in`] compiled for x86-64-v4 (see [`cpu`](crate::cpu)).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx,avx2,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512vl,avx512bw,avx512dq")]
+#[allow(clippy::too_many_arguments)]
+fn scan_pairs_v4<SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D: usize>(
+    block: &mut Block<D>,
+    a: Run<'_, SA, D>,
+    b: Run<'_, SB, D>,
+    same: bool,
+    metric: &P,
+    r2: f64,
+    boundary: Boundary,
+    each: impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
+) -> ControlFlow<Br> {
+    pairs_in(block, a, b, same, metric, r2, boundary, each)
+}
+
+/// The work of [`scan_pairs`], compiled into each of its copies.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn pairs_in<SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D: usize>(
     block: &mut Block<D>,
     (pa, ra, _): Run<'_, SA, D>,
     (pb, rb, _): Run<'_, SB, D>,
@@ -270,9 +316,55 @@ fn gather<S: Scalar, const D: usize>(
 /// beyond the far bound take in all its pairs with the block at once (one update of `diff`),
 /// the radii below the near bound none, and only the radii in between are found pair by pair,
 /// by a binary search among them.
+///
+/// Runs the copy compiled for x86-64-v4 (AVX-512) where the processor has it
+/// ([`cpu`](crate::cpu)):
+/// the same counts.
 #[allow(clippy::too_many_arguments)]
 #[inline]
 pub(crate) fn scan_counts<SA: Scalar, SB: Scalar, P: PairDistance<D>, const D: usize>(
+    block: &mut Block<D>,
+    a: Run<'_, SA, D>,
+    b: Run<'_, SB, D>,
+    same: bool,
+    metric: &P,
+    radii: (&[f64], usize, usize),
+    boundary: Boundary,
+    diff: &mut [i128],
+) {
+    #[cfg(target_arch = "x86_64")]
+    if crate::cpu::has_v4() {
+        // SAFETY: `scan_counts_v4` is `counts_in` compiled for the features `has_v4` has just
+        // found on this processor.
+        #[allow(unsafe_code)]
+        unsafe {
+            return scan_counts_v4(block, a, b, same, metric, radii, boundary, diff);
+        }
+    }
+    counts_in(block, a, b, same, metric, radii, boundary, diff);
+}
+
+/// [`counts_in`] compiled for x86-64-v4 (see [`cpu`](crate::cpu)).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx,avx2,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512vl,avx512bw,avx512dq")]
+#[allow(clippy::too_many_arguments)]
+fn scan_counts_v4<SA: Scalar, SB: Scalar, P: PairDistance<D>, const D: usize>(
+    block: &mut Block<D>,
+    a: Run<'_, SA, D>,
+    b: Run<'_, SB, D>,
+    same: bool,
+    metric: &P,
+    radii: (&[f64], usize, usize),
+    boundary: Boundary,
+    diff: &mut [i128],
+) {
+    counts_in(block, a, b, same, metric, radii, boundary, diff);
+}
+
+/// The work of [`scan_counts`], compiled into each of its copies.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn counts_in<SA: Scalar, SB: Scalar, P: PairDistance<D>, const D: usize>(
     block: &mut Block<D>,
     (pa, ra, _): Run<'_, SA, D>,
     (pb, rb, _): Run<'_, SB, D>,
@@ -349,4 +441,89 @@ fn report<Br, const D: usize>(
         each(i, block.at[j], block.dist[j])?;
     }
     ControlFlow::Continue(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{counts_in, pairs_in, scan_counts, scan_pairs, Block};
+    use crate::geom::Aabb;
+    use crate::query::join::bounds::Euclid;
+    use crate::query::join::radius::Boundary;
+    use core::ops::ControlFlow;
+    use rand::{rngs::SmallRng, Rng, SeedableRng};
+
+    /// Runs of random and grid points (ties, duplicates), paired with themselves and with each
+    /// other: the copy the processor runs finds the pairs and counts of the baseline copy, with
+    /// the same distances bit for bit.
+    #[test]
+    fn the_fast_copy_finds_the_baseline_pairs() {
+        let mut rng = SmallRng::seed_from_u64(5);
+        let pts: Vec<[f64; 3]> = (0..400)
+            .map(|i| {
+                if i % 3 == 0 {
+                    core::array::from_fn(|_| f64::from(rng.gen_range(0u8..=4)) / 8.0)
+                } else {
+                    core::array::from_fn(|_| rng.gen_range(0.0..0.5))
+                }
+            })
+            .collect();
+        let whole = Aabb::around(&pts);
+        let (mut fast, mut base) = (Block::<3>::boxed(), Block::<3>::boxed());
+        let radii = [0.0, 0.01, 0.05, 0.125, 0.3];
+        for (ra, rb) in [(0..400, 0..400), (0..150, 150..400), (37..300, 10..90)] {
+            let same = ra == rb;
+            for boundary in [Boundary::Inclusive, Boundary::Exclusive] {
+                for &r in &radii {
+                    let run = |f: bool, block: &mut Block<3>| {
+                        let mut out = Vec::new();
+                        let each = |i: usize, j: usize, d: f64| {
+                            out.push((i, j, d.to_bits()));
+                            ControlFlow::<()>::Continue(())
+                        };
+                        let (a, b) = (
+                            (&pts[..], ra.clone(), &whole),
+                            (&pts[..], rb.clone(), &whole),
+                        );
+                        let _ = if f {
+                            scan_pairs(block, a, b, same, &Euclid, r * r, boundary, each)
+                        } else {
+                            pairs_in(block, a, b, same, &Euclid, r * r, boundary, each)
+                        };
+                        out
+                    };
+                    let got = run(true, &mut fast);
+                    assert_eq!(got, run(false, &mut base));
+                    assert!(r == 0.0 || same || !got.is_empty(), "the check sees pairs");
+                }
+                let r2: Vec<f64> = radii.iter().map(|r| r * r).collect();
+                let (a, b) = (
+                    (&pts[..], ra.clone(), &whole),
+                    (&pts[..], rb.clone(), &whole),
+                );
+                let mut d1 = vec![0i128; r2.len() + 1];
+                let mut d2 = d1.clone();
+                scan_counts(
+                    &mut fast,
+                    a.clone(),
+                    b.clone(),
+                    same,
+                    &Euclid,
+                    (&r2, 0, r2.len()),
+                    boundary,
+                    &mut d1,
+                );
+                counts_in(
+                    &mut base,
+                    a,
+                    b,
+                    same,
+                    &Euclid,
+                    (&r2, 0, r2.len()),
+                    boundary,
+                    &mut d2,
+                );
+                assert_eq!(d1, d2);
+            }
+        }
+    }
 }

@@ -41,6 +41,9 @@ pub(crate) type Side<N, const D: usize> = (N, Aabb<f64, D>);
 /// A pending node pair: both sides, whether it is a node paired with itself, the caller's state.
 pub(crate) type Pair<A, B, T, const D: usize> = (Side<A, D>, Side<B, D>, bool, T);
 
+/// The children of a node with their boxes.
+pub(crate) type Kids<N, const D: usize> = SmallVec<[Side<N, D>; 8]>;
+
 /// The children of a node with their boxes; empty for a node to scan (a leaf, or a node whose
 /// contiguous run holds at most `scan` points).
 #[inline]
@@ -48,12 +51,25 @@ pub(crate) fn children<I: SpatialIndex<D>, const D: usize>(
     index: &I,
     side: &Side<I::Node, D>,
     scan: usize,
-) -> SmallVec<[Side<I::Node, D>; 8]> {
+) -> Kids<I::Node, D> {
     let mut out = SmallVec::new();
-    if !scans_whole(index, side.0, scan) {
-        index.for_each_child_in(side.0, &side.1, |c, cb| out.push((c, *cb)));
-    }
+    push_children(index, side, scan, &mut out);
     out
+}
+
+/// Appends the children of a node with their boxes to `out` ([`children`]); appends nothing
+/// for a node to scan. Filling a buffer the caller keeps saves the copy of a returned list,
+/// which was a tenth of the radius joins' time.
+#[inline(always)]
+pub(crate) fn push_children<I: SpatialIndex<D>, E: Extend<Side<I::Node, D>>, const D: usize>(
+    index: &I,
+    side: &Side<I::Node, D>,
+    scan: usize,
+    out: &mut E,
+) {
+    if !scans_whole(index, side.0, scan) {
+        index.for_each_child_in(side.0, &side.1, |c, cb| out.extend(Some((c, *cb))));
+    }
 }
 
 /// The callbacks of [`traverse`].
@@ -103,7 +119,8 @@ fn offer<A, B, T, V, P, const D: usize>(
 
 /// Expands one classified node pair: hands a pair of nodes to scan to the visitor, or
 /// classifies the pairs of its children ([`offer`]) and pushes those left to look at on
-/// `stack`. `same`: `b` is `a`'s node paired with itself in the same tree.
+/// `stack`. `same`: `b` is `a`'s node paired with itself in the same tree. `kids`: the buffers
+/// of both sides' children, kept by the caller from pair to pair.
 pub(crate) fn step<A, B, T, V, P, const D: usize>(
     a: &A,
     b: &B,
@@ -111,6 +128,7 @@ pub(crate) fn step<A, B, T, V, P, const D: usize>(
     pair: Pair<A::Node, B::Node, T, D>,
     visitor: &mut V,
     stack: &mut Vec<Pair<A::Node, B::Node, T, D>>,
+    (ca, cb): &mut (Kids<A::Node, D>, Kids<B::Node, D>),
 ) -> ControlFlow<V::Break>
 where
     A: SpatialIndex<D>,
@@ -120,14 +138,16 @@ where
 {
     let (sa, sb, same, state) = pair;
     let ab = (a, b, metric);
-    let ca = children(a, &sa, SCAN_RADIUS);
+    ca.clear();
+    cb.clear();
+    push_children(a, &sa, SCAN_RADIUS, ca);
     if same {
         // One node with itself: the unordered pairs of its children, each child with itself.
         if ca.is_empty() {
             return visitor.leaves(&state, (a.run(sa.0), &sa.1), (b.run(sb.0), &sb.1), true);
         }
         // The same tree on both sides: the children's handles are both A's and B's.
-        let cb = children(b, &sb, SCAN_RADIUS);
+        push_children(b, &sb, SCAN_RADIUS, cb);
         for i in (0..ca.len()).rev() {
             for j in (i..cb.len()).rev() {
                 offer(ab, (ca[i], cb[j], i == j), &state, visitor, stack);
@@ -137,9 +157,9 @@ where
     }
     // Split the side with more points; look at `b`'s children only when they may be needed.
     if ca.is_empty() || a.count(sa.0) < b.count(sb.0) {
-        let cb = children(b, &sb, SCAN_RADIUS);
+        push_children(b, &sb, SCAN_RADIUS, cb);
         if !cb.is_empty() {
-            for c in cb.into_iter().rev() {
+            for &c in cb.iter().rev() {
                 offer(ab, (sa, c, false), &state, visitor, stack);
             }
             return ControlFlow::Continue(());
@@ -148,7 +168,7 @@ where
             return visitor.leaves(&state, (a.run(sa.0), &sa.1), (b.run(sb.0), &sb.1), false);
         }
     }
-    for c in ca.into_iter().rev() {
+    for &c in ca.iter().rev() {
         offer(ab, (c, sb, false), &state, visitor, stack);
     }
     ControlFlow::Continue(())
@@ -170,8 +190,9 @@ where
 {
     let mut stack = start;
     stack.reverse();
+    let mut kids = (SmallVec::new(), SmallVec::new());
     while let Some(pair) = stack.pop() {
-        step(a, b, metric, pair, visitor, &mut stack)?;
+        step(a, b, metric, pair, visitor, &mut stack, &mut kids)?;
     }
     ControlFlow::Continue(())
 }
@@ -221,11 +242,12 @@ where
     P: PairDistance<D>,
 {
     let mut frontier = start;
+    let mut kids = (SmallVec::new(), SmallVec::new());
     while !frontier.is_empty() && frontier.len() < want {
         let mut next = Vec::new();
         for pair in frontier {
             let mut out = Vec::new();
-            step(a, b, metric, pair, visitor, &mut out)?;
+            step(a, b, metric, pair, visitor, &mut out, &mut kids)?;
             out.reverse();
             next.extend(out);
         }
