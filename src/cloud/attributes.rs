@@ -121,6 +121,24 @@ impl Attributes {
         }
     }
 
+    /// Whether no column is present.
+    ///
+    /// ```
+    /// use orthtree::cloud::Attributes;
+    /// let mut a = Attributes::default();
+    /// assert!(a.is_empty());
+    /// a.gps_time = Some(vec![1.5]);
+    /// assert!(!a.is_empty());
+    /// ```
+    pub fn is_empty(&self) -> bool {
+        self.intensity.is_none()
+            && self.classification.is_none()
+            && self.color.is_none()
+            && self.gps_time.is_none()
+            && self.normal.is_none()
+            && self.extra.is_empty()
+    }
+
     /// The names of the present columns, in the order the writers use.
     pub fn names(&self) -> Vec<String> {
         let mut out = Vec::new();

@@ -80,13 +80,9 @@ impl VoxelGrid<3> {
             }
             Representative::Centroid => {
                 let points = voxels.iter().map(centroid).collect();
-                let groups: Vec<Vec<usize>> = voxels
-                    .iter()
-                    .map(|v| v.slots.clone().map(index).collect())
-                    .collect();
                 Ok(Cloud {
                     points,
-                    attributes: averaged(&cloud.attributes, &groups),
+                    attributes: averaged(&cloud.attributes, &voxels, tree.items()),
                     frame: cloud.frame,
                 })
             }
@@ -94,13 +90,36 @@ impl VoxelGrid<3> {
     }
 }
 
-/// The attributes of each group of point indices, averaged as [`Representative::Centroid`]
-/// says.
-fn averaged(a: &Attributes, groups: &[Vec<usize>]) -> Attributes {
-    let mean = |g: &[usize], value: &dyn Fn(usize) -> f64| {
-        g.iter().map(|&i| value(i)).sum::<f64>() / g.len() as f64
+/// The point indices of one voxel: the items (input indices) of its slots.
+#[derive(Clone, Copy)]
+struct Group<'a> {
+    slots: &'a [u32],
+}
+
+impl Group<'_> {
+    fn indices(self) -> impl Iterator<Item = usize> {
+        self.slots.iter().map(|&i| i as usize)
+    }
+}
+
+/// The attributes of each voxel's points (`items`: the tree's items, the points' input
+/// indices), averaged as [`Representative::Centroid`] says. Nothing is gathered for a cloud
+/// without attributes.
+fn averaged(a: &Attributes, voxels: &[Voxel<3>], items: &[u32]) -> Attributes {
+    let groups: Vec<Group<'_>> = if a.is_empty() {
+        Vec::new()
+    } else {
+        voxels
+            .iter()
+            .map(|v| Group {
+                slots: &items[v.slots.clone()],
+            })
+            .collect()
     };
-    let per_group = |f: &dyn Fn(&[usize]) -> f64| groups.iter().map(|g| f(g)).collect::<Vec<_>>();
+    let mean = |g: Group<'_>, value: &dyn Fn(usize) -> f64| {
+        g.indices().map(value).sum::<f64>() / g.slots.len() as f64
+    };
+    let per_group = |f: &dyn Fn(Group<'_>) -> f64| groups.iter().map(|&g| f(g)).collect::<Vec<_>>();
     Attributes {
         intensity: a.intensity.as_ref().map(|c| {
             let m = per_group(&|g| mean(g, &|i| f64::from(c[i])));
@@ -111,7 +130,7 @@ fn averaged(a: &Attributes, groups: &[Vec<usize>]) -> Attributes {
                 .iter()
                 .map(|g| {
                     let mut counts = [0u32; 256];
-                    for &i in g {
+                    for i in g.indices() {
                         counts[c[i] as usize] += 1;
                     }
                     let top = *counts.iter().max().expect("256 counts");
@@ -122,7 +141,7 @@ fn averaged(a: &Attributes, groups: &[Vec<usize>]) -> Attributes {
         color: a.color.as_ref().map(|c| {
             groups
                 .iter()
-                .map(|g| core::array::from_fn(|k| mean(g, &|i| f64::from(c[i][k])).round() as u16))
+                .map(|&g| core::array::from_fn(|k| mean(g, &|i| f64::from(c[i][k])).round() as u16))
                 .collect()
         }),
         gps_time: a
@@ -132,7 +151,7 @@ fn averaged(a: &Attributes, groups: &[Vec<usize>]) -> Attributes {
         normal: a.normal.as_ref().map(|c| {
             groups
                 .iter()
-                .map(|g| {
+                .map(|&g| {
                     let m: [f64; 3] = core::array::from_fn(|k| mean(g, &|i| f64::from(c[i][k])));
                     let len = m.iter().map(|x| x * x).sum::<f64>().sqrt();
                     let scale = if len > 0.0 { 1.0 / len } else { 0.0 };
