@@ -36,7 +36,7 @@ impl VoxelGrid<3> {
         representative: Representative,
     ) -> Result<Cloud<f64>, CloudError> {
         cloud.attributes.check(cloud.len())?;
-        let tree = self.tree(&cloud.entries()?)?;
+        let tree = self.indexed_tree(&cloud.points)?;
         let voxels = self.voxels(&tree)?;
         let index = |slot: usize| tree.items()[slot] as usize;
         // Plain sums: exact for integer coordinates (so ties in Nearest are true ties), and

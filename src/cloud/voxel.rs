@@ -201,10 +201,29 @@ impl<const D: usize> VoxelGrid<D> {
         &self,
         entries: &[([S; D], T)],
     ) -> Result<PointTree<S, T, D>, CloudError> {
+        Ok(self.builder()?.build(entries)?)
+    }
+
+    /// [`VoxelGrid::tree`] over `points` alone, each item the point's position
+    /// ([`PointTreeBuilder::build_indexed`](crate::points::PointTreeBuilder::build_indexed)).
+    ///
+    /// # Errors
+    /// As [`VoxelGrid::tree`].
+    ///
+    /// # Complexity
+    /// That of [`PointTree`]'s build, O(n log n).
+    pub fn indexed_tree<S: Scalar>(
+        &self,
+        points: &[[S; D]],
+    ) -> Result<PointTree<S, u32, D>, CloudError> {
+        Ok(self.builder()?.build_indexed(points)?)
+    }
+
+    /// The builder of this grid's trees: the grid's cube, no split below its level.
+    fn builder<S: Scalar>(&self) -> Result<crate::points::PointTreeBuilder<S, D>, CloudError> {
         Ok(PointTree::builder()
             .root_box(self.root_box()?)
-            .max_depth(self.level)
-            .build(entries)?)
+            .max_depth(self.level))
     }
 
     /// The occupied voxels of a tree built on this grid, in Morton order, each with the run of

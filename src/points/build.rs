@@ -128,6 +128,30 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
         )
     }
 
+    /// Builds from points alone, each point's item its position in `points` (as `u32`, which
+    /// every tree's size fits), without copying the input into (point, item) pairs first.
+    ///
+    /// # Errors
+    /// As [`PointTreeBuilder::build`].
+    ///
+    /// ```
+    /// use orthtree::{PointSet, PointTree};
+    /// let t = PointTree::builder().build_indexed(&[[3.0, 0.0], [1.0, 0.0], [1.0, 0.0]]).unwrap();
+    /// assert_eq!(t.items(), [1, 2, 0]); // Morton order, equal points in input order
+    /// assert_eq!(*t.point(2), [3.0, 0.0]);
+    /// ```
+    pub fn build_indexed(&self, points: &[[S; D]]) -> Result<PointTree<S, u32, D>, Error> {
+        self.build_with(
+            points.len(),
+            |i| &points[i],
+            |i, later| {
+                prefetch(&points[later]);
+                // `check_settings` refuses `u32::MAX` points or more: the position fits.
+                (points[i], i as u32)
+            },
+        )
+    }
+
     /// Builds from owned (point, item) pairs, moving the items.
     ///
     /// # Errors

@@ -2,7 +2,8 @@
 //! bits given to the index, runs that agree above those bits put in full key order after the
 //! gather): the stored points are exactly the input sorted by (Morton key, input index), for
 //! spread points, duplicates, and points so close that their keys differ only in the bits the
-//! index took; serial and parallel builds agree.
+//! index took; serial and parallel builds agree, and so does the build from the points alone
+//! (`build_indexed`).
 
 use crate::common;
 
@@ -52,6 +53,15 @@ fn check<const D: usize>(entries: &[([f64; D], u32)], bucket: usize) -> Result<(
     prop_assert_eq!(t.items(), &reference(&t, entries)[..]);
     let moved = b.build_from_vec(entries.to_vec()).unwrap();
     prop_assert_eq!(moved.items(), t.items());
+    // Items that are the input positions: the build from the points alone is the same tree.
+    if entries.iter().enumerate().all(|(i, e)| e.1 as usize == i) {
+        let points: Vec<[f64; D]> = entries.iter().map(|e| e.0).collect();
+        let indexed = b.build_indexed(&points).unwrap();
+        prop_assert!(indexed.validate().is_ok());
+        prop_assert_eq!(indexed.items(), t.items());
+        prop_assert_eq!(indexed.points(), t.points());
+        prop_assert_eq!(indexed.leaf_count(), t.leaf_count());
+    }
     #[cfg(feature = "rayon")]
     {
         let parallel = b.par_build(entries).unwrap();
