@@ -7,6 +7,8 @@
 
 mod batch_update;
 mod build;
+#[cfg(test)]
+mod dispatch_tests;
 mod dynamic;
 mod index;
 pub(crate) mod leaf_bounds;

@@ -48,6 +48,8 @@ use crate::geom::FloatBits;
 pub use batch::{BatchError, ParallelQueries};
 pub(crate) use index::nearest_child_by_boxes;
 pub use index::SpatialIndex;
+#[cfg(test)]
+pub(crate) use join::assert_copies_agree;
 pub use join::{Boundary, CsrDistances, Joins, KnnTable, PeriodicJoins, SparseDistances};
 #[cfg(feature = "rayon")]
 pub use join::{ParallelJoins, ParallelPeriodicJoins};

@@ -32,6 +32,8 @@ mod scan;
 mod sparse;
 mod traverse;
 
+#[cfg(test)]
+pub(crate) use knn::assert_copies_agree;
 pub use knn::KnnTable;
 #[cfg(feature = "rayon")]
 pub use parallel::ParallelJoins;
