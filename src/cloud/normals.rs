@@ -12,6 +12,7 @@ use super::{Cloud, CloudError};
 use crate::geom::Scalar;
 use crate::points::PointTree;
 use crate::query::{Joins, PointSet};
+use smallvec::SmallVec;
 
 /// The eigenvalues of the symmetric matrix `a` in ascending order, with unit eigenvectors
 /// (`vectors[i]` belongs to `values[i]`), by cyclic Jacobi rotations until the off-diagonal
@@ -112,8 +113,7 @@ pub fn normals<P: Joins<3>>(set: &P, k: usize) -> Result<Vec<[f64; 3]>, CloudErr
     if k == 0 {
         return Err(CloudError::ZeroNeighbors);
     }
-    let mut hood = Vec::with_capacity(k + 1);
-    Ok(set.map_k_nearest_self(k, |s, others, _| normal_of(set, s, others, &mut hood)))
+    Ok(set.map_k_nearest_self(k, |s, others, _| normal_of(set, s, others)))
 }
 
 /// [`normals`] with the self-join on rayon's threads (feature `rayon`): the same normals.
@@ -139,23 +139,17 @@ pub fn par_normals<P: crate::query::ParallelJoins<3>>(
     if k == 0 {
         return Err(CloudError::ZeroNeighbors);
     }
-    Ok(set.par_map_k_nearest_self(k, |s, others, _| {
-        normal_of(set, s, others, &mut Vec::with_capacity(k + 1))
-    }))
+    Ok(set.par_map_k_nearest_self(k, |s, others, _| normal_of(set, s, others)))
 }
 
-/// The normal of slot `s` of `set` from its point and those of the slots `others`, with
-/// `hood` as scratch.
-fn normal_of<P: Joins<3>>(
-    set: &P,
-    s: usize,
-    others: &[usize],
-    hood: &mut Vec<[f64; 3]>,
-) -> [f64; 3] {
-    hood.clear();
-    hood.push(set.point(s).map(Scalar::to_f64));
-    hood.extend(others.iter().map(|&t| set.point(t).map(Scalar::to_f64)));
-    pca_normal(hood).expect("the neighbourhood holds the point")
+/// The normal of slot `s` of `set` from its point and those of the slots `others`, gathered
+/// on the stack for up to 31 neighbours (no allocation per point).
+fn normal_of<P: Joins<3>>(set: &P, s: usize, others: &[usize]) -> [f64; 3] {
+    let hood: SmallVec<[[f64; 3]; 32]> = core::iter::once(s)
+        .chain(others.iter().copied())
+        .map(|t| set.point(t).map(Scalar::to_f64))
+        .collect();
+    pca_normal(&hood).expect("the neighbourhood holds the point")
 }
 
 /// Sets the cloud's normal column from its `k` nearest neighbours in world coordinates.
@@ -176,8 +170,7 @@ fn normal_of<P: Joins<3>>(
 /// assert!((n[0] + 0.70710677).abs() < 1e-5 && n[1].abs() < 1e-5 && (n[2] - 0.70710677).abs() < 1e-5);
 /// ```
 pub fn estimate<S: Scalar>(cloud: &mut Cloud<S>, k: usize) -> Result<(), CloudError> {
-    let world = Cloud::from_points(cloud.world_points());
-    let tree = PointTree::new(&world.entries()?)?;
+    let tree = PointTree::builder().build_indexed(&cloud.world_points())?;
     let by_slot = normals(&tree, k)?;
     let mut out = vec![[0f32; 3]; cloud.len()];
     for (s, n) in by_slot.iter().enumerate() {

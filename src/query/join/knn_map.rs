@@ -121,15 +121,7 @@ where
         .par_iter()
         .map_init(Scratch::new, |scratch, g| {
             let mut values = Vec::with_capacity(g.len());
-            let mut each = |s: usize, t: &[usize], d: &[f64]| f(s, t, d);
-            map_group(
-                scratch,
-                (a, b, metric),
-                g,
-                (w, same),
-                &mut each,
-                &mut values,
-            );
+            map_group(scratch, (a, b, metric), g, (w, same), &mut &f, &mut values);
             values
         })
         .flatten_iter()
