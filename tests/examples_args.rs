@@ -6,7 +6,7 @@
 //!
 //! The binaries are the ones `cargo test` builds next to this test (in the profile's
 //! `examples/` folder). When they are missing or older than the sources (this file run alone,
-//! `cargo test --release --test examples_args`), they are built first with `cargo build
+//! `cargo test --test examples_args`), they are built first with `cargo build
 //! --examples` of the same profile.
 
 use std::path::{Path, PathBuf};
@@ -17,7 +17,8 @@ use std::time::{Duration, SystemTime};
 /// The examples covered here.
 const EXAMPLES: [&str; 3] = ["point_location", "quadtree_points", "build_scale"];
 
-/// The profile's folder (`target/release`): this test runs from its `deps/` folder.
+/// The profile's folder (`target/debug` for `cargo test`, `target/release` with `--release`):
+/// this test runs from its `deps/` folder.
 fn profile_dir() -> PathBuf {
     let exe = std::env::current_exe().expect("the test's path");
     exe.parent()
@@ -63,8 +64,12 @@ fn binaries() -> &'static Path {
         if !fresh {
             let mut build = Command::new(env!("CARGO"));
             build.current_dir(root).args(["build", "--examples"]);
+            // `target/release` holds the release profile's builds, `target/debug` the test
+            // profile's (the one `cargo test` builds with).
             if profile.file_name().is_some_and(|n| n == "release") {
                 build.arg("--release");
+            } else {
+                build.args(["--profile", "test"]);
             }
             let out = build.output().expect("run cargo build --examples");
             assert!(
