@@ -74,13 +74,19 @@ pub fn uniform_cells<const D: usize>(level: u8) -> u64 {
 /// // the runs of two ranks, put together, are the whole
 /// let (a, b) = (fractal_part::<2>(6, 0, 7), fractal_part::<2>(6, 7, 16));
 /// assert_eq!([a, b].concat(), all);
+/// // at level 4 and below the one uniform cell is the root (its key the whole key's width)
+/// let root = fractal_part::<2>(3, 0, uniform_cells::<2>(3));
+/// assert!(root.iter().copied().eq(fractal::<2>(3).leaves().map(|(_, c)| c)));
 /// ```
 pub fn fractal_part<const D: usize>(level: u8, first: u64, end: u64) -> Vec<Cell<D>> {
     let uniform = level.saturating_sub(4);
     let mut out = Vec::new();
     let mut stack = Vec::new();
     for i in first..end {
-        let key = i << (D * (Cell::<D>::MAX_LEVEL - uniform) as usize);
+        // At uniform level 0 the shift is the key's whole width (64 bits in 2-D) and the one
+        // cell, `i = 0`, is the root: its key is 0.
+        let shift = (D * usize::from(Cell::<D>::MAX_LEVEL - uniform)) as u32;
+        let key = i.checked_shl(shift).unwrap_or(0);
         stack.push(Cell::<D>::from_aligned_key(key, uniform));
         while let Some(c) = stack.pop() {
             if refines(level, c.level(), c.child_index()) {
