@@ -128,6 +128,22 @@ impl<const D: usize> Cell<D> {
         morton::interleave(self.coords, self.level as u32)
     }
 
+    /// The cell at `level` whose Morton key at that level ([`Cell::morton`]) is `key`.
+    ///
+    /// ```
+    /// use orthtree::geom::Cell;
+    /// let c = Cell::<3>::new(4, [5, 0, 9]).unwrap();
+    /// assert_eq!(Cell::<3>::from_morton(c.morton(), 4), c);
+    /// assert_eq!(Cell::<2>::from_morton(0, 0), Cell::root());
+    /// ```
+    #[inline]
+    pub fn from_morton(key: u64, level: u8) -> Self {
+        Cell {
+            level,
+            coords: morton::deinterleave(key, u32::from(level)),
+        }
+    }
+
     /// The Morton key aligned to [`Cell::MAX_LEVEL`]: the key of the cell's lowest descendant
     /// there. Cells of one level sort by it in z-order.
     #[inline]

@@ -83,11 +83,7 @@ pub fn fractal_part<const D: usize>(level: u8, first: u64, end: u64) -> Vec<Cell
     let mut out = Vec::new();
     let mut stack = Vec::new();
     for i in first..end {
-        // At uniform level 0 the shift is the key's whole width (64 bits in 2-D) and the one
-        // cell, `i = 0`, is the root: its key is 0.
-        let shift = (D * usize::from(Cell::<D>::MAX_LEVEL - uniform)) as u32;
-        let key = i.checked_shl(shift).unwrap_or(0);
-        stack.push(Cell::<D>::from_aligned_key(key, uniform));
+        stack.push(Cell::<D>::from_morton(i, uniform));
         while let Some(c) = stack.pop() {
             if refines(level, c.level(), c.child_index()) {
                 stack.extend((0..1 << D).rev().map(|k| c.child(k)));
