@@ -16,7 +16,9 @@ Workloads:
     periodic  --queries FILE --k K --boxsize L  k nearest of each query, boxsize L on every axis
     knn       --k K --workers W                 the K nearest others of every point (query with
                                                  k = K + 1 on the points themselves)
-    pairs     --r R                             query_pairs(R), the pairs as an array
+    pairs     --r R [--output ndarray|set]      query_pairs(R): the pairs as an array (its fastest
+                                                 form), or as scipy returns them by default, a
+                                                 set of (i, j) tuples
     count     --radii R1,R2,...                 count_neighbors(self, radii)
 """
 
@@ -60,6 +62,7 @@ def main():
     ap.add_argument("--workers", type=int, default=1)
     ap.add_argument("--r", type=float)
     ap.add_argument("--radii")
+    ap.add_argument("--output", choices=["ndarray", "set"], default="ndarray")
     a = ap.parse_args()
     pts = read_points(a.points, a.dim)
     boxsize = a.boxsize if a.workload == "periodic" else None
@@ -79,9 +82,11 @@ def main():
         print(f"count {d[:, 1:].size}")
         print(f"dist2 {float(np.square(d[:, 1:]).sum())!r}")
     elif a.workload == "pairs":
-        t, p = median_ms(a.reps, lambda: tree.query_pairs(a.r, output_type="ndarray"))
+        t, p = median_ms(a.reps, lambda: tree.query_pairs(a.r, output_type=a.output))
         print(f"query {t!r}")
         print(f"count {len(p)}")
+        if a.output == "set":
+            p = np.array(list(p), dtype=np.int64).reshape(-1, 2)
         print(f"items {int(p.sum(dtype=np.int64))}")
     else:
         radii = np.array([float(x) for x in a.radii.split(",")])

@@ -16,7 +16,8 @@
 //!   field with noise), on all of rayon's threads with the `rayon` feature (kiddo's parallel
 //!   batch query, scipy's `workers = -1`), else on one;
 //! - `pairs`: every pair within the radius that gives about 10 neighbours per point, on the
-//!   same surface, one thread (kiddo's radius join of two trees, scipy's `query_pairs`);
+//!   same surface, one thread (kiddo's radius join of two trees, scipy's `query_pairs` with
+//!   `output_type="ndarray"`, then again with its default output, a set of tuples);
 //! - `count`: the pair counts within each of 20 radii (from a quarter to four times that
 //!   radius), one thread (scipy's `count_neighbors`; kiddo has no such query).
 //!
@@ -206,7 +207,22 @@ fn run(a: &Args) -> Result<(), String> {
             ],
         };
         check(&row, true)?;
+        // scipy's `query_pairs(r)` as called by default builds a Python set of tuples; the row
+        // above times its fastest form (`output_type="ndarray"`). The same orthtree and kiddo
+        // runs beside both.
+        let set_args = [args[0].clone(), "--output=set".into()];
+        let by_default = Row {
+            name: "all pairs within r, scipy's default set output".into(),
+            threads: 1,
+            runs: [
+                row.runs[0].clone(),
+                row.runs[1].clone(),
+                scipy_run(sp, "pairs", &points, None, &set_args, reps)?,
+            ],
+        };
+        check(&by_default, true)?;
         rows.push(row);
+        rows.push(by_default);
     }
     if wanted(Workload::Count) {
         let radii = joins::log_radii(r / 4.0, 4.0 * r, 20);
