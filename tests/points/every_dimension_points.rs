@@ -70,59 +70,57 @@ fn scan<const D: usize>(
     v
 }
 
-/// Every query of a point tree against a scan of `live`, the (point, item) pairs it holds. The
-/// three trees share the query methods' names and meanings, so one macro serves them all.
-macro_rules! check_queries {
-    ($t:expr, $live:expr, $rng:expr) => {{
-        let (t, live, rng) = (&$t, $live, &mut *$rng);
-        for _ in 0..6 {
-            let b = sample_box::<D>(rng);
-            let mut got: Vec<usize> = t.query(&b).unwrap().map(|(_, &i)| i).collect();
-            got.sort_unstable();
-            let want = scan(live, |p| b.contains(p));
-            assert_eq!(got, want, "D = {}, box {:?}", D, b);
-            assert_eq!(t.query_count(&b).unwrap(), want.len());
-            let centre: [f64; D] = core::array::from_fn(|_| rng.r#gen());
-            let radius = rng.gen_range(0.05..0.9);
-            let ball = Ball::new(centre, radius).unwrap();
-            let mut got: Vec<usize> = t
-                .in_ball(&centre, radius)
-                .unwrap()
-                .map(|(_, &i)| i)
-                .collect();
-            got.sort_unstable();
-            let want = scan(live, |p| dist2(p, &centre) <= radius * radius);
-            assert_eq!(got, want, "D = {}, ball {:?}", D, ball);
-            let normal: [f64; D] = core::array::from_fn(|_| rng.gen_range(-1.0..1.0));
-            let h = HalfSpace::new(normal, rng.gen_range(-0.5..0.5)).unwrap();
-            let mut got: Vec<usize> = t.query(&h).unwrap().map(|(_, &i)| i).collect();
-            got.sort_unstable();
-            let dot = |p: &[f64; D]| (0..D).map(|a| p[a] * normal[a]).sum::<f64>();
-            let loose = scan(live, |p| dot(p) <= h.offset + 1e-12);
-            let strict = scan(live, |p| dot(p) <= h.offset - 1e-12);
-            assert!(
-                got.iter().all(|i| loose.contains(i)) && strict.iter().all(|i| got.contains(i))
-            );
-            let mut dists: Vec<f64> = live.iter().map(|(p, _)| dist2(p, &centre)).collect();
-            dists.sort_by(f64::total_cmp);
-            let k = rng.gen_range(1..6);
-            let near: Vec<f64> = t
-                .k_nearest(&centre, k)
-                .unwrap()
-                .iter()
-                .map(|n| n.distance)
-                .collect();
-            assert_eq!(
-                near,
-                dists[..k.min(dists.len())],
-                "D = {}, {} nearest",
-                D,
-                k
-            );
-            let nearest = t.nearest(&centre).unwrap().map(|n| n.distance);
-            assert_eq!(nearest, dists.first().copied());
-        }
-    }};
+/// Every query of a point set against a scan of `live`, the (point, item) pairs it holds: one
+/// generic function over the [`PointSet`] trait serves the three trees.
+fn check_queries<P, const D: usize>(t: &P, live: &[([f64; D], usize)], rng: &mut SmallRng)
+where
+    P: PointSet<D, Scalar = f64, Item = usize>,
+{
+    for _ in 0..6 {
+        let b = sample_box::<D>(rng);
+        let mut got: Vec<usize> = t.query(&b).unwrap().map(|(_, &i)| i).collect();
+        got.sort_unstable();
+        let want = scan(live, |p| b.contains(p));
+        assert_eq!(got, want, "D = {}, box {:?}", D, b);
+        assert_eq!(t.query_count(&b).unwrap(), want.len());
+        let centre: [f64; D] = core::array::from_fn(|_| rng.r#gen());
+        let radius = rng.gen_range(0.05..0.9);
+        let ball = Ball::new(centre, radius).unwrap();
+        let mut got: Vec<usize> = t
+            .in_ball(&centre, radius)
+            .unwrap()
+            .map(|(_, &i)| i)
+            .collect();
+        got.sort_unstable();
+        let want = scan(live, |p| dist2(p, &centre) <= radius * radius);
+        assert_eq!(got, want, "D = {}, ball {:?}", D, ball);
+        let normal: [f64; D] = core::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+        let h = HalfSpace::new(normal, rng.gen_range(-0.5..0.5)).unwrap();
+        let mut got: Vec<usize> = t.query(&h).unwrap().map(|(_, &i)| i).collect();
+        got.sort_unstable();
+        let dot = |p: &[f64; D]| (0..D).map(|a| p[a] * normal[a]).sum::<f64>();
+        let loose = scan(live, |p| dot(p) <= h.offset + 1e-12);
+        let strict = scan(live, |p| dot(p) <= h.offset - 1e-12);
+        assert!(got.iter().all(|i| loose.contains(i)) && strict.iter().all(|i| got.contains(i)));
+        let mut dists: Vec<f64> = live.iter().map(|(p, _)| dist2(p, &centre)).collect();
+        dists.sort_by(f64::total_cmp);
+        let k = rng.gen_range(1..6);
+        let near: Vec<f64> = t
+            .k_nearest(&centre, k)
+            .unwrap()
+            .iter()
+            .map(|n| n.distance)
+            .collect();
+        assert_eq!(
+            near,
+            dists[..k.min(dists.len())],
+            "D = {}, {} nearest",
+            D,
+            k
+        );
+        let nearest = t.nearest(&centre).unwrap().map(|n| n.distance);
+        assert_eq!(nearest, dists.first().copied());
+    }
 }
 
 /// Removes the entry of item `item` from `live`.
@@ -151,7 +149,7 @@ fn check_point_tree<const D: usize>(rng: &mut SmallRng, entries: &[([f64; D], us
     check_all(&t, entries);
     let mut t = t;
     let mut live = entries.to_vec();
-    check_queries!(t, &live, rng);
+    check_queries(&t, &live, rng);
     for (p, i) in fresh::<D>(rng, entries.len(), 6) {
         t.insert(p, i).unwrap();
         live.push((p, i));
@@ -163,7 +161,7 @@ fn check_point_tree<const D: usize>(rng: &mut SmallRng, entries: &[([f64; D], us
         forget(&mut live, i);
         t.validate().unwrap();
     }
-    check_queries!(t, &live, rng);
+    check_queries(&t, &live, rng);
     for (p, i) in &live {
         let leaf = t.locate(p).unwrap().inside().unwrap();
         assert!(t.tree().is_leaf(leaf) && t.node_items(leaf).contains(i));
@@ -179,7 +177,7 @@ fn check_dynamic<const D: usize>(rng: &mut SmallRng, entries: &[([f64; D], usize
     t.validate().unwrap();
     t.tree().validate().unwrap();
     let mut live = entries.to_vec();
-    check_queries!(t, &live, rng);
+    check_queries(&t, &live, rng);
     for round in 0..2 {
         for (p, i) in fresh::<D>(rng, entries.len() + 10 * round, 8) {
             t.insert(p, i).unwrap();
@@ -193,7 +191,7 @@ fn check_dynamic<const D: usize>(rng: &mut SmallRng, entries: &[([f64; D], usize
             t.validate().unwrap();
             t.tree().validate().unwrap();
         }
-        check_queries!(t, &live, rng);
+        check_queries(&t, &live, rng);
     }
     assert_eq!(t.len(), live.len());
 }
@@ -202,7 +200,7 @@ fn check_compressed<const D: usize>(rng: &mut SmallRng, entries: &[([f64; D], us
     let mut t = compressed(entries);
     t.validate().unwrap();
     let mut live = entries.to_vec();
-    check_queries!(t, &live, rng);
+    check_queries(&t, &live, rng);
     for (p, i) in fresh::<D>(rng, entries.len(), 6) {
         t.insert(p, i).unwrap();
         live.push((p, i));
@@ -214,7 +212,7 @@ fn check_compressed<const D: usize>(rng: &mut SmallRng, entries: &[([f64; D], us
         forget(&mut live, i);
         t.validate().unwrap();
     }
-    check_queries!(t, &live, rng);
+    check_queries(&t, &live, rng);
     for (p, _) in &live {
         let at = t.locate(p).unwrap().inside().unwrap();
         assert!(at.leaf, "D = {D}: a stored point's finest cell is a leaf");
