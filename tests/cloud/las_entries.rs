@@ -165,3 +165,23 @@ fn compressed_files_are_refused_for_the_full_reader() {
         LasError::UnsupportedFormat(_)
     ));
 }
+
+#[test]
+fn a_header_the_full_reader_refuses_is_refused_here_too() {
+    let good = bytes(&cloud(14, 6, false), false);
+    // the point data said to start inside the header (its bytes would be taken for points),
+    // and a version without point format 0
+    let mut inside = good.clone();
+    inside[96..100].copy_from_slice(&16u32.to_le_bytes());
+    let mut version = good.clone();
+    version[25] = 15;
+    for (name, b) in [("inside", inside), ("version", version)] {
+        let file = TempFile::new(&format!("refused-{name}.las"), &b);
+        assert!(las::read(&file.0).is_err(), "{name}");
+        match las::read_entries(&file.0) {
+            Err(LasError::Las { point: None, .. }) => {}
+            other => panic!("{name}: {other:?}"),
+        }
+        assert!(LasEntries::open(&file.0).is_err(), "{name}");
+    }
+}

@@ -193,3 +193,98 @@ fn columns_las_cannot_hold_are_refused_by_name() {
         "LAS point 3: return_number = 9 does not fit its field"
     );
 }
+
+/// `bytes[at..at + N]` set to `value`'s little-endian bytes.
+fn put<const N: usize>(bytes: &mut [u8], at: usize, value: [u8; N]) {
+    bytes[at..at + N].copy_from_slice(&value);
+}
+
+/// The error of reading `bytes`, which must name header field `field` at byte `offset`.
+fn assert_field(bytes: Vec<u8>, field: &str, offset: usize) {
+    match from_las(bytes) {
+        Err(LasError::Field {
+            field: f,
+            offset: o,
+            ..
+        }) if f == field && o == offset as u64 => {}
+        other => panic!("expected {field} at {offset}: {other:?}"),
+    }
+}
+
+#[test]
+fn a_point_count_whose_records_end_beyond_64_bits_is_refused_by_field() {
+    // 2^64 - 1 records of 36 bytes: the end of the records overflows (the las crate's own
+    // arithmetic would)
+    let mut bytes = to_las(&las_cloud(9, 3, false), false);
+    put(&mut bytes, 107, 0u32.to_le_bytes());
+    put(&mut bytes, 247, u64::MAX.to_le_bytes());
+    assert_field(bytes.clone(), "number of point records", 247);
+    let err = from_las(bytes).unwrap_err().to_string();
+    assert!(err.contains("byte offset 247"), "{err}");
+}
+
+#[test]
+fn an_evlr_longer_than_the_file_is_refused_before_it_is_allocated() {
+    let mut bytes = to_las(&las_cloud(10, 3, false), false);
+    let start = bytes.len();
+    // one EVLR header (60 bytes) claiming 2^40 bytes of data, none of which follow
+    let mut evlr = vec![0u8; 60];
+    evlr[20..28].copy_from_slice(&(1u64 << 40).to_le_bytes());
+    bytes.extend_from_slice(&evlr);
+    put(&mut bytes, 235, (start as u64).to_le_bytes());
+    put(&mut bytes, 243, 1u32.to_le_bytes());
+    assert_field(bytes.clone(), "EVLR record length", start + 20);
+    // and one starting past the end of the file
+    put(&mut bytes, 235, (1u64 << 50).to_le_bytes());
+    assert_field(bytes, "start of first EVLR", 235);
+}
+
+/// The byte offset of the data of the LASzip VLR of `bytes` (a LAZ file by `to_las`).
+fn laszip_data(bytes: &[u8]) -> usize {
+    let id = bytes
+        .windows(14)
+        .position(|w| w == b"laszip encoded")
+        .expect("a LAZ file has the LASzip VLR");
+    id - 2 + 54
+}
+
+#[test]
+fn a_laz_chunk_table_claiming_more_chunks_than_bytes_is_refused() {
+    let mut bytes = to_las(&las_cloud(11, 50, false), true);
+    let data = u32::from_le_bytes(bytes[96..100].try_into().unwrap()) as usize;
+    let table = i64::from_le_bytes(bytes[data..data + 8].try_into().unwrap()) as usize;
+    // 2^32 - 1 chunks: the laz crate would reserve 64 GiB for their entries
+    put(&mut bytes, table + 4, u32::MAX.to_le_bytes());
+    assert_field(bytes, "LAZ chunk count", table + 4);
+}
+
+#[test]
+fn laszip_items_other_than_the_point_formats_are_refused() {
+    for extended in [false, true] {
+        let mut bytes = to_las(&las_cloud(12, 5, extended), true);
+        let vlr = laszip_data(&bytes);
+        // no items at all (the laz crate's decoder panics on those), then a wrong size
+        let mut none = bytes.clone();
+        put(&mut none, vlr + 32, 0u16.to_le_bytes());
+        assert_field(none, "LASzip items", vlr + 32);
+        put(&mut bytes, vlr + 34 + 2, 7u16.to_le_bytes());
+        assert_field(bytes, "LASzip items", vlr + 32);
+    }
+}
+
+#[test]
+fn a_laz_layer_longer_than_the_file_is_refused_before_it_is_allocated() {
+    // formats 6-8 compress in layers whose byte counts follow each chunk's first record and
+    // point count; the laz crate allocates a layer's count before reading it
+    let bytes = to_las(&las_cloud(13, 40, true), true);
+    let data = u32::from_le_bytes(bytes[96..100].try_into().unwrap()) as usize;
+    let record = u16::from_le_bytes(bytes[105..107].try_into().unwrap()) as usize;
+    let sizes = data + 8 + record + 4;
+    for layer in [0, 3] {
+        let mut b = bytes.clone();
+        put(&mut b, sizes + 4 * layer, u32::MAX.to_le_bytes());
+        assert_field(b, "LAZ layer size", sizes + 4 * layer);
+    }
+    // the unchanged file still reads
+    assert_eq!(from_las(bytes).unwrap().len(), 40);
+}

@@ -10,6 +10,7 @@
 //! feature a block is converted on all threads while the next one is read. Reading every field
 //! ([`read`](super::read)) costs about ten times more per point.
 
+use super::header::checked_header;
 use super::{las_error, LasError, BATCH_BYTES};
 use crate::cloud::Frame;
 use ::las::raw;
@@ -100,6 +101,12 @@ impl Records {
                 message: format!("{count} points: at most {} fit a point tree", u32::MAX - 1),
             });
         }
+        // The claims the `las` crate trusts, then its checks of the whole header (the version's
+        // point formats, the VLRs between the header and the records), so that this reader
+        // refuses what `read` refuses rather than taking the header's bytes for points.
+        checked_header(&mut file, length)?;
+        file.seek(SeekFrom::Start(0))?;
+        ::las::Header::new(&mut file).map_err(las_error(None))?;
         let start = u64::from(header.offset_to_point_data);
         let whole = length.saturating_sub(start) / record as u64;
         if whole < count {
@@ -141,6 +148,7 @@ impl Records {
 ///
 /// # Errors
 /// [`LasError::Las`] for a header the `las` crate refuses, or a point count of 2^32 - 1 or more;
+/// [`LasError::Field`] for a header field claiming more than the file holds;
 /// [`LasError::UnsupportedFormat`] for compressed (LAZ) and waveform formats (read them with
 /// [`read`](super::read)); [`LasError::Truncated`] when the file is shorter than the records the
 /// header declares (checked before anything is allocated); [`LasError::Io`] when reading fails.

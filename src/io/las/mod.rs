@@ -36,6 +36,7 @@ use std::io::{Read, Seek, SeekFrom};
 use std::path::Path;
 
 pub(crate) mod entries;
+mod header;
 mod write;
 pub use entries::read_entries;
 pub use write::{write, write_to};
@@ -56,12 +57,27 @@ pub enum LasError {
     },
     /// The file ends inside point `point` of the `count` the header declares.
     Truncated {
-        /// The first point missing or incomplete.
+        /// The first point missing or incomplete (in a LAZ file, the first point of the batch
+        /// of at most 4 MiB of records being decompressed).
         point: u64,
         /// The points declared.
         count: u64,
         /// The file's length in bytes.
         length: u64,
+    },
+    /// A header field claims more than the file holds: a point count whose records would end
+    /// beyond 2^64 bytes, a first EVLR starting or ending beyond the file, a LAZ chunk table
+    /// with more chunks than bytes of compressed points. Checked before the `las` crate reads
+    /// (or allocates) anything by it.
+    Field {
+        /// The field.
+        field: &'static str,
+        /// Its byte offset in the file.
+        offset: u64,
+        /// The value found.
+        found: String,
+        /// The limit it broke.
+        expected: String,
     },
     /// A point format with waveform packets (4, 5, 9, 10).
     UnsupportedFormat(u8),
@@ -98,6 +114,15 @@ impl fmt::Display for LasError {
                 f,
                 "LAS: the file ends (at byte offset {length}) inside point {point} of the {count} declared"
             ),
+            LasError::Field {
+                field,
+                offset,
+                found,
+                expected,
+            } => write!(
+                f,
+                "LAS: {field} (byte offset {offset}) is {found}, expected {expected}"
+            ),
             LasError::UnsupportedFormat(n) => {
                 write!(f, "LAS: point format {n} carries waveforms, which are not read")
             }
@@ -132,6 +157,30 @@ fn las_error(point: Option<u64>) -> impl Fn(::las::Error) -> LasError {
     }
 }
 
+/// Runs `f`, a call into the `las` crate, with a panic in it (its LAZ decoder panics on some
+/// damaged chunk tables that no check of the header rules out) turned into [`LasError::Las`].
+fn guarded<T>(
+    point: Option<u64>,
+    f: impl FnOnce() -> Result<T, ::las::Error>,
+) -> Result<T, LasError> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(f))
+        .map_err(|panic| decoder_panic(point, panic))?
+        .map_err(las_error(point))
+}
+
+/// The error for a panic of the `las` crate's decoder, with its message.
+fn decoder_panic(point: Option<u64>, panic: Box<dyn std::any::Any + Send>) -> LasError {
+    let message = panic
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| panic.downcast_ref::<String>().cloned())
+        .unwrap_or_default();
+    LasError::Las {
+        point,
+        message: format!("the decoder failed on damaged data: {message}"),
+    }
+}
+
 /// Reads the LAS (or, with the `laz` feature, LAZ) file at `path`.
 ///
 /// # Errors
@@ -143,8 +192,10 @@ pub fn read(path: impl AsRef<Path>) -> Result<Cloud<i32>, LasError> {
 /// Reads a LAS (or LAZ) cloud from `input`, keeping the integer coordinates.
 ///
 /// # Errors
-/// [`LasError::Las`] for a header or record the `las` crate refuses, [`LasError::Truncated`]
-/// naming the first missing point, [`LasError::UnsupportedFormat`] for waveform formats.
+/// [`LasError::Las`] for a header or record the `las` crate refuses, [`LasError::Field`] for a
+/// header field claiming more than the file holds (checked before the `las` crate reads on),
+/// [`LasError::Truncated`] naming the first missing point, [`LasError::UnsupportedFormat`] for
+/// waveform formats.
 ///
 /// # Complexity
 /// O(n); memory is the cloud plus one batch of at most 4 MiB of records.
@@ -152,8 +203,9 @@ pub fn read_from<R: Read + Seek + Send + Sync + 'static>(
     mut input: R,
 ) -> Result<Cloud<i32>, LasError> {
     let length = input.seek(SeekFrom::End(0))?;
+    header::checked_header(&mut input, length)?;
     input.seek(SeekFrom::Start(0))?;
-    let mut reader = Reader::new(input).map_err(las_error(None))?;
+    let mut reader = guarded(None, || Reader::new(input))?;
     let header = reader.header().clone();
     let format = *header.point_format();
     if format.has_waveform {
@@ -176,14 +228,22 @@ pub fn read_from<R: Read + Seek + Send + Sync + 'static>(
     let mut done = 0u64;
     while done < count {
         let want = batch.min(count - done);
-        match reader.fill_points(want, &mut data) {
+        let filled = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            reader.fill_points(want, &mut data)
+        }))
+        .map_err(|panic| decoder_panic(Some(done), panic))?;
+        match filled {
             Ok(got) if got == want => {}
             Ok(_) | Err(::las::Error::Io(_)) => {
-                // Find the first point that cannot be read, one at a time.
-                reader.seek(done).map_err(las_error(Some(done)))?;
+                // Find the first point that cannot be read, one at a time. Not in a LAZ file:
+                // seeking there follows its chunk table, which a damaged file can point
+                // anywhere; the batch's first point is named.
                 let mut point = done;
-                while reader.fill_points(1, &mut data).is_ok_and(|n| n == 1) {
-                    point += 1;
+                if !format.is_compressed {
+                    reader.seek(done).map_err(las_error(Some(done)))?;
+                    while reader.fill_points(1, &mut data).is_ok_and(|n| n == 1) {
+                        point += 1;
+                    }
                 }
                 return Err(LasError::Truncated {
                     point,
