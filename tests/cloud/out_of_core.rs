@@ -200,3 +200,55 @@ fn mapped_box_queries_equal_a_scan() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// First children that share their blocks (a file damaged after it was written): every slot of
+/// block k has block k + 1 as its children, down to block 30, whose slots are leaves. A segment
+/// crosses two cells of each node, so a walk that follows the links would visit 2^31 cells;
+/// the query through the map reaches no slot twice and reports the damage.
+#[cfg(feature = "mmap")]
+#[test]
+fn mapped_box_query_stops_on_first_children_shared_by_many_nodes() {
+    use orthtree::io::saved::mapped::MappedTree;
+    use orthtree::io::saved::SavedError;
+    use orthtree::Aabb;
+    let mut rng = SmallRng::seed_from_u64(15);
+    let pts: Vec<([f64; 2], u32)> = (0..300)
+        .map(|i| ([rng.gen_range(0.0..1.0), rng.gen_range(0.0..1.0)], i))
+        .collect();
+    let tree = PointTreeBuilder::new().bucket_size(1).build(&pts).unwrap();
+    let mut bytes = Vec::new();
+    write_point_tree(&tree, &mut bytes).unwrap();
+    let slots = u64::from_le_bytes(bytes[40..48].try_into().unwrap()) as usize;
+    assert!(slots > 1 + 4 * 31, "{slots} slots");
+    // 2D: a header of 252 bytes, then points (n x 16), items (n x 4), run ends (slots x 4)
+    // and first children (slots x 4), each from a multiple of 16
+    let padded = |x: usize| x.div_ceil(16) * 16;
+    let run_ends = padded(padded(padded(252) + 16 * pts.len()) + 4 * pts.len());
+    let first_child = padded(run_ends + 4 * slots);
+    for slot in 0..slots {
+        let block = slot.saturating_sub(1) / 4;
+        let child = match slot {
+            0 => 1,
+            _ if block < 30 => 1 + 4 * (block as u32 + 1),
+            _ => u32::MAX,
+        };
+        bytes[run_ends + 4 * slot..][..4].copy_from_slice(&0u32.to_le_bytes());
+        bytes[first_child + 4 * slot..][..4].copy_from_slice(&child.to_le_bytes());
+    }
+    let dir = folder("mapped-shared");
+    let file = dir.join("t.tree");
+    std::fs::write(&file, &bytes).unwrap();
+    let mapped = MappedTree::<f64, u32, 2>::open(&file).unwrap();
+    let d = mapped.domain();
+    let x = d.min[0] + 0.3 * (d.max[0] - d.min[0]);
+    let segment = Aabb::new([x, d.min[1]], [x, d.max[1]]).unwrap();
+    let start = std::time::Instant::now();
+    match mapped.query_box(&segment, |_, _| {}) {
+        Err(SavedError::Corrupt { what, .. }) => assert_eq!(what, "node reached twice"),
+        other => panic!("{other:?}"),
+    }
+    assert!(start.elapsed().as_secs() < 5);
+    assert!(mapped.view().is_err() && mapped.to_tree().is_err());
+    drop(mapped);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -152,12 +152,14 @@ impl<S: SavedScalar, T: Pod, const D: usize> MappedTree<S, T, D> {
     /// can still do, and [`MappedTree::view`] for the checked queries).
     ///
     /// # Errors
-    /// [`SavedError::Corrupt`] naming the node whose links or runs leave the arrays (a file
-    /// damaged after it was written; [`MappedTree::to_tree`] checks every invariant).
+    /// [`SavedError::Corrupt`] naming the node whose links or runs leave the arrays, or that
+    /// the walk reaches twice (a file damaged after it was written; [`MappedTree::to_tree`]
+    /// checks every invariant).
     ///
     /// # Complexity
-    /// That of a box query on the tree, O(depth + nodes cut + k) for k points found; memory
-    /// O(2^D depth) besides the pages read.
+    /// That of a box query on the tree, O(depth + nodes cut + k) for k points found, and never
+    /// more than O(m + n) for m node slots whatever the file's links; memory O(2^D depth)
+    /// besides the pages read.
     pub fn query_box(
         &self,
         query: &Aabb<f64, D>,
@@ -177,7 +179,14 @@ impl<S: SavedScalar, T: Pod, const D: usize> MappedTree<S, T, D> {
         let first_child: &[u32] = self.section(3, slots)?;
         let mut found = 0usize;
         let mut stack: Vec<(u32, Cell<D>, usize, usize)> = vec![(0, Cell::root(), 0, n)];
+        // A tree reaches each of its node slots at most once: more visits mean first children
+        // that link back into the tree (a damaged file), whose walk would grow with 2^(D level).
+        let mut visits = 0usize;
         while let Some((v, cell, s, e)) = stack.pop() {
+            visits += 1;
+            if visits > slots {
+                return Err(corrupt("node reached twice", u64::from(v)));
+            }
             if e > n || s > e {
                 return Err(corrupt("node run", u64::from(v)));
             }
