@@ -69,6 +69,16 @@ pub enum XyzError {
         /// The value.
         value: f64,
     },
+    /// The line of names holds `name` twice: the later column would silently take the place
+    /// of the earlier (two `x` columns, two intensities).
+    DuplicateColumn {
+        /// The line of names.
+        line: usize,
+        /// The field of the second occurrence.
+        field: usize,
+        /// The name (cut after 32 characters).
+        name: String,
+    },
     /// A line is longer than [`MAX_LINE_BYTES`] or not UTF-8.
     BadLine {
         /// The line.
@@ -98,6 +108,10 @@ impl fmt::Display for XyzError {
             XyzError::Inexact { line, field, value } => write!(
                 f,
                 "XYZ line {line}, field {field}: {value} does not fit its column exactly"
+            ),
+            XyzError::DuplicateColumn { line, field, name } => write!(
+                f,
+                "XYZ line {line}, field {field}: column {name:?} is named twice"
             ),
             XyzError::BadLine { line } => write!(
                 f,
@@ -132,7 +146,7 @@ fn fields(line: &str) -> impl Iterator<Item = &str> {
 /// # Errors
 /// [`XyzError`] naming the line and field of a field that is not a number, a value that does
 /// not fit its column, a line with another number of fields than the first, a missing `x`,
-/// `y` or `z` name, or an I/O error.
+/// `y` or `z` name, a name given twice, or an I/O error.
 ///
 /// # Complexity
 /// O(n) time; memory grows with the points read.
@@ -176,6 +190,15 @@ pub fn read<S: Scalar>(input: impl Read) -> Result<Cloud<S>, XyzError> {
             } else {
                 first.iter().map(|s| s.to_string()).collect()
             };
+            for (field, name) in names.iter().enumerate() {
+                if names[..field].contains(name) {
+                    return Err(XyzError::DuplicateColumn {
+                        line: line_no,
+                        field: field + 1,
+                        name: name.chars().take(32).collect(),
+                    });
+                }
+            }
             for name in ["x", "y", "z"] {
                 if !names.iter().any(|n| n == name) {
                     return Err(XyzError::MissingColumn { name });

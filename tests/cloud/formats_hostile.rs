@@ -134,6 +134,32 @@ fn xyz_errors_name_line_and_field() {
     assert!(matches!(err, XyzError::BadLine { line: 2 }));
 }
 
+#[test]
+fn xyz_refuses_a_column_named_twice() {
+    // the second x would have replaced the first without a word: x = 4 for the point
+    let err = xyz::read::<f64>("x,y,z,x\n1,2,3,4\n".as_bytes()).unwrap_err();
+    assert!(
+        matches!(&err, XyzError::DuplicateColumn { line: 1, field: 4, name } if name == "x"),
+        "{err:?}"
+    );
+    assert_eq!(
+        err.to_string(),
+        "XYZ line 1, field 4: column \"x\" is named twice"
+    );
+    // after comment lines, and for attribute and extra columns alike
+    for (text, line, field) in [
+        ("# scan\nx y z intensity intensity\n1 2 3 4 5\n", 2, 5),
+        ("x y z w w\n1 2 3 4 5\n", 1, 5),
+    ] {
+        match xyz::read::<f64>(text.as_bytes()).unwrap_err() {
+            XyzError::DuplicateColumn {
+                line: l, field: f, ..
+            } => assert_eq!((l, f), (line, field)),
+            other => panic!("{other}"),
+        }
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(256))]
 
