@@ -177,7 +177,11 @@ pub fn read<S: Scalar>(input: impl Read) -> Result<Cloud<S>, XyzError> {
         }
         if layout.is_none() {
             let first: Vec<&str> = fields(text).collect();
-            let numeric = first[0].parse::<f64>().is_ok();
+            // A first line of separators alone (",,") names no column.
+            let Some(head) = first.first() else {
+                return Err(XyzError::MissingColumn { name: "x" });
+            };
+            let numeric = head.parse::<f64>().is_ok();
             let names: Vec<String> = if numeric {
                 (0..first.len())
                     .map(|i| match i {

@@ -135,6 +135,29 @@ fn xyz_errors_name_line_and_field() {
 }
 
 #[test]
+fn xyz_refuses_a_first_line_of_separators_alone() {
+    // a line of commas is no blank line, but it has no field: the first column was read from
+    // an empty list
+    for text in [",", ",,\n1,2,3\n", "# names\n , \t,\n"] {
+        let err = xyz::read::<f64>(text.as_bytes()).unwrap_err();
+        assert!(
+            matches!(err, XyzError::MissingColumn { name: "x" }),
+            "{err:?}"
+        );
+    }
+    // after the first line, such a line is a line with no fields
+    let err = xyz::read::<f64>("1,2,3\n,,\n".as_bytes()).unwrap_err();
+    assert!(matches!(
+        err,
+        XyzError::FieldCount {
+            line: 2,
+            found: 0,
+            expected: 3
+        }
+    ));
+}
+
+#[test]
 fn xyz_refuses_a_column_named_twice() {
     // the second x would have replaced the first without a word: x = 4 for the point
     let err = xyz::read::<f64>("x,y,z,x\n1,2,3,4\n".as_bytes()).unwrap_err();
