@@ -201,10 +201,12 @@ fn mapped_box_queries_equal_a_scan() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// First children that share their blocks (a file damaged after it was written): every slot of
-/// block k has block k + 1 as its children, down to block 30, whose slots are leaves. A segment
-/// crosses two cells of each node, so a walk that follows the links would visit 2^31 cells;
-/// the query through the map reaches no slot twice and reports the damage.
+/// First children that share their blocks (a file damaged after it was written): the root's
+/// last child holds every point and is a leaf, its other children have empty runs and share
+/// block 1 as their children, every slot of block k has block k + 1 as its children (with empty
+/// runs), down to block 30, whose slots are leaves. The runs partition their parents', but a
+/// segment crosses two cells of each node, so a walk that follows the links would visit 2^31
+/// cells; the query through the map reaches no slot twice and reports the damage.
 #[cfg(feature = "mmap")]
 #[test]
 fn mapped_box_query_stops_on_first_children_shared_by_many_nodes() {
@@ -227,12 +229,13 @@ fn mapped_box_query_stops_on_first_children_shared_by_many_nodes() {
     let first_child = padded(run_ends + 4 * slots);
     for slot in 0..slots {
         let block = slot.saturating_sub(1) / 4;
-        let child = match slot {
-            0 => 1,
-            _ if block < 30 => 1 + 4 * (block as u32 + 1),
-            _ => u32::MAX,
+        let (child, end) = match slot {
+            0 => (1, pts.len() as u32),
+            4 => (u32::MAX, pts.len() as u32),
+            _ if block < 30 => (1 + 4 * (block as u32 + 1), 0),
+            _ => (u32::MAX, 0),
         };
-        bytes[run_ends + 4 * slot..][..4].copy_from_slice(&0u32.to_le_bytes());
+        bytes[run_ends + 4 * slot..][..4].copy_from_slice(&end.to_le_bytes());
         bytes[first_child + 4 * slot..][..4].copy_from_slice(&child.to_le_bytes());
     }
     let dir = folder("mapped-shared");
@@ -249,6 +252,46 @@ fn mapped_box_query_stops_on_first_children_shared_by_many_nodes() {
     }
     assert!(start.elapsed().as_secs() < 5);
     assert!(mapped.view().is_err() && mapped.to_tree().is_err());
+    drop(mapped);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A node whose last child's run reaches past its own (a damaged run end): the points after
+/// its run belong to other nodes, and a box query through the map must not report them twice.
+#[cfg(feature = "mmap")]
+#[test]
+fn mapped_box_query_refuses_child_runs_that_leave_their_parents() {
+    use orthtree::io::saved::mapped::MappedTree;
+    use orthtree::io::saved::SavedError;
+    use orthtree::Aabb;
+    let mut rng = SmallRng::seed_from_u64(16);
+    let pts: Vec<([f64; 2], u32)> = (0..300)
+        .map(|i| ([rng.gen_range(0.0..1.0), rng.gen_range(0.0..1.0)], i))
+        .collect();
+    let tree = PointTreeBuilder::new().bucket_size(1).build(&pts).unwrap();
+    let mut bytes = Vec::new();
+    write_point_tree(&tree, &mut bytes).unwrap();
+    let slots = u64::from_le_bytes(bytes[40..48].try_into().unwrap()) as usize;
+    // 2D: a header of 252 bytes, then points (n x 16), items (n x 4), run ends (slots x 4)
+    // and first children (slots x 4), each from a multiple of 16
+    let padded = |x: usize| x.div_ceil(16) * 16;
+    let run_ends = padded(padded(padded(252) + 16 * pts.len()) + 4 * pts.len());
+    let first_child = padded(run_ends + 4 * slots);
+    let word = |b: &[u8], at: usize| u32::from_le_bytes(b[at..at + 4].try_into().unwrap());
+    // the root's first child (slot 1) runs from point 0; its last child now ends at the last
+    // point instead of at its parent's end
+    let block = word(&bytes, first_child + 4) as usize;
+    assert!(block < slots, "slot 1 has children");
+    bytes[run_ends + 4 * (block + 3)..][..4].copy_from_slice(&(pts.len() as u32).to_le_bytes());
+    let dir = folder("mapped-runs");
+    let file = dir.join("t.tree");
+    std::fs::write(&file, &bytes).unwrap();
+    let mapped = MappedTree::<f64, u32, 2>::open(&file).unwrap();
+    let inner = Aabb::new([0.01; 2], [0.99; 2]).unwrap();
+    match mapped.query_box(&inner, |_, _| {}) {
+        Err(SavedError::Corrupt { what, .. }) => assert_eq!(what, "child runs"),
+        other => panic!("{other:?}"),
+    }
     drop(mapped);
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -148,13 +148,13 @@ impl<S: SavedScalar, T: Pod, const D: usize> MappedTree<S, T, D> {
 
     /// Calls `visit(point, item)` for every point in the closed box `query`; returns how many.
     /// Nodes outside the box are skipped and the points of the others tested exactly (so a
-    /// point outside the box is never reported; see the module doc for what a damaged file
-    /// can still do, and [`MappedTree::view`] for the checked queries).
+    /// point outside the box is never reported, and none twice; see the module doc for what a
+    /// damaged file can still do, and [`MappedTree::view`] for the checked queries).
     ///
     /// # Errors
-    /// [`SavedError::Corrupt`] naming the node whose links or runs leave the arrays, or that
-    /// the walk reaches twice (a file damaged after it was written; [`MappedTree::to_tree`]
-    /// checks every invariant).
+    /// [`SavedError::Corrupt`] naming the node whose links or runs leave the arrays, whose
+    /// children's runs do not partition its own, or that the walk reaches twice (a file damaged
+    /// after it was written; [`MappedTree::to_tree`] checks every invariant).
     ///
     /// # Complexity
     /// That of a box query on the tree, O(depth + nodes cut + k) for k points found, and never
@@ -215,6 +215,11 @@ impl<S: SavedScalar, T: Pod, const D: usize> MappedTree<S, T, D> {
             let ends = run_ends
                 .get(first..first + Dim::<D>::CHILDREN)
                 .ok_or(corrupt("first child", u64::from(v)))?;
+            // The children's runs must partition the node's: one that reached past it would
+            // report the points of another node a second time.
+            if ends.last().is_some_and(|&end| s + end as usize != e) {
+                return Err(corrupt("child runs", u64::from(v)));
+            }
             let mut lo = s;
             for (c, &end) in ends.iter().enumerate() {
                 let hi = s + end as usize;
