@@ -288,3 +288,18 @@ fn a_laz_layer_longer_than_the_file_is_refused_before_it_is_allocated() {
     // the unchanged file still reads
     assert_eq!(from_las(bytes).unwrap().len(), 40);
 }
+
+#[test]
+fn a_point_wise_laz_file_with_layered_items_has_its_layers_checked_too() {
+    // the laz crate picks the layered decoder by the items' version, whatever the compressor
+    // says: a point-wise file (compressor 1: one chunk from the first byte of the point data,
+    // no chunk table) of format 6-8 items is read in layers as well
+    let mut bytes = to_las(&las_cloud(17, 40, true), true);
+    let vlr = laszip_data(&bytes);
+    put(&mut bytes, vlr, 1u16.to_le_bytes());
+    let data = u32::from_le_bytes(bytes[96..100].try_into().unwrap()) as usize;
+    let record = u16::from_le_bytes(bytes[105..107].try_into().unwrap()) as usize;
+    let sizes = data + record + 4;
+    put(&mut bytes, sizes, u32::MAX.to_le_bytes());
+    assert_field(bytes, "LAZ layer size", sizes);
+}

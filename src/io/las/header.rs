@@ -120,7 +120,7 @@ pub(super) fn checked_header<R: Read + Seek>(
     if let Ok(format) = ::las::point::Format::new(header.point_data_record_format)
         && format.is_compressed
     {
-        check_laz(input, &header, vlrs, format, length)?;
+        check_laz(input, &header, vlrs, format, count, length)?;
     }
     Ok(header)
 }
@@ -130,6 +130,8 @@ struct Laszip {
     /// The byte offset of the VLR's data.
     at: u64,
     compressor: u16,
+    /// Points per chunk (u32::MAX: each chunk's count is in the chunk table).
+    chunk_size: u32,
     /// The items: type, size and version.
     items: Vec<[u16; 3]>,
 }
@@ -171,6 +173,7 @@ fn laszip_vlr<R: Read + Seek>(
             return Ok(Some(Laszip {
                 at,
                 compressor: word(0),
+                chunk_size: u32::from_le_bytes([data[12], data[13], data[14], data[15]]),
                 items,
             }));
         }
@@ -236,12 +239,13 @@ fn items_of(format: u8, extra: u16) -> (Vec<[u16; 2]>, [u16; 2]) {
 /// format (the decoder is built from them and has no checks of its own: no items at all panics
 /// in it); the chunk table's count ([`check_chunk_count`]); and, for the layered chunks of
 /// formats 6-10, that every layer's byte count, which the decoder allocates before reading the
-/// layer, fits the bytes left in the file.
+/// layer, fits the bytes left in the file ([`check_layers`]). `count` is the header's points.
 fn check_laz<R: Read + Seek>(
     input: &mut R,
     header: &raw::Header,
     vlrs: u64,
     format: ::las::point::Format,
+    count: u64,
     length: u64,
 ) -> Result<(), LasError> {
     let Some(vlr) = laszip_vlr(input, header, vlrs, length)? else {
@@ -263,40 +267,47 @@ fn check_laz<R: Read + Seek>(
             ),
         ));
     }
-    if vlr.compressor == POINT_WISE {
-        return Ok(());
-    }
     let start = u64::from(header.offset_to_point_data);
-    let table = check_chunk_count(input, start, length)?;
+    // A point-wise file is one chunk without a table; the others start with the table's
+    // offset, and their chunks hold `chunk_size` points (or the table's counts when that is
+    // u32::MAX, so the decoder reads at most the table's chunks).
+    let (first, chunks) = if vlr.compressor == POINT_WISE {
+        (start, 1)
+    } else {
+        let table = check_chunk_count(input, start, length)?;
+        let chunks = match vlr.chunk_size {
+            0 => 1,
+            u32::MAX => table.map_or(0, |(_, chunks)| u64::from(chunks)),
+            size => count.div_ceil(u64::from(size)),
+        };
+        (start + 8, chunks)
+    };
+    // The decoder is layered when the items are (formats 6-10), whatever the compressor says.
     if id >= 6 {
         let layers: u64 = want.iter().map(|&item| layers(item)).sum();
-        check_layers(
-            input,
-            start + 8,
-            table.unwrap_or(length).min(length),
-            u64::from(record),
-            layers,
-        )?;
+        check_layers(input, first, chunks, length, u64::from(record), layers)?;
     }
     Ok(())
 }
 
-/// Walks the layered chunks from `at` to `end` (the chunk table, or the file's end): each is
-/// the first record (`record` bytes), a point count, `layers` byte counts and the layers, and
-/// each layer's byte count must fit the bytes left in the file. A chunk whose counts the file
-/// cuts short ends the walk (the decoder reports the missing bytes without allocating them).
+/// Walks the `chunks` layered chunks from `at`, as the decoder reads them: each is the first
+/// record (`record` bytes), a point count, `layers` byte counts and the layers, and each
+/// layer's byte count must fit the bytes left in the file's `length`. A chunk whose counts the
+/// file cuts short ends the walk (the decoder reports the missing bytes without allocating
+/// them).
 fn check_layers<R: Read + Seek>(
     input: &mut R,
     mut at: u64,
-    end: u64,
+    chunks: u64,
+    length: u64,
     record: u64,
     layers: u64,
 ) -> Result<(), LasError> {
     let sizes_len = 4 * layers;
     // Each chunk takes its record, count and layer sizes: at most length / 48 steps.
-    while at < end {
+    for _ in 0..chunks {
         let sizes_at = at + record + 4;
-        let Some(data) = sizes_at.checked_add(sizes_len).filter(|&e| e <= end) else {
+        let Some(data) = sizes_at.checked_add(sizes_len).filter(|&e| e <= length) else {
             return Ok(());
         };
         let mut sizes = vec![0u8; sizes_len as usize];
@@ -305,15 +316,12 @@ fn check_layers<R: Read + Seek>(
         let mut next = data;
         for (i, size) in sizes.chunks_exact(4).enumerate() {
             let size = u64::from(u32::from_le_bytes(size.try_into().expect("4 bytes")));
-            if size > end - next {
+            if size > length - next {
                 return Err(field(
                     "LAZ layer size",
                     sizes_at + 4 * i as u64,
                     size,
-                    format!(
-                        "at most the {} bytes left before the chunk table (or the file's end)",
-                        end - next
-                    ),
+                    format!("at most the {} bytes left in the file", length - next),
                 ));
             }
             next += size;
@@ -327,12 +335,12 @@ fn check_layers<R: Read + Seek>(
 /// offset in the first 8 bytes of the point data, or else in the file's last 8 bytes): every
 /// chunk but one holds at least one byte of the compressed points between those 8 bytes and the
 /// table. A table the crate cannot find or read is left to it (it reads no count then). The
-/// table's offset, when it lies within the file.
+/// table's offset and count, when it lies within the file.
 fn check_chunk_count<R: Read + Seek>(
     input: &mut R,
     data_start: u64,
     length: u64,
-) -> Result<Option<u64>, LasError> {
+) -> Result<Option<(u64, u32)>, LasError> {
     let Some(offset) = bytes_at::<8, R>(input, data_start, length)? else {
         return Ok(None);
     };
@@ -363,5 +371,5 @@ fn check_chunk_count<R: Read + Seek>(
             ),
         ));
     }
-    Ok(Some(table))
+    Ok(Some((table, chunks)))
 }
