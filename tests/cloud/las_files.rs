@@ -303,3 +303,21 @@ fn a_point_wise_laz_file_with_layered_items_has_its_layers_checked_too() {
     put(&mut bytes, sizes, u32::MAX.to_le_bytes());
     assert_field(bytes, "LAZ layer size", sizes);
 }
+
+#[test]
+fn a_laz_chunk_table_outside_the_file_is_refused() {
+    // where the laz crate reads points after failing to read its table depends on how far its
+    // seeks moved the input (past the end of a file, a seek to 2^63 fails and leaves the input
+    // 8 bytes further on, so every layer count is read from the wrong place)
+    let mut bytes = to_las(&las_cloud(18, 40, true), true);
+    let data = u32::from_le_bytes(bytes[96..100].try_into().unwrap()) as usize;
+    let end = bytes.len();
+    put(&mut bytes, data, i64::MAX.to_le_bytes());
+    put(&mut bytes, end - 8, 0i64.to_le_bytes());
+    assert_field(bytes.clone(), "offset to the LAZ chunk table", data);
+    let file = std::env::temp_dir().join(format!("orthtree-laz-table-{}.laz", std::process::id()));
+    std::fs::write(&file, &bytes).unwrap();
+    let err = las::read(&file).unwrap_err();
+    std::fs::remove_file(&file).unwrap();
+    assert!(matches!(err, LasError::Field { .. }), "{err:?}");
+}

@@ -277,7 +277,7 @@ fn check_laz<R: Read + Seek>(
         let table = check_chunk_count(input, start, length)?;
         let chunks = match vlr.chunk_size {
             0 => 1,
-            u32::MAX => table.map_or(0, |(_, chunks)| u64::from(chunks)),
+            u32::MAX => u64::from(table.1),
             size => count.div_ceil(u64::from(size)),
         };
         (start + 8, chunks)
@@ -331,33 +331,44 @@ fn check_layers<R: Read + Seek>(
     Ok(())
 }
 
-/// Checks the chunk count of a LAZ file's chunk table, found as the `laz` crate finds it (the
-/// offset in the first 8 bytes of the point data, or else in the file's last 8 bytes): every
-/// chunk but one holds at least one byte of the compressed points between those 8 bytes and the
-/// table. A table the crate cannot find or read is left to it (it reads no count then). The
-/// table's offset and count, when it lies within the file.
+/// Finds a LAZ file's chunk table as the `laz` crate does (its offset in the first 8 bytes of
+/// the point data, or else in the file's last 8 bytes) and checks its chunk count: every chunk
+/// but one holds at least one byte of the compressed points between those 8 bytes and the
+/// table. The table must lie within the file: when the crate cannot read it, where it goes on
+/// reading points depends on how far its failed seeks moved the input. The table's offset and
+/// count.
 fn check_chunk_count<R: Read + Seek>(
     input: &mut R,
     data_start: u64,
     length: u64,
-) -> Result<Option<(u64, u32)>, LasError> {
+) -> Result<(u64, u32), LasError> {
+    let missing = |found: String| {
+        field(
+            "offset to the LAZ chunk table",
+            data_start,
+            found,
+            format!(
+                "a table after the point data's first 8 bytes and within the file's {length} \
+                 (or its offset in the file's last 8 bytes)"
+            ),
+        )
+    };
     let Some(offset) = bytes_at::<8, R>(input, data_start, length)? else {
-        return Ok(None);
+        return Err(missing("beyond the file's end".into()));
     };
     let mut table = i64::from_le_bytes(offset);
     if table <= data_start as i64 {
-        let Some(last) = bytes_at::<8, R>(input, length.saturating_sub(8), length)? else {
-            return Ok(None);
-        };
-        table = i64::from_le_bytes(last);
-        if table <= data_start as i64 {
-            return Ok(None);
-        }
+        let last = bytes_at::<8, R>(input, length.saturating_sub(8), length)?;
+        table = last.map_or(-1, i64::from_le_bytes);
     }
-    let table = table as u64;
-    let Some(chunks) = bytes_at::<4, R>(input, table.saturating_add(4), length)? else {
-        return Ok(None);
+    let chunks = (table > data_start as i64)
+        .then(|| bytes_at::<4, R>(input, (table as u64).saturating_add(4), length))
+        .transpose()?
+        .flatten();
+    let Some(chunks) = chunks else {
+        return Err(missing(table.to_string()));
     };
+    let table = table as u64;
     let chunks = u32::from_le_bytes(chunks);
     let room = table.saturating_sub(data_start + 8);
     if u64::from(chunks) > room + 1 {
@@ -371,5 +382,5 @@ fn check_chunk_count<R: Read + Seek>(
             ),
         ));
     }
-    Ok(Some((table, chunks)))
+    Ok((table, chunks))
 }
