@@ -1,10 +1,11 @@
-//! The claims of a LAS header that the `las` crate trusts, checked against the file's length
-//! before the crate reads past the fixed header: the end of the point records (the crate
-//! multiplies the count by the record length, which can overflow), the record length of the
-//! first EVLR (the crate allocates it before reading it) and, in a LAZ file, the number of chunks
-//! of the chunk table (the `laz` crate reserves and decodes that many entries). Each is refused
-//! with the field, its byte offset and the limit it broke, so a lying header costs neither a
-//! panic nor memory beyond the file's bytes.
+//! The claims of a LAS header that the `las` and `laz` crates trust, checked against the file's
+//! length before the `las` crate reads past the fixed header: the end of the point records (the
+//! crate multiplies the count by the record length, which can overflow), the record length of
+//! the first EVLR (allocated before it is read) and, in a LAZ file, the LASzip items (the
+//! decoder is built from them), the chunk table's place and count (that many entries are
+//! reserved and decoded) and the byte count of every layer of a layered chunk (allocated before
+//! the layer is read). Each is refused with the field, its byte offset and the limit it broke,
+//! so a lying header costs neither a panic nor memory beyond the file's bytes.
 
 use super::{las_error, LasError};
 use ::las::raw;
@@ -56,7 +57,8 @@ fn bytes_at<const N: usize, R: Read + Seek>(
 /// # Errors
 /// [`LasError::Las`] for a header the `las` crate refuses, [`LasError::Field`] for a point
 /// count whose records end beyond 2^64 bytes, a first EVLR that starts or ends beyond the file,
-/// or a LAZ chunk table claiming more chunks than there are bytes of compressed points;
+/// LASzip items other than the point format's, a LAZ chunk table outside the file or claiming
+/// more chunks than there are bytes of compressed points, or a layer longer than the bytes left;
 /// [`LasError::Io`] when reading fails.
 pub(super) fn checked_header<R: Read + Seek>(
     input: &mut R,
