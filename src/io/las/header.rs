@@ -261,7 +261,11 @@ fn check_laz<R: Read + Seek>(
         return Err(field(
             "LASzip items",
             vlr.at + 32,
-            format!("{:?} (type, size, version)", vlr.items),
+            // At most 8 items: the VLR can claim thousands.
+            match vlr.items.len() {
+                n if n > 8 => format!("{:?}... ({n} items; type, size, version)", &vlr.items[..8]),
+                _ => format!("{:?} (type, size, version)", vlr.items),
+            },
             format!(
                 "the items of point format {id} with records of {record} bytes: {want:?} \
                  (type, size), version {} or {}",
