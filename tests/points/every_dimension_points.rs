@@ -82,7 +82,7 @@ where
         got.sort_unstable();
         let want = scan(live, |p| b.contains(p));
         assert_eq!(got, want, "D = {}, box {:?}", D, b);
-        assert_eq!(t.query_count(&b).unwrap(), want.len());
+        assert_eq!(t.query_count(b).unwrap(), want.len());
         let centre: [f64; D] = core::array::from_fn(|_| rng.r#gen());
         let radius = rng.gen_range(0.05..0.9);
         let ball = Ball::new(centre, radius).unwrap();
