@@ -25,10 +25,12 @@
 //! [`prelude`] brings the point-set traits into scope.
 //!
 //! # Features
-//! None is on by default. `rayon` (the `par_` builds, balances, batch queries and joins), `png`
-//! (PNG images), `serde` (every tree, region tree and mesh), `saved` (the binary saved-tree
-//! format) and `mmap` (saved trees queried through a memory map), `las` and `laz` (LAS and LAZ
-//! point clouds); `full` turns all of these on. `mpi` (the forest and point tree over MPI ranks)
+//! `huge-pages` is on by default: on Linux, the large answer tables of the k-nearest joins are
+//! advised to be backed by transparent huge pages (fewer page faults; a no-op elsewhere and
+//! where the system does not offer them). Off by default: `rayon` (the `par_` builds, balances,
+//! batch queries and joins), `png` (PNG images), `serde` (every tree, region tree and mesh),
+//! `saved` (the binary saved-tree format) and `mmap` (saved trees queried through a memory map),
+//! `las` and `laz` (LAS and LAZ point clouds); `full` turns all of these on. `mpi` (the forest and point tree over MPI ranks)
 //! needs OpenMPI and libclang on the system; `reference` compiles the reference algorithms.
 //!
 //! ```
@@ -46,7 +48,8 @@
 #![deny(rustdoc::broken_intra_doc_links)]
 // The exceptions, each allowed where it stands with its `// SAFETY:` comment: the cache
 // prefetch of the build's gather and of the query engines (`prefetch.rs`, measured there and in
-// `query/range.rs`), the memory map of a saved tree (`io/saved/mapped.rs`), and the calls into
+// `query/range.rs`), the huge-page advice for large buffers (`huge_pages.rs`, measured there),
+// the memory map of a saved tree (`io/saved/mapped.rs`), and the calls into
 // the joins' copies compiled for newer x86-64 processors (`cpu.rs`, measured there).
 #![deny(unsafe_code)]
 
@@ -58,6 +61,7 @@ pub mod dist;
 pub mod error;
 pub mod geom;
 mod hash;
+mod huge_pages;
 pub mod image;
 pub mod io;
 pub mod mesh;

@@ -21,6 +21,7 @@ use super::knn_group::Search;
 use super::knn_map::{swap_rows, to_slot_order};
 use super::traverse::{children, Side, SCAN};
 use crate::geom::Aabb;
+use crate::huge_pages;
 use crate::query::{PointSet, SpatialIndex};
 use core::ops::Range;
 
@@ -246,7 +247,7 @@ pub(crate) fn knn_join<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, const
         return table(0, n, Vec::new(), Vec::new());
     }
     let gs = groups(a.index());
-    let (mut slots, mut distances) = (vec![0; n * w], vec![0.0; n * w]);
+    let (mut slots, mut distances) = (huge_pages::zeros(n * w), huge_pages::zeros(n * w));
     let mut search = Search::new();
     for part in parts(&gs, w, &mut slots, &mut distances) {
         fill(&mut search, (a, b, metric), part, w, same);

@@ -23,6 +23,7 @@ use super::radius::{squared_radii, squared_radius, Boundary};
 use super::scan::Block;
 use super::sparse::SparseDistances;
 use super::traverse::{roots, run, split_top};
+use crate::huge_pages;
 use crate::query::{PointSet, QueryError};
 use core::convert::Infallible;
 use core::ops::ControlFlow;
@@ -57,7 +58,7 @@ where
         return table(0, n, Vec::new(), Vec::new());
     }
     let gs = groups(a.index());
-    let (mut slots, mut distances) = (vec![0; n * w], vec![0.0; n * w]);
+    let (mut slots, mut distances) = (huge_pages::zeros(n * w), huge_pages::zeros(n * w));
     parts(&gs, w, &mut slots, &mut distances)
         .into_par_iter()
         .for_each_init(Search::new, |search, part| {
