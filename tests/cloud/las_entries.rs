@@ -166,6 +166,29 @@ fn compressed_files_are_refused_for_the_full_reader() {
     ));
 }
 
+/// A scale factor of 0 read by the coordinates-only readers: refused with the field, as the
+/// full reader refuses it, not turned into points that all share one coordinate.
+#[test]
+fn a_zero_scale_is_refused_by_the_coordinates_readers_too() {
+    let mut b = bytes(&cloud(15, 6, false), false);
+    b[139..147].copy_from_slice(&0.0f64.to_le_bytes());
+    let file = TempFile::new("zero-scale.las", &b);
+    for err in [
+        las::read(&file.0).map(|_| ()).unwrap_err(),
+        las::read_entries(&file.0).map(|_| ()).unwrap_err(),
+        LasEntries::open(&file.0).map(|_| ()).unwrap_err(),
+    ] {
+        match err {
+            LasError::Field {
+                field: "y scale factor",
+                offset: 139,
+                ..
+            } => {}
+            other => panic!("{other:?}"),
+        }
+    }
+}
+
 #[test]
 fn a_header_the_full_reader_refuses_is_refused_here_too() {
     let good = bytes(&cloud(14, 6, false), false);

@@ -223,6 +223,58 @@ fn a_point_count_whose_records_end_beyond_64_bits_is_refused_by_field() {
     assert!(err.contains("byte offset 247"), "{err}");
 }
 
+/// A frame that gives no world coordinates: a scale factor of 0, NaN or infinity, or an
+/// offset that is not finite, on each axis (scales from byte 131, offsets from byte 155).
+#[test]
+fn a_scale_of_zero_or_a_non_finite_frame_is_refused_by_field() {
+    let good = to_las(&las_cloud(12, 3, false), false);
+    for (a, axis) in ["x", "y", "z"].into_iter().enumerate() {
+        for bad in [0.0, -0.0, f64::NAN, f64::INFINITY] {
+            let mut bytes = good.clone();
+            put(&mut bytes, 131 + 8 * a, bad.to_le_bytes());
+            assert_field(bytes, &format!("{axis} scale factor"), 131 + 8 * a);
+        }
+        for bad in [f64::NAN, f64::NEG_INFINITY] {
+            let mut bytes = good.clone();
+            put(&mut bytes, 155 + 8 * a, bad.to_le_bytes());
+            assert_field(bytes, &format!("{axis} offset"), 155 + 8 * a);
+        }
+    }
+    // a negative scale is a frame like any other
+    let mut bytes = good;
+    put(&mut bytes, 131, (-0.01f64).to_le_bytes());
+    assert!(from_las(bytes).is_ok());
+}
+
+/// The writer refuses the frames the readers refuse, naming the header field, so that it never
+/// writes a file it cannot read back.
+#[test]
+fn a_frame_the_readers_refuse_is_not_written() {
+    let zero_z_scale = Frame {
+        scale: [0.01, 0.01, 0.0],
+        offset: [0.0; 3],
+    };
+    let nan_x_offset = Frame {
+        scale: [0.01; 3],
+        offset: [f64::NAN, 0.0, 0.0],
+    };
+    for (frame, field, offset) in [
+        (zero_z_scale, "z scale factor", 147),
+        (nan_x_offset, "x offset", 155),
+    ] {
+        let mut cloud = las_cloud(13, 3, false);
+        cloud.frame = frame;
+        match las::write_to(&cloud, Cursor::new(Vec::new()), false) {
+            Err(LasError::Field {
+                field: f,
+                offset: o,
+                ..
+            }) if f == field && o == offset => {}
+            other => panic!("expected {field} at {offset}: {:?}", other.map(|_| ())),
+        }
+    }
+}
+
 #[test]
 fn an_evlr_longer_than_the_file_is_refused_before_it_is_allocated() {
     let mut bytes = to_las(&las_cloud(10, 3, false), false);

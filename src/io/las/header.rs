@@ -4,7 +4,8 @@
 //! the first EVLR (allocated before it is read) and, in a LAZ file, the LASzip items (the
 //! decoder is built from them), the chunk table's place and count (that many entries are
 //! reserved and decoded) and the byte count of every layer of a layered chunk (allocated before
-//! the layer is read). Each is refused with the field, its byte offset and the limit it broke,
+//! the layer is read); and the frame of scale factors and offsets that gives the points their
+//! world coordinates. Each is refused with the field, its byte offset and the limit it broke,
 //! so a lying header costs neither a panic nor memory beyond the file's bytes.
 
 use super::{las_error, LasError};
@@ -56,7 +57,8 @@ fn bytes_at<const N: usize, R: Read + Seek>(
 ///
 /// # Errors
 /// [`LasError::Las`] for a header the `las` crate refuses, [`LasError::Field`] for a point
-/// count whose records end beyond 2^64 bytes, a first EVLR that starts or ends beyond the file,
+/// count whose records end beyond 2^64 bytes, a scale factor that is 0 or not finite, an
+/// offset that is not finite, a first EVLR that starts or ends beyond the file,
 /// LASzip items other than the point format's, a LAZ chunk table outside the file or claiming
 /// more chunks than there are bytes of compressed points, or a layer longer than the bytes left;
 /// [`LasError::Io`] when reading fails.
@@ -96,6 +98,14 @@ pub(super) fn checked_header<R: Read + Seek>(
             ),
         ));
     }
+    check_frame(
+        [
+            header.x_scale_factor,
+            header.y_scale_factor,
+            header.z_scale_factor,
+        ],
+        [header.x_offset, header.y_offset, header.z_offset],
+    )?;
     if let Some(evlr) = header.evlr {
         let at = evlr.start_of_first_evlr;
         let Some(len) = bytes_at::<8, R>(input, at.saturating_add(20), length)?
@@ -125,6 +135,36 @@ pub(super) fn checked_header<R: Read + Seek>(
         check_laz(input, &header, vlrs, format, count, length)?;
     }
     Ok(header)
+}
+
+/// Byte offset of the x scale factor (`f64`); y and z follow, then the three offsets.
+const SCALE_AT: u64 = 131;
+
+/// The frame that turns the records' integers into world coordinates: each scale factor finite
+/// and not zero (a zero collapses an axis, a NaN or an infinity gives no coordinate at all),
+/// each offset finite. The writer checks a cloud's frame by the same rule, so that no file it
+/// writes is one the readers refuse.
+pub(super) fn check_frame(scales: [f64; 3], offsets: [f64; 3]) -> Result<(), LasError> {
+    for (a, name) in ["x", "y", "z"].into_iter().enumerate() {
+        let scale = scales[a];
+        if !scale.is_finite() || scale == 0.0 {
+            return Err(field(
+                ["x scale factor", "y scale factor", "z scale factor"][a],
+                SCALE_AT + 8 * a as u64,
+                scale,
+                format!("a finite {name} scale other than 0"),
+            ));
+        }
+        if !offsets[a].is_finite() {
+            return Err(field(
+                ["x offset", "y offset", "z offset"][a],
+                SCALE_AT + 24 + 8 * a as u64,
+                offsets[a],
+                format!("a finite {name} offset"),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The fields of a LASzip VLR this reader checks (see [`check_laz`]).

@@ -26,7 +26,9 @@ pub fn write(cloud: &Cloud<i32>, path: impl AsRef<Path>, compressed: bool) -> Re
 /// # Errors
 /// [`LasError::UnsupportedColumn`] for a column no LAS field holds,
 /// [`LasError::MissingColumn`] for one the format needs, [`LasError::BadValue`] naming the point
-/// and column of a value that does not fit its field, [`LasError::Las`] and
+/// and column of a value that does not fit its field, [`LasError::Field`] for a frame with a
+/// scale factor of 0 or one that is not finite, or an offset that is not finite (the header
+/// field it would be written to), [`LasError::Las`] and
 /// [`LasError::Io`] when writing fails.
 ///
 /// # Complexity
@@ -118,6 +120,7 @@ fn header(cloud: &Cloud<i32>, format: Format) -> Result<Header, LasError> {
     let mut builder = Builder::from((1, 4));
     builder.point_format = format;
     let (s, o) = (cloud.frame.scale, cloud.frame.offset);
+    super::header::check_frame(s, o)?;
     let axis = |k: usize| Transform {
         scale: s[k],
         offset: o[k],
