@@ -20,6 +20,7 @@ use super::bounds::PairDistance;
 use super::knn_group::Search;
 use super::knn_map::{swap_rows, to_slot_order};
 use super::traverse::{children, Side, SCAN};
+use crate::cpu::compiled_copy;
 use crate::geom::Aabb;
 use crate::huge_pages;
 use crate::query::{PointSet, SpatialIndex};
@@ -155,21 +156,13 @@ pub(crate) fn fill<A, B, P, const D: usize>(
     fill_rows(search, sets, part, k, same);
 }
 
-/// [`fill_rows`] compiled for x86-64-v3 (see [`cpu`](crate::cpu)).
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx,avx2,bmi1,bmi2,lzcnt,popcnt")]
-fn fill_v3<A, B, P, const D: usize>(
-    search: &mut Search<<B::Index as SpatialIndex<D>>::Node, D>,
-    sets: (&A, &B, &P),
-    part: Part<'_>,
-    k: usize,
-    same: bool,
-) where
-    A: PointSet<D>,
-    B: PointSet<D>,
-    P: PairDistance<D>,
-{
-    fill_rows(search, sets, part, k, same);
+compiled_copy! {
+    /// [`fill_rows`] compiled for x86-64-v3 (see [`cpu`](crate::cpu)).
+    fill_v3 = fill_rows for "avx,avx2,bmi1,bmi2,lzcnt,popcnt",
+    [A, B, P, const D: usize]
+    (search: &mut Search<<B::Index as SpatialIndex<D>>::Node, D>, sets: (&A, &B, &P),
+     part: Part<'_>, k: usize, same: bool)
+    where [A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>]
 }
 
 /// The work of [`fill`], compiled into each of its copies.

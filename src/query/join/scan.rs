@@ -25,6 +25,7 @@
 
 use super::bounds::PairDistance;
 use super::radius::Boundary;
+use crate::cpu::compiled_copy;
 use crate::geom::{Aabb, Scalar};
 use core::ops::{ControlFlow, Range};
 
@@ -201,24 +202,35 @@ pub(crate) fn scan_pairs<SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D
             return scan_pairs_v4(block, a, b, same, metric, r2, boundary, each);
         }
     }
+    #[cfg(target_arch = "x86_64")]
+    if crate::cpu::has_v3() {
+        // SAFETY: `scan_pairs_v3` is `pairs_in` compiled for the features `has_v3` has just
+        // found on this processor.
+        #[allow(unsafe_code)]
+        unsafe {
+            return scan_pairs_v3(block, a, b, same, metric, r2, boundary, each);
+        }
+    }
     pairs_in(block, a, b, same, metric, r2, boundary, each)
 }
 
-/// [`pairs_in`] compiled for x86-64-v4 (see [`cpu`](crate::cpu)).
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx,avx2,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512vl,avx512bw,avx512dq")]
-#[allow(clippy::too_many_arguments)]
-fn scan_pairs_v4<SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D: usize>(
-    block: &mut Block<D>,
-    a: Run<'_, SA, D>,
-    b: Run<'_, SB, D>,
-    same: bool,
-    metric: &P,
-    r2: f64,
-    boundary: Boundary,
-    each: impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
-) -> ControlFlow<Br> {
-    pairs_in(block, a, b, same, metric, r2, boundary, each)
+compiled_copy! {
+    /// [`pairs_in`] compiled for x86-64-v3 (see [`cpu`](crate::cpu)).
+    scan_pairs_v3 = pairs_in for "avx,avx2,bmi1,bmi2,lzcnt,popcnt",
+    [SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D: usize]
+    (block: &mut Block<D>, a: Run<'_, SA, D>, b: Run<'_, SB, D>, same: bool, metric: &P,
+     r2: f64, boundary: Boundary, each: impl FnMut(usize, usize, f64) -> ControlFlow<Br>)
+    -> ControlFlow<Br>
+}
+
+compiled_copy! {
+    /// [`pairs_in`] compiled for x86-64-v4 (see [`cpu`](crate::cpu)).
+    scan_pairs_v4 = pairs_in
+        for "avx,avx2,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512vl,avx512bw,avx512dq",
+    [SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D: usize]
+    (block: &mut Block<D>, a: Run<'_, SA, D>, b: Run<'_, SB, D>, same: bool, metric: &P,
+     r2: f64, boundary: Boundary, each: impl FnMut(usize, usize, f64) -> ControlFlow<Br>)
+    -> ControlFlow<Br>
 }
 
 /// The work of [`scan_pairs`], compiled into each of its copies.
@@ -341,24 +353,33 @@ pub(crate) fn scan_counts<SA: Scalar, SB: Scalar, P: PairDistance<D>, const D: u
             return scan_counts_v4(block, a, b, same, metric, radii, boundary, diff);
         }
     }
+    #[cfg(target_arch = "x86_64")]
+    if crate::cpu::has_v3() {
+        // SAFETY: `scan_counts_v3` is `counts_in` compiled for the features `has_v3` has just
+        // found on this processor.
+        #[allow(unsafe_code)]
+        unsafe {
+            return scan_counts_v3(block, a, b, same, metric, radii, boundary, diff);
+        }
+    }
     counts_in(block, a, b, same, metric, radii, boundary, diff);
 }
 
-/// [`counts_in`] compiled for x86-64-v4 (see [`cpu`](crate::cpu)).
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx,avx2,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512vl,avx512bw,avx512dq")]
-#[allow(clippy::too_many_arguments)]
-fn scan_counts_v4<SA: Scalar, SB: Scalar, P: PairDistance<D>, const D: usize>(
-    block: &mut Block<D>,
-    a: Run<'_, SA, D>,
-    b: Run<'_, SB, D>,
-    same: bool,
-    metric: &P,
-    radii: (&[f64], usize, usize),
-    boundary: Boundary,
-    diff: &mut [i128],
-) {
-    counts_in(block, a, b, same, metric, radii, boundary, diff);
+compiled_copy! {
+    /// [`counts_in`] compiled for x86-64-v3 (see [`cpu`](crate::cpu)).
+    scan_counts_v3 = counts_in for "avx,avx2,bmi1,bmi2,lzcnt,popcnt",
+    [SA: Scalar, SB: Scalar, P: PairDistance<D>, const D: usize]
+    (block: &mut Block<D>, a: Run<'_, SA, D>, b: Run<'_, SB, D>, same: bool, metric: &P,
+     radii: (&[f64], usize, usize), boundary: Boundary, diff: &mut [i128])
+}
+
+compiled_copy! {
+    /// [`counts_in`] compiled for x86-64-v4 (see [`cpu`](crate::cpu)).
+    scan_counts_v4 = counts_in
+        for "avx,avx2,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512vl,avx512bw,avx512dq",
+    [SA: Scalar, SB: Scalar, P: PairDistance<D>, const D: usize]
+    (block: &mut Block<D>, a: Run<'_, SA, D>, b: Run<'_, SB, D>, same: bool, metric: &P,
+     radii: (&[f64], usize, usize), boundary: Boundary, diff: &mut [i128])
 }
 
 /// The work of [`scan_counts`], compiled into each of its copies.
@@ -445,18 +466,82 @@ fn report<Br, const D: usize>(
 
 #[cfg(test)]
 mod tests {
-    use super::{counts_in, pairs_in, scan_counts, scan_pairs, Block};
+    use super::{counts_in, pairs_in, Block, Run};
     use crate::geom::Aabb;
     use crate::query::join::bounds::Euclid;
     use crate::query::join::radius::Boundary;
     use core::ops::ControlFlow;
     use rand::{rngs::SmallRng, Rng, SeedableRng};
 
+    /// The copies of the kernels: the baseline, and those this processor can run.
+    fn copies() -> Vec<u8> {
+        let mut out = vec![0];
+        if crate::cpu::has_v3() {
+            out.push(3);
+        }
+        if crate::cpu::has_v4() {
+            out.push(4);
+        }
+        out
+    }
+
+    /// Every pair of `a` and `b` within `r2` by the copy of level `copy`, with its distance's bits.
+    fn pairs_by(
+        copy: u8,
+        (a, b, same): (Run<'_, f64, 3>, Run<'_, f64, 3>, bool),
+        r2: f64,
+        boundary: Boundary,
+    ) -> Vec<(usize, usize, u64)> {
+        let mut block = Block::<3>::boxed();
+        let mut out = Vec::new();
+        let each = |i: usize, j: usize, d: f64| {
+            out.push((i, j, d.to_bits()));
+            ControlFlow::<()>::Continue(())
+        };
+        let block = &mut block;
+        let _ = match copy {
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: `copies` lists level 3 only when `has_v3` found its features.
+            #[allow(unsafe_code)]
+            3 => unsafe { super::scan_pairs_v3(block, a, b, same, &Euclid, r2, boundary, each) },
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: `copies` lists level 4 only when `has_v4` found its features.
+            #[allow(unsafe_code)]
+            4 => unsafe { super::scan_pairs_v4(block, a, b, same, &Euclid, r2, boundary, each) },
+            _ => pairs_in(block, a, b, same, &Euclid, r2, boundary, each),
+        };
+        out
+    }
+
+    /// The count differences of `a` and `b` over the squared radii `r2` by the copy `copy`.
+    fn counts_by(
+        copy: u8,
+        (a, b, same): (Run<'_, f64, 3>, Run<'_, f64, 3>, bool),
+        r2: &[f64],
+        boundary: Boundary,
+    ) -> Vec<i128> {
+        let mut block = Block::<3>::boxed();
+        let mut diff = vec![0i128; r2.len() + 1];
+        let (block, radii, d) = (&mut block, (r2, 0, r2.len()), &mut diff);
+        match copy {
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: `copies` lists level 3 only when `has_v3` found its features.
+            #[allow(unsafe_code)]
+            3 => unsafe { super::scan_counts_v3(block, a, b, same, &Euclid, radii, boundary, d) },
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: `copies` lists level 4 only when `has_v4` found its features.
+            #[allow(unsafe_code)]
+            4 => unsafe { super::scan_counts_v4(block, a, b, same, &Euclid, radii, boundary, d) },
+            _ => counts_in(block, a, b, same, &Euclid, radii, boundary, d),
+        }
+        diff
+    }
+
     /// Runs of random and grid points (ties, duplicates), paired with themselves and with each
-    /// other: the copy the processor runs finds the pairs and counts of the baseline copy, with
-    /// the same distances bit for bit.
+    /// other: every copy the processor can run finds the pairs and counts of the baseline copy,
+    /// with the same distances bit for bit.
     #[test]
-    fn the_fast_copy_finds_the_baseline_pairs() {
+    fn the_fast_copies_find_the_baseline_pairs() {
         let mut rng = SmallRng::seed_from_u64(5);
         let pts: Vec<[f64; 3]> = (0..400)
             .map(|i| {
@@ -468,61 +553,30 @@ mod tests {
             })
             .collect();
         let whole = Aabb::around(&pts);
-        let (mut fast, mut base) = (Block::<3>::boxed(), Block::<3>::boxed());
         let radii = [0.0, 0.01, 0.05, 0.125, 0.3];
+        let r2: Vec<f64> = radii.iter().map(|r| r * r).collect();
         for (ra, rb) in [(0..400, 0..400), (0..150, 150..400), (37..300, 10..90)] {
             let same = ra == rb;
-            for boundary in [Boundary::Inclusive, Boundary::Exclusive] {
-                for &r in &radii {
-                    let run = |f: bool, block: &mut Block<3>| {
-                        let mut out = Vec::new();
-                        let each = |i: usize, j: usize, d: f64| {
-                            out.push((i, j, d.to_bits()));
-                            ControlFlow::<()>::Continue(())
-                        };
-                        let (a, b) = (
-                            (&pts[..], ra.clone(), &whole),
-                            (&pts[..], rb.clone(), &whole),
-                        );
-                        let _ = if f {
-                            scan_pairs(block, a, b, same, &Euclid, r * r, boundary, each)
-                        } else {
-                            pairs_in(block, a, b, same, &Euclid, r * r, boundary, each)
-                        };
-                        out
-                    };
-                    let got = run(true, &mut fast);
-                    assert_eq!(got, run(false, &mut base));
-                    assert!(r == 0.0 || same || !got.is_empty(), "the check sees pairs");
-                }
-                let r2: Vec<f64> = radii.iter().map(|r| r * r).collect();
-                let (a, b) = (
+            let runs = || {
+                (
                     (&pts[..], ra.clone(), &whole),
                     (&pts[..], rb.clone(), &whole),
-                );
-                let mut d1 = vec![0i128; r2.len() + 1];
-                let mut d2 = d1.clone();
-                scan_counts(
-                    &mut fast,
-                    a.clone(),
-                    b.clone(),
                     same,
-                    &Euclid,
-                    (&r2, 0, r2.len()),
-                    boundary,
-                    &mut d1,
-                );
-                counts_in(
-                    &mut base,
-                    a,
-                    b,
-                    same,
-                    &Euclid,
-                    (&r2, 0, r2.len()),
-                    boundary,
-                    &mut d2,
-                );
-                assert_eq!(d1, d2);
+                )
+            };
+            for boundary in [Boundary::Inclusive, Boundary::Exclusive] {
+                for &r in &radii {
+                    let base = pairs_by(0, runs(), r * r, boundary);
+                    assert!(r == 0.0 || same || !base.is_empty(), "the check sees pairs");
+                    for copy in copies() {
+                        assert_eq!(pairs_by(copy, runs(), r * r, boundary), base, "v{copy}");
+                    }
+                }
+                let base = counts_by(0, runs(), &r2, boundary);
+                assert!(base.iter().any(|&c| c != 0), "the check sees counts");
+                for copy in copies() {
+                    assert_eq!(counts_by(copy, runs(), &r2, boundary), base, "v{copy}");
+                }
             }
         }
     }
