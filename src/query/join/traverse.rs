@@ -61,14 +61,35 @@ pub(crate) fn children<I: SpatialIndex<D>, const D: usize>(
 /// for a node to scan. Filling a buffer the caller keeps saves the copy of a returned list,
 /// which was a tenth of the radius joins' time.
 #[inline(always)]
-pub(crate) fn push_children<I: SpatialIndex<D>, E: Extend<Side<I::Node, D>>, const D: usize>(
+pub(crate) fn push_children<I: SpatialIndex<D>, E: PushSide<Side<I::Node, D>>, const D: usize>(
     index: &I,
     side: &Side<I::Node, D>,
     scan: usize,
     out: &mut E,
 ) {
     if !scans_whole(index, side.0, scan) {
-        index.for_each_child_in(side.0, &side.1, |c, cb| out.extend(Some((c, *cb))));
+        index.for_each_child_in(side.0, &side.1, |c, cb| out.push_side((c, *cb)));
+    }
+}
+
+/// A list children are pushed on, one at a time (`Extend` with one item at a time reserves
+/// room on every call, which was a twentieth of the radius joins' time).
+pub(crate) trait PushSide<T> {
+    /// Appends `side`.
+    fn push_side(&mut self, side: T);
+}
+
+impl<T> PushSide<T> for Vec<T> {
+    #[inline(always)]
+    fn push_side(&mut self, side: T) {
+        self.push(side);
+    }
+}
+
+impl<T, const N: usize> PushSide<T> for SmallVec<[T; N]> {
+    #[inline(always)]
+    fn push_side(&mut self, side: T) {
+        self.push(side);
     }
 }
 
