@@ -25,7 +25,7 @@
 
 use super::bounds::PairDistance;
 use super::radius::Boundary;
-use crate::cpu::compiled_copy;
+use crate::cpu::{compiled_copy, Avx, Compare, Portable};
 use crate::geom::{Aabb, Scalar};
 use core::ops::{ControlFlow, Range};
 
@@ -89,31 +89,32 @@ impl<const D: usize> Block<D> {
     }
 
     /// The distances from `q` to the points `from..` of the block (kept in `dist`), and the
-    /// mask of those that `admits` takes in (bit `j` for point `j`).
+    /// mask of those within `bound` (bit `j` for point `j` when its distance is `<= bound`).
     ///
     /// The points are taken eight at a time, from the group of eight holding `from` to the one
     /// holding the last point, in a loop of fixed length the compiler turns into vector
-    /// arithmetic; the eight answers are packed into a byte of the mask by one multiplication.
-    /// Lanes outside `from..len` hold stale coordinates: their bits are cleared at the end.
+    /// arithmetic; the eight answers become a byte of the mask by `compare` (the copy's own
+    /// way). Lanes outside `from..len` hold stale coordinates: their bits are cleared at the end.
     #[inline(always)]
-    pub(crate) fn mask<P: PairDistance<D>>(
+    pub(crate) fn mask<P: PairDistance<D>, C: Compare>(
         &mut self,
         from: usize,
         q: &[f64; D],
         metric: &P,
-        admits: impl Fn(f64) -> bool,
+        bound: f64,
+        compare: C,
     ) -> u64 {
         let mut m = 0u64;
         for g in from / LANES..self.len.div_ceil(LANES) {
             let base = g * LANES;
-            let mut hit = [0u8; LANES];
-            for (l, h) in hit.iter_mut().enumerate() {
+            let lanes: &mut [f64; LANES] = (&mut self.dist[base..base + LANES])
+                .try_into()
+                .expect("a lane group lies inside the block");
+            for (l, d) in lanes.iter_mut().enumerate() {
                 let p: [f64; D] = core::array::from_fn(|k| self.cols[k][base + l]);
-                let d = metric.distance(q, &p);
-                self.dist[base + l] = d;
-                *h = u8::from(admits(d));
+                *d = metric.distance(q, &p);
             }
-            m |= pack(hit) << base;
+            m |= compare.le_bits(lanes, bound) << base;
         }
         m & span(from, self.len)
     }
@@ -121,13 +122,6 @@ impl<const D: usize> Block<D> {
 
 /// The points of a block tested together: one byte of the mask.
 const LANES: usize = 8;
-
-/// The bits of eight flags (each 0 or 1), flag `l` as bit `l`: the multiplication moves byte
-/// `l`'s low bit to bit `56 + l` without carries (every partial product lands on a distinct bit).
-#[inline(always)]
-fn pack(hit: [u8; LANES]) -> u64 {
-    u64::from_le_bytes(hit).wrapping_mul(0x0102_0408_1020_4080) >> 56
-}
 
 /// The mask of bits `from..len` (`len <= 64`).
 #[inline(always)]
@@ -194,31 +188,30 @@ pub(crate) fn scan_pairs<SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D
     each: impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
 ) -> ControlFlow<Br> {
     #[cfg(target_arch = "x86_64")]
-    if crate::cpu::has_v4() {
-        // SAFETY: `scan_pairs_v4` is `pairs_in` compiled for the features `has_v4` has just
-        // found on this processor.
+    if let Some(avx) = Avx::detected() {
+        if crate::cpu::has_v4() {
+            // SAFETY: `scan_pairs_v4` is `pairs_in` compiled for the features `has_v4` has just
+            // found on this processor.
+            #[allow(unsafe_code)]
+            unsafe {
+                return scan_pairs_v4(avx, block, a, b, same, metric, r2, boundary, each);
+            }
+        }
+        // SAFETY: `scan_pairs_v3` is `pairs_in` compiled for the features `Avx::detected` has
+        // just found on this processor.
         #[allow(unsafe_code)]
         unsafe {
-            return scan_pairs_v4(block, a, b, same, metric, r2, boundary, each);
+            return scan_pairs_v3(avx, block, a, b, same, metric, r2, boundary, each);
         }
     }
-    #[cfg(target_arch = "x86_64")]
-    if crate::cpu::has_v3() {
-        // SAFETY: `scan_pairs_v3` is `pairs_in` compiled for the features `has_v3` has just
-        // found on this processor.
-        #[allow(unsafe_code)]
-        unsafe {
-            return scan_pairs_v3(block, a, b, same, metric, r2, boundary, each);
-        }
-    }
-    pairs_in(block, a, b, same, metric, r2, boundary, each)
+    pairs_in(Portable, block, a, b, same, metric, r2, boundary, each)
 }
 
 compiled_copy! {
     /// [`pairs_in`] compiled for x86-64-v3 (see [`cpu`](crate::cpu)).
     scan_pairs_v3 = pairs_in for "avx,avx2,bmi1,bmi2,lzcnt,popcnt",
     [SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D: usize]
-    (block: &mut Block<D>, a: Run<'_, SA, D>, b: Run<'_, SB, D>, same: bool, metric: &P,
+    (compare: Avx, block: &mut Block<D>, a: Run<'_, SA, D>, b: Run<'_, SB, D>, same: bool, metric: &P,
      r2: f64, boundary: Boundary, each: impl FnMut(usize, usize, f64) -> ControlFlow<Br>)
     -> ControlFlow<Br>
 }
@@ -228,7 +221,7 @@ compiled_copy! {
     scan_pairs_v4 = pairs_in
         for "avx,avx2,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512vl,avx512bw,avx512dq",
     [SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D: usize]
-    (block: &mut Block<D>, a: Run<'_, SA, D>, b: Run<'_, SB, D>, same: bool, metric: &P,
+    (compare: Avx, block: &mut Block<D>, a: Run<'_, SA, D>, b: Run<'_, SB, D>, same: bool, metric: &P,
      r2: f64, boundary: Boundary, each: impl FnMut(usize, usize, f64) -> ControlFlow<Br>)
     -> ControlFlow<Br>
 }
@@ -236,7 +229,8 @@ compiled_copy! {
 /// The work of [`scan_pairs`], compiled into each of its copies.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn pairs_in<SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D: usize>(
+fn pairs_in<SA: Scalar, SB: Scalar, P: PairDistance<D>, C: Compare, Br, const D: usize>(
+    compare: C,
     block: &mut Block<D>,
     (pa, ra, _): Run<'_, SA, D>,
     (pb, rb, _): Run<'_, SB, D>,
@@ -263,7 +257,7 @@ fn pairs_in<SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D: usize>(
             let (first, last) = (block.at[0], block.at[block.len - 1]);
             for i in ra.start..last {
                 let from = (i + 1).saturating_sub(first);
-                let m = block.mask(from, &point(pa, i), metric, admits);
+                let m = block.mask(from, &point(pa, i), metric, limit, compare);
                 report(block, i, m, &mut each)?;
             }
         } else {
@@ -272,7 +266,7 @@ fn pairs_in<SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D: usize>(
                 if !admits(metric.point_box(&q, &tight)) {
                     continue;
                 }
-                let m = block.mask(0, &q, metric, admits);
+                let m = block.mask(0, &q, metric, limit, compare);
                 report(block, i, m, &mut each)?;
             }
         }
@@ -345,31 +339,30 @@ pub(crate) fn scan_counts<SA: Scalar, SB: Scalar, P: PairDistance<D>, const D: u
     diff: &mut [i128],
 ) {
     #[cfg(target_arch = "x86_64")]
-    if crate::cpu::has_v4() {
-        // SAFETY: `scan_counts_v4` is `counts_in` compiled for the features `has_v4` has just
-        // found on this processor.
+    if let Some(avx) = Avx::detected() {
+        if crate::cpu::has_v4() {
+            // SAFETY: `scan_counts_v4` is `counts_in` compiled for the features `has_v4` has just
+            // found on this processor.
+            #[allow(unsafe_code)]
+            unsafe {
+                return scan_counts_v4(avx, block, a, b, same, metric, radii, boundary, diff);
+            }
+        }
+        // SAFETY: `scan_counts_v3` is `counts_in` compiled for the features `Avx::detected` has
+        // just found on this processor.
         #[allow(unsafe_code)]
         unsafe {
-            return scan_counts_v4(block, a, b, same, metric, radii, boundary, diff);
+            return scan_counts_v3(avx, block, a, b, same, metric, radii, boundary, diff);
         }
     }
-    #[cfg(target_arch = "x86_64")]
-    if crate::cpu::has_v3() {
-        // SAFETY: `scan_counts_v3` is `counts_in` compiled for the features `has_v3` has just
-        // found on this processor.
-        #[allow(unsafe_code)]
-        unsafe {
-            return scan_counts_v3(block, a, b, same, metric, radii, boundary, diff);
-        }
-    }
-    counts_in(block, a, b, same, metric, radii, boundary, diff);
+    counts_in(Portable, block, a, b, same, metric, radii, boundary, diff);
 }
 
 compiled_copy! {
     /// [`counts_in`] compiled for x86-64-v3 (see [`cpu`](crate::cpu)).
     scan_counts_v3 = counts_in for "avx,avx2,bmi1,bmi2,lzcnt,popcnt",
     [SA: Scalar, SB: Scalar, P: PairDistance<D>, const D: usize]
-    (block: &mut Block<D>, a: Run<'_, SA, D>, b: Run<'_, SB, D>, same: bool, metric: &P,
+    (compare: Avx, block: &mut Block<D>, a: Run<'_, SA, D>, b: Run<'_, SB, D>, same: bool, metric: &P,
      radii: (&[f64], usize, usize), boundary: Boundary, diff: &mut [i128])
 }
 
@@ -378,14 +371,15 @@ compiled_copy! {
     scan_counts_v4 = counts_in
         for "avx,avx2,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512vl,avx512bw,avx512dq",
     [SA: Scalar, SB: Scalar, P: PairDistance<D>, const D: usize]
-    (block: &mut Block<D>, a: Run<'_, SA, D>, b: Run<'_, SB, D>, same: bool, metric: &P,
+    (compare: Avx, block: &mut Block<D>, a: Run<'_, SA, D>, b: Run<'_, SB, D>, same: bool, metric: &P,
      radii: (&[f64], usize, usize), boundary: Boundary, diff: &mut [i128])
 }
 
 /// The work of [`scan_counts`], compiled into each of its copies.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn counts_in<SA: Scalar, SB: Scalar, P: PairDistance<D>, const D: usize>(
+fn counts_in<SA: Scalar, SB: Scalar, P: PairDistance<D>, C: Compare, const D: usize>(
+    compare: C,
     block: &mut Block<D>,
     (pa, ra, _): Run<'_, SA, D>,
     (pb, rb, _): Run<'_, SB, D>,
@@ -436,7 +430,7 @@ fn counts_in<SA: Scalar, SB: Scalar, P: PairDistance<D>, const D: usize>(
                 continue;
             }
             let edge = boundary.limit(r2[all - 1]);
-            let mut m = block.mask(from, &q, metric, |d| d <= edge);
+            let mut m = block.mask(from, &q, metric, edge, compare);
             let found = i128::from(m.count_ones());
             while m != 0 {
                 let j = m.trailing_zeros() as usize;
@@ -467,27 +461,29 @@ fn report<Br, const D: usize>(
 #[cfg(test)]
 mod tests {
     use super::{counts_in, pairs_in, Block, Run};
+    use crate::cpu::{Avx, Portable};
     use crate::geom::Aabb;
     use crate::query::join::bounds::Euclid;
     use crate::query::join::radius::Boundary;
     use core::ops::ControlFlow;
     use rand::{rngs::SmallRng, Rng, SeedableRng};
 
-    /// The copies of the kernels: the baseline, and those this processor can run.
-    fn copies() -> Vec<u8> {
-        let mut out = vec![0];
-        if crate::cpu::has_v3() {
-            out.push(3);
-        }
-        if crate::cpu::has_v4() {
-            out.push(4);
+    /// The fast copies of the kernels this processor can run (3 and 4), with the token of
+    /// their comparison.
+    fn copies() -> Vec<(u8, Avx)> {
+        let mut out = Vec::new();
+        if let Some(avx) = Avx::detected() {
+            out.push((3, avx));
+            if crate::cpu::has_v4() {
+                out.push((4, avx));
+            }
         }
         out
     }
 
     /// Every pair of `a` and `b` within `r2` by the copy of level `copy`, with its distance's bits.
     fn pairs_by(
-        copy: u8,
+        copy: Option<(u8, Avx)>,
         (a, b, same): (Run<'_, f64, 3>, Run<'_, f64, 3>, bool),
         r2: f64,
         boundary: Boundary,
@@ -503,19 +499,23 @@ mod tests {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: `copies` lists level 3 only when `has_v3` found its features.
             #[allow(unsafe_code)]
-            3 => unsafe { super::scan_pairs_v3(block, a, b, same, &Euclid, r2, boundary, each) },
+            Some((3, c)) => unsafe {
+                super::scan_pairs_v3(c, block, a, b, same, &Euclid, r2, boundary, each)
+            },
             #[cfg(target_arch = "x86_64")]
             // SAFETY: `copies` lists level 4 only when `has_v4` found its features.
             #[allow(unsafe_code)]
-            4 => unsafe { super::scan_pairs_v4(block, a, b, same, &Euclid, r2, boundary, each) },
-            _ => pairs_in(block, a, b, same, &Euclid, r2, boundary, each),
+            Some((4, c)) => unsafe {
+                super::scan_pairs_v4(c, block, a, b, same, &Euclid, r2, boundary, each)
+            },
+            _ => pairs_in(Portable, block, a, b, same, &Euclid, r2, boundary, each),
         };
         out
     }
 
     /// The count differences of `a` and `b` over the squared radii `r2` by the copy `copy`.
     fn counts_by(
-        copy: u8,
+        copy: Option<(u8, Avx)>,
         (a, b, same): (Run<'_, f64, 3>, Run<'_, f64, 3>, bool),
         r2: &[f64],
         boundary: Boundary,
@@ -527,12 +527,16 @@ mod tests {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: `copies` lists level 3 only when `has_v3` found its features.
             #[allow(unsafe_code)]
-            3 => unsafe { super::scan_counts_v3(block, a, b, same, &Euclid, radii, boundary, d) },
+            Some((3, c)) => unsafe {
+                super::scan_counts_v3(c, block, a, b, same, &Euclid, radii, boundary, d)
+            },
             #[cfg(target_arch = "x86_64")]
             // SAFETY: `copies` lists level 4 only when `has_v4` found its features.
             #[allow(unsafe_code)]
-            4 => unsafe { super::scan_counts_v4(block, a, b, same, &Euclid, radii, boundary, d) },
-            _ => counts_in(block, a, b, same, &Euclid, radii, boundary, d),
+            Some((4, c)) => unsafe {
+                super::scan_counts_v4(c, block, a, b, same, &Euclid, radii, boundary, d)
+            },
+            _ => counts_in(Portable, block, a, b, same, &Euclid, radii, boundary, d),
         }
         diff
     }
@@ -566,16 +570,18 @@ mod tests {
             };
             for boundary in [Boundary::Inclusive, Boundary::Exclusive] {
                 for &r in &radii {
-                    let base = pairs_by(0, runs(), r * r, boundary);
+                    let base = pairs_by(None, runs(), r * r, boundary);
                     assert!(r == 0.0 || same || !base.is_empty(), "the check sees pairs");
                     for copy in copies() {
-                        assert_eq!(pairs_by(copy, runs(), r * r, boundary), base, "v{copy}");
+                        let got = pairs_by(Some(copy), runs(), r * r, boundary);
+                        assert_eq!(got, base, "v{}", copy.0);
                     }
                 }
-                let base = counts_by(0, runs(), &r2, boundary);
+                let base = counts_by(None, runs(), &r2, boundary);
                 assert!(base.iter().any(|&c| c != 0), "the check sees counts");
                 for copy in copies() {
-                    assert_eq!(counts_by(copy, runs(), &r2, boundary), base, "v{copy}");
+                    let got = counts_by(Some(copy), runs(), &r2, boundary);
+                    assert_eq!(got, base, "v{}", copy.0);
                 }
             }
         }
