@@ -49,8 +49,9 @@
 // The exceptions, each allowed where it stands with its `// SAFETY:` comment: the cache
 // prefetch of the build's gather and of the query engines (`prefetch.rs`, measured there and in
 // `query/range.rs`), the huge-page advice for large buffers (`huge_pages.rs`, measured there),
-// the memory map of a saved tree (`io/saved/mapped.rs`), and the calls into
-// the joins' copies compiled for newer x86-64 processors (`cpu.rs`, measured there).
+// the memory map of a saved tree (`io/saved/mapped.rs`), the calls into the joins' copies
+// compiled for newer x86-64 processors, and the radius kernel's AVX comparison behind its
+// detection token (`cpu.rs`, measured there).
 #![deny(unsafe_code)]
 
 pub mod cloud;
