@@ -1,19 +1,30 @@
-//! Large buffers backed by transparent huge pages (Linux, feature `huge-pages`, on by default).
+//! Large buffers backed by transparent huge pages (Linux, feature `huge-pages`, on by default):
+//! the k-nearest joins' answer tables and the serial bulk build's keys, sort buffer, points and
+//! items.
 //!
 //! A k-nearest join writes its answer, `k` slots and `k` distances per point (256 MB for the
-//! 16 nearest of 10^6 points), into fresh memory. With the kernel's 4 KiB pages every page
-//! costs a fault on its first write. Where transparent huge pages are offered on request
+//! 16 nearest of 10^6 points), into fresh memory, and a bulk build of n points writes about 44
+//! bytes per point (`f64` points in 3-D with `u32` items). With the kernel's 4 KiB pages every
+//! page costs a fault on its first write. Where transparent huge pages are offered on request
 //! (`/sys/kernel/mm/transparent_hugepage/enabled` set to `madvise`, the default of many
 //! distributions), `madvise(MADV_HUGEPAGE)` on the buffer before it is written lets the kernel
-//! map it in 2 MiB pages instead: 512 times fewer faults. Where they are on for everything
-//! (`always`) or off (`never`) the advice changes nothing.
+//! map it in 2 MiB pages instead: 512 times fewer faults, and fewer TLB misses when the build's
+//! gather writes its output. Where they are on for everything (`always`) or off (`never`) the
+//! advice changes nothing.
 //!
-//! Measured on the 2-core x86_64 VM with 24 GiB (`madvise` mode): `joins_compare --workload
-//! self-knn --reps 5` (`par_k_nearest_self`, k = 16, 10^6 points, both cores), three alternated
-//! runs of each build: 495-575 ms with 4 KiB pages, 430-450 ms advised. The same advice on the
-//! bulk build's own buffers (keys, sort buffer, points, items) changed nothing measurable at
-//! 10^8 points (180-195 ns/point against 180-253), where the cost is the gather's random reads
-//! of the caller's input and the kernel's clearing of fresh pages, so it is not given there.
+//! Measured on the 2-core x86_64 VM with 24 GiB (`madvise` mode), alternated runs:
+//! `joins_compare --workload self-knn --reps 5` (`par_k_nearest_self`, k = 16, 10^6 points,
+//! both cores), three runs of each build: 495-575 ms with 4 KiB pages, 430-450 ms advised.
+//! `build_scale --runs 1` (cold builds of uniform 3-D points, on a host without AVX-512, noisy):
+//! at 10^8 points 189-236 ns/point with 4 KiB pages, 158-168 advised (three rounds); at 10^7,
+//! fourteen rounds, 87.5-95.4 (median 90.6) against a median of 69.2 advised: 65.0-92.8 in
+//! eleven rounds and 127, 142 and 190 in three, slow rounds the build before did not show
+//! (`/proc/vmstat` counted no compaction stall and no fallback to small pages; in the slower
+//! advised rounds timed by `/usr/bin/time` the extra time was user time, the system time
+//! staying 0.25-0.32 s against 0.44-0.62 s unadvised); `cloud_compare --workload
+//! voxel --n 10000000 --reps 3` (the downsampling, most of it the build), 1 058-1 175 ms against
+//! 766-803. On the day before, on a host with AVX-512, the same advice on the build had
+//! measured no change at 10^8 (180-195 ns/point against 180-253).
 //!
 //! The advice is the one `unsafe` call here (see [`advise`]); an advised Vec stays an ordinary
 //! Vec: it is read, written, grown and freed as before.

@@ -72,7 +72,7 @@ pub(crate) fn sort_keyed<P: Packed>(pairs: &mut [P]) {
         sort_short(pairs);
         return;
     }
-    let mut buffer = vec![P::default(); pairs.len()];
+    let mut buffer = crate::huge_pages::zeros::<P>(pairs.len());
     sort_run(pairs, &mut buffer, 56, true);
 }
 
