@@ -1,6 +1,6 @@
 //! Large buffers backed by transparent huge pages (Linux, feature `huge-pages`, on by default):
-//! the k-nearest joins' answer tables and the serial bulk build's keys, sort buffer, points and
-//! items.
+//! the k-nearest joins' answer tables and the bulk builds' keys, sort buffers, points and items
+//! (serial and `par_build`).
 //!
 //! A k-nearest join writes its answer, `k` slots and `k` distances per point (256 MB for the
 //! 16 nearest of 10^6 points), into fresh memory, and a bulk build of n points writes about 44
@@ -23,7 +23,8 @@
 //! advised rounds timed by `/usr/bin/time` the extra time was user time, the system time
 //! staying 0.25-0.32 s against 0.44-0.62 s unadvised); `cloud_compare --workload
 //! voxel --n 10000000 --reps 3` (the downsampling, most of it the build), 1 058-1 175 ms against
-//! 766-803. On the day before, on a host with AVX-512, the same advice on the build had
+//! 766-803; `build_scale --par` at 10^8, 75.6-99.7 ns/point advised (six rounds) against
+//! 98.6-155.3 (three). On the day before, on a host with AVX-512, the same advice on the build had
 //! measured no change at 10^8 (180-195 ns/point against 180-253).
 //!
 //! The advice is the one `unsafe` call here (see [`advise`]); an advised Vec stays an ordinary

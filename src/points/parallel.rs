@@ -54,7 +54,7 @@ impl<S: Scalar + Send + Sync, const D: usize> PointTreeBuilder<S, D> {
         }
         let (geometry, domain) = settle(root, bounds, n);
         let bits = index_bits(n);
-        let mut packed = vec![0u64; n];
+        let mut packed = crate::huge_pages::zeros::<u64>(n);
         packed
             .par_chunks_mut(CHUNK)
             .enumerate()
@@ -66,14 +66,18 @@ impl<S: Scalar + Send + Sync, const D: usize> PointTreeBuilder<S, D> {
                 });
             });
         super::radix::par_sort_keyed(&mut packed);
-        let (points, items): (Vec<[S; D]>, Vec<T>) = packed
+        let (mut points, mut items): (Vec<[S; D]>, Vec<T>) =
+            (Vec::with_capacity(n), Vec::with_capacity(n));
+        crate::huge_pages::advise(&mut points);
+        crate::huge_pages::advise(&mut items);
+        packed
             .par_iter()
             .enumerate()
             .map(|(j, &k)| {
                 prefetch(&entries[later_index(&packed, j, bits)]);
                 entries[unpack_index(k, bits)].clone()
             })
-            .unzip();
+            .unzip_into_vecs(&mut points, &mut items);
         Ok(self.assemble(geometry, domain, packed, bits, points, items))
     }
 }

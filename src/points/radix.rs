@@ -95,7 +95,7 @@ pub(super) fn par_sort_keyed<P: Packed>(pairs: &mut [P]) {
             None => return, // every key equal: already in input order
         }
     };
-    let mut buffer = vec![P::default(); pairs.len()];
+    let mut buffer = crate::huge_pages::zeros::<P>(pairs.len());
     scatter(pairs, &mut buffer, shift, &counts);
     let Some(next) = shift.checked_sub(8) else {
         pairs.copy_from_slice(&buffer);
