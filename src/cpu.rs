@@ -151,6 +151,67 @@ fn le_bits_avx(d: &[f64; 8], bound: f64) -> u64 {
     (lo | hi << 4) as u64
 }
 
+/// Which copy of the radius kernel this processor runs, with the token of the comparison the
+/// fast copies use. Made only by [`Level::detected`] (and, for the tests, by
+/// `Level::fast_available`), so a fast level exists only where the processor has its features.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Level(Tier);
+
+/// The levels, private so that none is made without the check.
+#[derive(Clone, Copy, Debug)]
+enum Tier {
+    Baseline,
+    V3(Avx),
+    V4(Avx),
+}
+
+impl Level {
+    /// The baseline copy, which every processor runs.
+    #[cfg(test)]
+    pub(crate) const BASELINE: Level = Level(Tier::Baseline);
+
+    /// The fastest level this processor has.
+    #[inline]
+    pub(crate) fn detected() -> Level {
+        match Avx::detected() {
+            Some(avx) if has_v4() => Level(Tier::V4(avx)),
+            Some(avx) => Level(Tier::V3(avx)),
+            None => Level(Tier::Baseline),
+        }
+    }
+
+    /// Every fast level this processor can run (none, v3, or v3 and v4).
+    #[cfg(test)]
+    pub(crate) fn fast_available() -> Vec<Level> {
+        let mut out = Vec::new();
+        if let Some(avx) = Avx::detected() {
+            out.push(Level(Tier::V3(avx)));
+            if has_v4() {
+                out.push(Level(Tier::V4(avx)));
+            }
+        }
+        out
+    }
+
+    /// The comparison token of the fast copies; `None` at the baseline.
+    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
+    #[inline]
+    pub(crate) fn avx(self) -> Option<Avx> {
+        match self.0 {
+            Tier::Baseline => None,
+            Tier::V3(avx) | Tier::V4(avx) => Some(avx),
+        }
+    }
+
+    /// Whether the AVX-512 copy may run: only for a level made after [`has_v4`] found its
+    /// features.
+    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
+    #[inline]
+    pub(crate) fn v4(self) -> bool {
+        matches!(self.0, Tier::V4(_))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::{Avx, Compare, Portable};

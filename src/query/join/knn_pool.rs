@@ -112,7 +112,7 @@ impl<N: Copy, const D: usize> Pool<N, D> {
                 continue;
             }
             let before = self.stack.len();
-            push_children(b, &side, SCAN, &mut self.stack);
+            push_children(b, &side, SCAN, |c| self.stack.push(c));
             if self.stack.len() > before {
                 continue;
             }

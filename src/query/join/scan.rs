@@ -25,7 +25,7 @@
 
 use super::bounds::PairDistance;
 use super::radius::Boundary;
-use crate::cpu::{compiled_copy, Avx, Compare, Portable};
+use crate::cpu::{compiled_copy, Avx, Compare, Level, Portable};
 use crate::geom::{Aabb, Scalar};
 use core::ops::{ControlFlow, Range};
 
@@ -41,6 +41,8 @@ pub(crate) struct Block<const D: usize> {
     len: usize,
     /// The tight boxes of the runs met on either side of the leaf pairs.
     tight: [TightBoxes<D>; 2],
+    /// The copy of the kernels this processor runs, found once per block.
+    level: Level,
 }
 
 /// The number of runs whose tight boxes are kept per side.
@@ -85,6 +87,7 @@ impl<const D: usize> Block<D> {
             dist: [0.0; BLOCK],
             len: 0,
             tight: [TightBoxes::new(), TightBoxes::new()],
+            level: Level::detected(),
         })
     }
 
@@ -172,9 +175,8 @@ pub(crate) type Run<'a, S, const D: usize> = (&'a [[S; D]], Range<usize>, &'a Aa
 /// distance `d` is within `r2` (under `boundary`); with `same` (one run paired with itself),
 /// for every `i < j` of it. Stops at the first [`ControlFlow::Break`].
 ///
-/// Runs the copy compiled for x86-64-v4 (AVX-512) where the processor has it
-/// ([`cpu`](crate::cpu)):
-/// the same pairs and distances.
+/// Runs the copy compiled for x86-64-v4 (AVX-512) or v3 (AVX2) where the processor has it
+/// ([`cpu`](crate::cpu)): the same pairs and distances.
 #[allow(clippy::too_many_arguments)]
 #[inline]
 pub(crate) fn scan_pairs<SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D: usize>(
@@ -188,20 +190,17 @@ pub(crate) fn scan_pairs<SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D
     each: impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
 ) -> ControlFlow<Br> {
     #[cfg(target_arch = "x86_64")]
-    if let Some(avx) = Avx::detected() {
-        if crate::cpu::has_v4() {
-            // SAFETY: `scan_pairs_v4` is `pairs_in` compiled for the features `has_v4` has just
-            // found on this processor.
-            #[allow(unsafe_code)]
-            unsafe {
-                return scan_pairs_v4(avx, block, a, b, same, metric, r2, boundary, each);
-            }
-        }
-        // SAFETY: `scan_pairs_v3` is `pairs_in` compiled for the features `Avx::detected` has
-        // just found on this processor.
+    if let Some(avx) = block.level.avx() {
+        // SAFETY: `scan_pairs_v4` and `scan_pairs_v3` are `pairs_in` compiled for the features
+        // of the v4 and v3 levels; a `Level` has a token only where `has_v3` found the v3
+        // features, and says `v4` only where `has_v4` found those of v4.
         #[allow(unsafe_code)]
         unsafe {
-            return scan_pairs_v3(avx, block, a, b, same, metric, r2, boundary, each);
+            return if block.level.v4() {
+                scan_pairs_v4(avx, block, a, b, same, metric, r2, boundary, each)
+            } else {
+                scan_pairs_v3(avx, block, a, b, same, metric, r2, boundary, each)
+            };
         }
     }
     pairs_in(Portable, block, a, b, same, metric, r2, boundary, each)
@@ -323,9 +322,8 @@ fn gather<S: Scalar, const D: usize>(
 /// the radii below the near bound none, and only the radii in between are found pair by pair,
 /// by a binary search among them.
 ///
-/// Runs the copy compiled for x86-64-v4 (AVX-512) where the processor has it
-/// ([`cpu`](crate::cpu)):
-/// the same counts.
+/// Runs the copy compiled for x86-64-v4 (AVX-512) or v3 (AVX2) where the processor has it
+/// ([`cpu`](crate::cpu)): the same counts.
 #[allow(clippy::too_many_arguments)]
 #[inline]
 pub(crate) fn scan_counts<SA: Scalar, SB: Scalar, P: PairDistance<D>, const D: usize>(
@@ -339,20 +337,15 @@ pub(crate) fn scan_counts<SA: Scalar, SB: Scalar, P: PairDistance<D>, const D: u
     diff: &mut [i128],
 ) {
     #[cfg(target_arch = "x86_64")]
-    if let Some(avx) = Avx::detected() {
-        if crate::cpu::has_v4() {
-            // SAFETY: `scan_counts_v4` is `counts_in` compiled for the features `has_v4` has just
-            // found on this processor.
-            #[allow(unsafe_code)]
-            unsafe {
-                return scan_counts_v4(avx, block, a, b, same, metric, radii, boundary, diff);
-            }
-        }
-        // SAFETY: `scan_counts_v3` is `counts_in` compiled for the features `Avx::detected` has
-        // just found on this processor.
+    if let Some(avx) = block.level.avx() {
+        // SAFETY: as in `scan_pairs`, for `counts_in`'s copies.
         #[allow(unsafe_code)]
         unsafe {
-            return scan_counts_v3(avx, block, a, b, same, metric, radii, boundary, diff);
+            return if block.level.v4() {
+                scan_counts_v4(avx, block, a, b, same, metric, radii, boundary, diff)
+            } else {
+                scan_counts_v3(avx, block, a, b, same, metric, radii, boundary, diff)
+            };
         }
     }
     counts_in(Portable, block, a, b, same, metric, radii, boundary, diff);
@@ -460,84 +453,44 @@ fn report<Br, const D: usize>(
 
 #[cfg(test)]
 mod tests {
-    use super::{counts_in, pairs_in, Block, Run};
-    use crate::cpu::{Avx, Portable};
+    use super::{scan_counts, scan_pairs, Block, Run};
+    use crate::cpu::Level;
     use crate::geom::Aabb;
     use crate::query::join::bounds::Euclid;
     use crate::query::join::radius::Boundary;
     use core::ops::ControlFlow;
     use rand::{rngs::SmallRng, Rng, SeedableRng};
 
-    /// The fast copies of the kernels this processor can run (3 and 4), with the token of
-    /// their comparison.
-    fn copies() -> Vec<(u8, Avx)> {
-        let mut out = Vec::new();
-        if let Some(avx) = Avx::detected() {
-            out.push((3, avx));
-            if crate::cpu::has_v4() {
-                out.push((4, avx));
-            }
-        }
-        out
-    }
-
-    /// Every pair of `a` and `b` within `r2` by the copy of level `copy`, with its distance's bits.
+    /// Every pair of `a` and `b` within `r2` by the copy of `level`, with its distance's bits.
     fn pairs_by(
-        copy: Option<(u8, Avx)>,
+        level: Level,
         (a, b, same): (Run<'_, f64, 3>, Run<'_, f64, 3>, bool),
         r2: f64,
         boundary: Boundary,
     ) -> Vec<(usize, usize, u64)> {
-        let mut block = Block::<3>::boxed();
         let mut out = Vec::new();
         let each = |i: usize, j: usize, d: f64| {
             out.push((i, j, d.to_bits()));
             ControlFlow::<()>::Continue(())
         };
-        let block = &mut block;
-        let _ = match copy {
-            #[cfg(target_arch = "x86_64")]
-            // SAFETY: `copies` lists level 3 only when `has_v3` found its features.
-            #[allow(unsafe_code)]
-            Some((3, c)) => unsafe {
-                super::scan_pairs_v3(c, block, a, b, same, &Euclid, r2, boundary, each)
-            },
-            #[cfg(target_arch = "x86_64")]
-            // SAFETY: `copies` lists level 4 only when `has_v4` found its features.
-            #[allow(unsafe_code)]
-            Some((4, c)) => unsafe {
-                super::scan_pairs_v4(c, block, a, b, same, &Euclid, r2, boundary, each)
-            },
-            _ => pairs_in(Portable, block, a, b, same, &Euclid, r2, boundary, each),
-        };
+        let mut block = Block::<3>::boxed();
+        block.level = level;
+        let _ = scan_pairs(&mut block, a, b, same, &Euclid, r2, boundary, each);
         out
     }
 
-    /// The count differences of `a` and `b` over the squared radii `r2` by the copy `copy`.
+    /// The count differences of `a` and `b` over the squared radii `r2` by the copy of `level`.
     fn counts_by(
-        copy: Option<(u8, Avx)>,
+        level: Level,
         (a, b, same): (Run<'_, f64, 3>, Run<'_, f64, 3>, bool),
         r2: &[f64],
         boundary: Boundary,
     ) -> Vec<i128> {
-        let mut block = Block::<3>::boxed();
         let mut diff = vec![0i128; r2.len() + 1];
-        let (block, radii, d) = (&mut block, (r2, 0, r2.len()), &mut diff);
-        match copy {
-            #[cfg(target_arch = "x86_64")]
-            // SAFETY: `copies` lists level 3 only when `has_v3` found its features.
-            #[allow(unsafe_code)]
-            Some((3, c)) => unsafe {
-                super::scan_counts_v3(c, block, a, b, same, &Euclid, radii, boundary, d)
-            },
-            #[cfg(target_arch = "x86_64")]
-            // SAFETY: `copies` lists level 4 only when `has_v4` found its features.
-            #[allow(unsafe_code)]
-            Some((4, c)) => unsafe {
-                super::scan_counts_v4(c, block, a, b, same, &Euclid, radii, boundary, d)
-            },
-            _ => counts_in(Portable, block, a, b, same, &Euclid, radii, boundary, d),
-        }
+        let radii = (r2, 0, r2.len());
+        let mut block = Block::<3>::boxed();
+        block.level = level;
+        scan_counts(&mut block, a, b, same, &Euclid, radii, boundary, &mut diff);
         diff
     }
 
@@ -559,6 +512,7 @@ mod tests {
         let whole = Aabb::around(&pts);
         let radii = [0.0, 0.01, 0.05, 0.125, 0.3];
         let r2: Vec<f64> = radii.iter().map(|r| r * r).collect();
+        let (baseline, fast) = (Level::BASELINE, Level::fast_available());
         for (ra, rb) in [(0..400, 0..400), (0..150, 150..400), (37..300, 10..90)] {
             let same = ra == rb;
             let runs = || {
@@ -570,18 +524,17 @@ mod tests {
             };
             for boundary in [Boundary::Inclusive, Boundary::Exclusive] {
                 for &r in &radii {
-                    let base = pairs_by(None, runs(), r * r, boundary);
+                    let base = pairs_by(baseline, runs(), r * r, boundary);
                     assert!(r == 0.0 || same || !base.is_empty(), "the check sees pairs");
-                    for copy in copies() {
-                        let got = pairs_by(Some(copy), runs(), r * r, boundary);
-                        assert_eq!(got, base, "v{}", copy.0);
+                    for &level in &fast {
+                        let got = pairs_by(level, runs(), r * r, boundary);
+                        assert_eq!(got, base, "{level:?}");
                     }
                 }
-                let base = counts_by(None, runs(), &r2, boundary);
+                let base = counts_by(baseline, runs(), &r2, boundary);
                 assert!(base.iter().any(|&c| c != 0), "the check sees counts");
-                for copy in copies() {
-                    let got = counts_by(Some(copy), runs(), &r2, boundary);
-                    assert_eq!(got, base, "v{}", copy.0);
+                for &level in &fast {
+                    assert_eq!(counts_by(level, runs(), &r2, boundary), base, "{level:?}");
                 }
             }
         }

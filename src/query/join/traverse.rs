@@ -53,43 +53,23 @@ pub(crate) fn children<I: SpatialIndex<D>, const D: usize>(
     scan: usize,
 ) -> Kids<I::Node, D> {
     let mut out = SmallVec::new();
-    push_children(index, side, scan, &mut out);
+    push_children(index, side, scan, |c| out.push(c));
     out
 }
 
-/// Appends the children of a node with their boxes to `out` ([`children`]); appends nothing
-/// for a node to scan. Filling a buffer the caller keeps saves the copy of a returned list,
-/// which was a tenth of the radius joins' time.
+/// Hands the children of a node with their boxes to `push` ([`children`]); hands nothing for
+/// a node to scan. Pushing onto a buffer the caller keeps saves the copy of a returned list,
+/// which was a tenth of the radius joins' time (and a push per child, not `Extend` with a
+/// one-item iterator, which reserved room on every call: a twentieth).
 #[inline(always)]
-pub(crate) fn push_children<I: SpatialIndex<D>, E: PushSide<Side<I::Node, D>>, const D: usize>(
+pub(crate) fn push_children<I: SpatialIndex<D>, const D: usize>(
     index: &I,
     side: &Side<I::Node, D>,
     scan: usize,
-    out: &mut E,
+    mut push: impl FnMut(Side<I::Node, D>),
 ) {
     if !scans_whole(index, side.0, scan) {
-        index.for_each_child_in(side.0, &side.1, |c, cb| out.push_side((c, *cb)));
-    }
-}
-
-/// A list children are pushed on, one at a time (`Extend` with one item at a time reserves
-/// room on every call, which was a twentieth of the radius joins' time).
-pub(crate) trait PushSide<T> {
-    /// Appends `side`.
-    fn push_side(&mut self, side: T);
-}
-
-impl<T> PushSide<T> for Vec<T> {
-    #[inline(always)]
-    fn push_side(&mut self, side: T) {
-        self.push(side);
-    }
-}
-
-impl<T, const N: usize> PushSide<T> for SmallVec<[T; N]> {
-    #[inline(always)]
-    fn push_side(&mut self, side: T) {
-        self.push(side);
+        index.for_each_child_in(side.0, &side.1, |c, cb| push((c, *cb)));
     }
 }
 
@@ -161,14 +141,14 @@ where
     let ab = (a, b, metric);
     ca.clear();
     cb.clear();
-    push_children(a, &sa, SCAN_RADIUS, ca);
+    push_children(a, &sa, SCAN_RADIUS, |c| ca.push(c));
     if same {
         // One node with itself: the unordered pairs of its children, each child with itself.
         if ca.is_empty() {
             return visitor.leaves(&state, (a.run(sa.0), &sa.1), (b.run(sb.0), &sb.1), true);
         }
         // The same tree on both sides: the children's handles are both A's and B's.
-        push_children(b, &sb, SCAN_RADIUS, cb);
+        push_children(b, &sb, SCAN_RADIUS, |c| cb.push(c));
         for i in (0..ca.len()).rev() {
             for j in (i..cb.len()).rev() {
                 offer(ab, (ca[i], cb[j], i == j), &state, visitor, stack);
@@ -178,7 +158,7 @@ where
     }
     // Split the side with more points; look at `b`'s children only when they may be needed.
     if ca.is_empty() || a.count(sa.0) < b.count(sb.0) {
-        push_children(b, &sb, SCAN_RADIUS, cb);
+        push_children(b, &sb, SCAN_RADIUS, |c| cb.push(c));
         if !cb.is_empty() {
             for &c in cb.iter().rev() {
                 offer(ab, (sa, c, false), &state, visitor, stack);
