@@ -76,6 +76,18 @@ fn cpu_ns() -> Option<u64> {
     stat.split_whitespace().next()?.parse().ok()
 }
 
+/// The processor time of the whole process so far in nanoseconds, (user, kernel), from
+/// `/proc/self/stat` (Linux only, in clock ticks, usually of 10 ms): the kernel's part is
+/// mostly the page faults on fresh memory.
+fn process_ns() -> Option<(u64, u64)> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // the fields after the command name, which is in parentheses and may hold spaces
+    let fields: Vec<&str> = stat.rsplit_once(')')?.1.split_whitespace().collect();
+    let tick = 10_000_000; // ns per tick at the usual 100 Hz
+    let (user, kernel): (u64, u64) = (fields.get(11)?.parse().ok()?, fields.get(12)?.parse().ok()?);
+    Some((user * tick, kernel * tick))
+}
+
 /// The peak resident memory of this process in KiB, if the system reports it.
 fn peak_kib() -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
@@ -104,7 +116,7 @@ fn main() {
     let before = peak_kib();
     let mut costs = Vec::with_capacity(args.runs);
     for run in 0..args.runs {
-        let (start, cpu_start) = (Instant::now(), cpu_ns());
+        let (start, cpu_start, process_start) = (Instant::now(), cpu_ns(), process_ns());
         let tree = if args.par {
             par_build(&entries)
         } else {
@@ -120,12 +132,20 @@ fn main() {
             ),
             _ => String::new(),
         };
+        let kernel = match (process_start, process_ns()) {
+            (Some((u0, k0)), Some((u1, k1))) => format!(
+                ", all threads {:.1} user + {:.1} kernel ns/point",
+                (u1 - u0) as f64 / args.n as f64,
+                (k1 - k0) as f64 / args.n as f64
+            ),
+            _ => String::new(),
+        };
         // FNV-1a over the item order: equal for equal trees.
         let digest = tree.items().iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &i| {
             (h ^ u64::from(i)).wrapping_mul(0x100_0000_01b3)
         });
         println!(
-            "run {run}: {ns:.1} ns/point{cpu}, {} nodes, {} leaves, items digest {digest:016x}",
+            "run {run}: {ns:.1} ns/point{cpu}{kernel}, {} nodes, {} leaves, items digest {digest:016x}",
             tree.node_count(),
             tree.leaf_count()
         );
