@@ -52,7 +52,7 @@ const HUGE_PAGE: usize = 2 << 20;
 /// pages are first written: a `vec![0; n]` of a large `n` is memory the system has not yet
 /// handed over.
 #[inline]
-pub(crate) fn advise<T>(v: &mut Vec<T>) {
+fn advise<T>(v: &mut Vec<T>) {
     #[cfg(all(target_os = "linux", feature = "huge-pages"))]
     {
         let bytes = v.capacity() * core::mem::size_of::<T>();
@@ -84,6 +84,15 @@ pub(crate) fn advise<T>(v: &mut Vec<T>) {
     }
     #[cfg(not(all(target_os = "linux", feature = "huge-pages")))]
     let _ = v;
+}
+
+/// An empty Vec with room for `n` elements, advised to be backed by huge pages before anything
+/// is written to it.
+#[inline]
+pub(crate) fn with_capacity<T>(n: usize) -> Vec<T> {
+    let mut v = Vec::with_capacity(n);
+    advise(&mut v);
+    v
 }
 
 /// `n` zeros in a Vec advised to be backed by huge pages before anything is written to it.

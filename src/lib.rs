@@ -26,12 +26,13 @@
 //!
 //! # Features
 //! `huge-pages` is on by default: on Linux, the large answer tables of the k-nearest joins and
-//! the bulk builds' buffers are advised to be backed by transparent huge pages (fewer
-//! page faults; a no-op elsewhere and where the system does not offer them). Off by default: `rayon` (the `par_` builds, balances,
-//! batch queries and joins), `png` (PNG images), `serde` (every tree, region tree and mesh),
-//! `saved` (the binary saved-tree format) and `mmap` (saved trees queried through a memory map),
-//! `las` and `laz` (LAS and LAZ point clouds); `full` turns all of these on. `mpi` (the forest and point tree over MPI ranks)
-//! needs OpenMPI and libclang on the system; `reference` compiles the reference algorithms.
+//! the bulk builds' buffers are advised to be backed by transparent huge pages (fewer page
+//! faults; a no-op elsewhere and where the system does not offer them). Off by default: `rayon`
+//! (the `par_` builds, balances, batch queries and joins), `png` (PNG images), `serde` (every
+//! tree, region tree and mesh), `saved` (the binary saved-tree format) and `mmap` (saved trees
+//! queried through a memory map), `las` and `laz` (LAS and LAZ point clouds); `full` turns all
+//! of these on. `mpi` (the forest and point tree over MPI ranks) needs OpenMPI and libclang on
+//! the system; `reference` compiles the reference algorithms.
 //!
 //! ```
 //! use orthtree::prelude::*;

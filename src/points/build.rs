@@ -199,14 +199,11 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
         let bounds = self.scan(root.as_ref(), 0..n, &point)?;
         let (geometry, domain) = settle(root, bounds, n);
         let bits = index_bits(n);
-        let mut packed: Vec<u64> = Vec::with_capacity(n);
-        crate::huge_pages::advise(&mut packed);
+        let mut packed: Vec<u64> = crate::huge_pages::with_capacity(n);
         geometry.keys_into(n, &point, |i, key| packed.push(pack(key, i, bits)));
         super::radix::sort_keyed(&mut packed);
-        let mut points = Vec::with_capacity(n);
-        let mut items = Vec::with_capacity(n);
-        crate::huge_pages::advise(&mut points);
-        crate::huge_pages::advise(&mut items);
+        let mut points = crate::huge_pages::with_capacity(n);
+        let mut items = crate::huge_pages::with_capacity(n);
         // The gather reads the input in Morton order, at random for scattered points: ask for
         // the records ahead so that their cache misses overlap.
         for (j, &k) in packed.iter().enumerate() {

@@ -66,10 +66,10 @@ impl<S: Scalar + Send + Sync, const D: usize> PointTreeBuilder<S, D> {
                 });
             });
         super::radix::par_sort_keyed(&mut packed);
-        let (mut points, mut items): (Vec<[S; D]>, Vec<T>) =
-            (Vec::with_capacity(n), Vec::with_capacity(n));
-        crate::huge_pages::advise(&mut points);
-        crate::huge_pages::advise(&mut items);
+        let (mut points, mut items): (Vec<[S; D]>, Vec<T>) = (
+            crate::huge_pages::with_capacity(n),
+            crate::huge_pages::with_capacity(n),
+        );
         packed
             .par_iter()
             .enumerate()
