@@ -113,7 +113,9 @@ pub mod iter {
 pub mod prelude {
     #[cfg(feature = "rayon")]
     pub use crate::query::ParallelQueries;
-    pub use crate::query::{Joins, PeriodicJoins, PeriodicQueries, PointSet, PointSetMut};
+    pub use crate::query::{
+        BatchQueries, Joins, PeriodicJoins, PeriodicQueries, PointSet, PointSetMut,
+    };
     #[cfg(feature = "rayon")]
     pub use crate::query::{ParallelJoins, ParallelPeriodicJoins};
 }

@@ -132,22 +132,47 @@ fn kiddo_tree(points: &[[f64; 3]]) -> ImmutableKdTree<f64, 3> {
 
 /// The sums of a list of neighbours given as `(index, squared distance)`.
 fn found(list: impl Iterator<Item = (u64, f64)>) -> Answers {
-    let (mut count, mut items, mut distance) = (0u64, 0u64, 0.0);
-    for (i, d) in list {
-        count += 1;
-        items = items.wrapping_add(i);
-        distance += d;
+    let mut sums = Sums::default();
+    list.for_each(|(i, d)| sums.add(i, d));
+    sums.answers()
+}
+
+/// The running sums of [`found`], for answers handed to a visitor.
+#[derive(Default)]
+struct Sums {
+    count: u64,
+    items: u64,
+    distance: f64,
+}
+
+impl Sums {
+    fn add(&mut self, item: u64, distance: f64) {
+        self.count += 1;
+        self.items = self.items.wrapping_add(item);
+        self.distance += distance;
     }
-    Answers {
-        count,
-        items: Some(items),
-        distance: Some(distance),
+
+    fn answers(self) -> Answers {
+        Answers {
+            count: self.count,
+            items: Some(self.items),
+            distance: Some(self.distance),
+        }
     }
 }
 
 /// orthtree: the `k` nearest points of each query under minimum-image distances in the periodic
-/// unit cube ([`PeriodicQueries::periodic_k_nearest`]), one thread.
-pub fn orthtree_periodic(points: &[[f64; 3]], queries: &[[f64; 3]], k: usize, reps: usize) -> Run {
+/// unit cube, one thread: one [`PeriodicQueries::periodic_k_nearest`] per query in the order
+/// given, or with `batch` all of them through [`BatchQueries::periodic_k_nearest_batch`], which
+/// answers them in Morton order (its sort inside the timing) to a visitor. The answers are the
+/// same.
+pub fn orthtree_periodic(
+    points: &[[f64; 3]],
+    queries: &[[f64; 3]],
+    k: usize,
+    reps: usize,
+    batch: bool,
+) -> Run {
     let torus = Torus::wrapping([0.0; 3], [1.0; 3]).expect("a unit torus");
     let inside = torus
         .prepare(points, OutsidePoints::Refuse)
@@ -156,12 +181,22 @@ pub fn orthtree_periodic(points: &[[f64; 3]], queries: &[[f64; 3]], k: usize, re
     let (build_ms, _) = time(reps, || PointTree::new(&es).expect("finite points").len());
     let tree = PointTree::new(&es).expect("finite points");
     let (query_ms, a) = time(reps, || {
-        found(queries.iter().flat_map(|q| {
-            tree.periodic_k_nearest(&torus, q, k)
-                .expect("a finite query")
-                .into_iter()
-                .map(|nb| (u64::from(*nb.item), nb.distance))
-        }))
+        if batch {
+            let mut sums = Sums::default();
+            tree.periodic_k_nearest_batch(&torus, queries, k, |_, near| {
+                near.iter()
+                    .for_each(|nb| sums.add(u64::from(*nb.item), nb.distance));
+            })
+            .expect("finite queries");
+            sums.answers()
+        } else {
+            found(queries.iter().flat_map(|q| {
+                tree.periodic_k_nearest(&torus, q, k)
+                    .expect("a finite query")
+                    .into_iter()
+                    .map(|nb| (u64::from(*nb.item), nb.distance))
+            }))
+        }
     });
     Run {
         build_ms,

@@ -133,16 +133,19 @@ fn orthtree_and_kiddo_agree_with_brute_force_on_pairs_and_counts() {
 #[test]
 fn orthtree_and_kiddo_agree_on_periodic_and_self_knn() {
     let (pts, qs) = (uniform::<3>(3000, 5), uniform::<3>(200, 6));
-    let (a, b) = (
-        joins::orthtree_periodic(&pts, &qs, 10, 1),
+    let (a, b, c) = (
+        joins::orthtree_periodic(&pts, &qs, 10, 1, false),
         joins::kiddo_periodic(&pts, &qs, 10, 1),
+        joins::orthtree_periodic(&pts, &qs, 10, 1, true),
     );
-    assert!(
-        a.answer.agrees_with(&b.answer, true),
-        "{:?} {:?}",
-        a.answer,
-        b.answer
-    );
+    for other in [&b, &c] {
+        assert!(
+            a.answer.agrees_with(&other.answer, true),
+            "{:?} {:?}",
+            a.answer,
+            other.answer
+        );
+    }
     // One query's answer against a scan over the 27 images.
     let q = qs[0];
     let mut best: Vec<f64> = pts
@@ -157,7 +160,7 @@ fn orthtree_and_kiddo_agree_on_periodic_and_self_knn() {
         })
         .collect();
     best.sort_by(f64::total_cmp);
-    let one = joins::orthtree_periodic(&pts, &qs[..1], 10, 1);
+    let one = joins::orthtree_periodic(&pts, &qs[..1], 10, 1, false);
     let Answer::Found(f) = one.answer else {
         panic!("neighbours")
     };

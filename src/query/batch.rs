@@ -3,39 +3,12 @@
 //! ([`ParallelQueries`], written once for every tree).
 //!
 //! Results come back in the order of the queries. A bad query (a NaN coordinate, a negative
-//! radius) fails the batch with a [`BatchError`] naming the first bad query's position; queries
-//! are checked before any work starts.
+//! radius) fails the batch with a [`BatchError`] naming the first bad query's position.
 
 use super::index::SpatialIndex;
 use super::range::{for_each_in, scan_limit};
-use super::{Neighbor, PointSet, QueryError, Region};
+use super::{BatchError, Neighbor, PointSet, QueryError, Region};
 use rayon::prelude::*;
-
-/// A batch refused because of one query: its position in the batch and what is wrong with it.
-///
-/// ```
-/// use orthtree::prelude::*;
-/// use orthtree::{query::BatchError, Quadtree};
-/// let t = Quadtree::new(&[([0.0, 0.0], 'a')]).unwrap();
-/// let err = t.par_k_nearest(&[[0.0, 0.0], [f64::NAN, 1.0]], 1).unwrap_err();
-/// assert_eq!(err.index, 1);
-/// assert!(err.to_string().contains("query 1"));
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct BatchError {
-    /// The position of the first bad query in the batch.
-    pub index: usize,
-    /// What is wrong with it.
-    pub error: QueryError,
-}
-
-impl core::fmt::Display for BatchError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        write!(f, "query {} of the batch: {}", self.index, self.error)
-    }
-}
-
-impl std::error::Error for BatchError {}
 
 /// Runs `answer` on every query in parallel; the first error in batch order wins.
 fn run_batch<Q: Sync, A: Send>(

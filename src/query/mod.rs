@@ -34,6 +34,7 @@ mod knn_images;
 mod location;
 mod metric;
 mod nearest_iter;
+mod ordered_batch;
 mod periodic;
 mod periodic_metric;
 mod periodic_queries;
@@ -45,7 +46,7 @@ mod region;
 
 use crate::geom::FloatBits;
 #[cfg(feature = "rayon")]
-pub use batch::{BatchError, ParallelQueries};
+pub use batch::ParallelQueries;
 pub(crate) use index::nearest_child_by_boxes;
 pub use index::SpatialIndex;
 #[cfg(test)]
@@ -58,6 +59,7 @@ pub(crate) use knn::k_nearest;
 pub use knn::Neighbor;
 pub use location::Location;
 pub use metric::{Chebyshev, Manhattan, Metric, SquaredEuclidean};
+pub use ordered_batch::{BatchError, BatchQueries};
 pub use periodic::{OutsidePoints, PeriodicError, Torus};
 pub use periodic_metric::{AxisMetric, MinImage};
 pub use periodic_queries::PeriodicQueries;

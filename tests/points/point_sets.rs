@@ -3,7 +3,7 @@
 //! range queries over boxes, balls, half-spaces and a user region (lazy, count, visitor, stats),
 //! nearest, k-nearest and the nearest iterator under three metrics with and without a maximum
 //! distance, the accessors, the one meaning of a neighbour's index (a slot of `items()`), the
-//! batch forms (feature `rayon`), and the updates of [`PointSetMut`] against a model. Points lie
+//! serial batch forms and the parallel ones (feature `rayon`), and the updates of [`PointSetMut`] against a model. Points lie
 //! on a dyadic grid (split lines, box faces, exact distances, many duplicates), D = 2 and 3.
 
 use crate::common;
@@ -189,7 +189,50 @@ where
             .filter(|p| SquaredEuclidean.distance(q, p) <= radius);
         assert_eq!(inside, near.count(), "squared distances up to `max`");
     }
+    check_serial_batches(t, queries);
     check_batches(t, pts, queries);
+}
+
+/// The serial batches ([`BatchQueries`]) visit every query once with the single query's answer
+/// (plain and on the torus of the unit box), also for queries outside the domain, and a bad
+/// query fails the batch before any visit, naming the first bad position.
+fn check_serial_batches<P, const D: usize>(t: &P, queries: &[[f64; D]])
+where
+    P: PointSet<D, Scalar = f64, Item = usize>,
+{
+    let mut queries = queries.to_vec();
+    queries.extend([[2.0; D], [-1.0; D], [0.5; D]]);
+    let torus = orthtree::query::Torus::wrapping([0.0; D], [1.0; D]).unwrap();
+    let key = |n: &orthtree::Neighbor<'_, f64, usize, D>| (n.index, *n.item, n.distance);
+    for k in [0, 1, 3, 17] {
+        let mut seen = vec![0; queries.len()];
+        t.k_nearest_batch(&queries, k, |q, near| {
+            seen[q] += 1;
+            let single = t.k_nearest(&queries[q], k).unwrap();
+            assert!(near.iter().map(key).eq(single.iter().map(key)), "query {q}");
+        })
+        .unwrap();
+        assert!(seen.iter().all(|&v| v == 1), "each query visited once");
+        t.periodic_k_nearest_batch(&torus, &queries, k, |q, near| {
+            seen[q] += 1;
+            let single = t.periodic_k_nearest(&torus, &queries[q], k).unwrap();
+            assert!(near.iter().map(key).eq(single.iter().map(key)), "query {q}");
+        })
+        .unwrap();
+        assert!(seen.iter().all(|&v| v == 2), "each query visited once more");
+    }
+    let mut bad = queries.clone();
+    bad.insert(1, [f64::NAN; D]);
+    bad.push([f64::INFINITY; D]);
+    let err = t
+        .k_nearest_batch(&bad, 2, |_, _| panic!("a visit"))
+        .unwrap_err();
+    assert_eq!(err.index, 1);
+    assert!(err.to_string().contains("query 1"), "{err}");
+    let err = t
+        .periodic_k_nearest_batch(&torus, &bad[2..], 2, |_, _| panic!("a visit"))
+        .unwrap_err();
+    assert_eq!(err.index, bad.len() - 3);
 }
 
 /// The batch forms give the serial answers, in order; their indices are slots.

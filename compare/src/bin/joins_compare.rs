@@ -11,7 +11,8 @@
 //! Workloads (3-D, `f64`):
 //! - `periodic`: the 10 nearest of each of `--queries` uniform queries among N uniform points
 //!   in the periodic unit cube, one thread (kiddo's periodic boundary condition, scipy's
-//!   `boxsize`);
+//!   `boxsize`); then the same queries as one batch (`periodic_k_nearest_batch`: answered in
+//!   Morton order to a visitor, its sort timed), beside the same kiddo and scipy runs;
 //! - `self-knn`: the 16 nearest others of every one of N points on a surface (a wavy height
 //!   field with noise), on all of rayon's threads with the `rayon` feature (kiddo's parallel
 //!   batch query, scipy's `workers = -1`), else on one;
@@ -155,13 +156,26 @@ fn run(a: &Args) -> Result<(), String> {
             name: format!("periodic {k}-nearest, {} queries", a.queries),
             threads: 1,
             runs: [
-                Some(joins::orthtree_periodic(&points, &queries, k, reps)),
+                Some(joins::orthtree_periodic(&points, &queries, k, reps, false)),
                 Some(joins::kiddo_periodic(&points, &queries, k, reps)),
                 scipy_run(sp, "periodic", &points, Some(&queries), &args, reps)?,
             ],
         };
         check(&row, true)?;
+        // The same queries as one batch, answered in Morton order, beside the same kiddo and
+        // scipy runs (scipy's `query` takes the array of queries as one call too).
+        let as_batch = Row {
+            name: format!("periodic {k}-nearest, {} queries as a batch", a.queries),
+            threads: 1,
+            runs: [
+                Some(joins::orthtree_periodic(&points, &queries, k, reps, true)),
+                row.runs[1].clone(),
+                row.runs[2].clone(),
+            ],
+        };
+        check(&as_batch, true)?;
         rows.push(row);
+        rows.push(as_batch);
     }
     let needs_surface =
         wanted(Workload::SelfKnn) || wanted(Workload::Pairs) || wanted(Workload::Count);
