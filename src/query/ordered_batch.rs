@@ -87,6 +87,31 @@ pub(crate) fn morton_order<S: Scalar, const D: usize>(
     keyed.into_iter().map(|(_, i)| i).collect()
 }
 
+/// The answers of a batch put back in query order: `answers[j]` is the answer to query
+/// `order[j]`, `order` a permutation of the positions. The first bad query in batch order (the
+/// smallest position) fails the batch.
+#[cfg(feature = "rayon")]
+pub(crate) fn in_query_order<A>(
+    order: &[usize],
+    answers: Vec<Result<A, QueryError>>,
+) -> Result<Vec<A>, BatchError> {
+    let mut placed: Vec<Option<A>> = core::iter::repeat_with(|| None).take(order.len()).collect();
+    let mut first: Option<BatchError> = None;
+    for (&index, answer) in order.iter().zip(answers) {
+        match answer {
+            Ok(a) => placed[index] = Some(a),
+            Err(error) if first.is_none_or(|f| index < f.index) => {
+                first = Some(BatchError { index, error });
+            }
+            Err(_) => {}
+        }
+    }
+    match first {
+        Some(e) => Err(e),
+        None => Ok(placed.into_iter().flatten().collect()),
+    }
+}
+
 /// A neighbour found in set `P`.
 type NeighborIn<'a, P, const D: usize> =
     Neighbor<'a, <P as PointSet<D>>::Scalar, <P as PointSet<D>>::Item, D>;
@@ -196,6 +221,26 @@ impl<P: PointSet<D>, const D: usize> BatchQueries<D> for P {}
 mod tests {
     use super::morton_order;
     use crate::geom::Aabb;
+
+    /// Answers land at their queries' positions; of several errors the smallest position wins.
+    #[cfg(feature = "rayon")]
+    #[test]
+    fn answers_come_back_in_query_order_and_the_first_error_wins() {
+        use super::in_query_order;
+        use crate::query::QueryError;
+        let order = [2, 0, 1];
+        assert_eq!(
+            in_query_order(&order, vec![Ok('c'), Ok('a'), Ok('b')]).unwrap(),
+            ['a', 'b', 'c']
+        );
+        let bad = vec![
+            Err(QueryError::NanOffset),
+            Ok('a'),
+            Err(QueryError::NanOffset),
+        ];
+        assert_eq!(in_query_order(&order, bad).unwrap_err().index, 1);
+        assert!(in_query_order::<char>(&[], Vec::new()).unwrap().is_empty());
+    }
 
     /// The order is a permutation, nearby queries are neighbours in it, and points outside the
     /// domain or NaN are ordered without a panic.

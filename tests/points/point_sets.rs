@@ -241,6 +241,12 @@ fn check_batches<P, const D: usize>(t: &P, pts: &[[f64; D]], queries: &[[f64; D]
 where
     P: PointSet<D, Scalar = f64, Item = usize> + Sync,
 {
+    let mut bad = queries.to_vec();
+    let first = bad.len().min(1);
+    bad.insert(first, [f64::NAN; D]);
+    bad.push([f64::INFINITY; D]);
+    let err = t.par_k_nearest(&bad, 2).unwrap_err();
+    assert_eq!(err.index, first, "the first bad query");
     let batch = t.par_k_nearest(queries, 4).unwrap();
     for (q, answer) in queries.iter().zip(&batch) {
         let serial = t.k_nearest(q, 4).unwrap();
