@@ -11,8 +11,9 @@
 
 use super::index::SpatialIndex;
 use super::ordered_batch::{in_query_order, morton_order};
+use super::point_set::NeighborIn;
 use super::range::{for_each_in, scan_limit};
-use super::{BatchError, Neighbor, PointSet, QueryError, Region};
+use super::{BatchError, PointSet, QueryError, Region};
 use rayon::prelude::*;
 
 /// Runs `answer` on every query in parallel; the first error in batch order wins.
@@ -27,10 +28,6 @@ fn run_batch<Q: Sync, A: Send>(
         .map(|(index, a)| a.map_err(|error| BatchError { index, error }))
         .collect()
 }
-
-/// A neighbour found in set `P`.
-type NeighborIn<'a, P, const D: usize> =
-    Neighbor<'a, <P as PointSet<D>>::Scalar, <P as PointSet<D>>::Item, D>;
 
 /// The batch forms of [`PointSet`]'s queries, on rayon's threads, for every point set that can
 /// be shared between threads (implemented for all of them; in the prelude).

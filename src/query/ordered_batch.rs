@@ -20,10 +20,9 @@ use super::index::SpatialIndex;
 use super::knn::{k_nearest, Neighbor};
 use super::metric::{Metric, SquaredEuclidean};
 use super::periodic::Torus;
-use super::point_set::with_item;
+use super::point_set::{with_item, NeighborIn};
 use super::{query_point, PointSet, QueryError};
-use crate::geom::morton::interleave;
-use crate::geom::{Aabb, Scalar};
+use crate::geom::{Aabb, RootGeometry, Scalar};
 
 /// A batch refused because of one query: its position in the batch and what is wrong with it.
 ///
@@ -51,9 +50,9 @@ impl core::fmt::Display for BatchError {
 
 impl std::error::Error for BatchError {}
 
-/// The positions of `queries` sorted by the Morton key of their place in `domain`, at the
-/// finest level whose keys fit 64 bits (32 bits per axis at most); a coordinate outside the
-/// domain counts as on its nearest face, and NaN as on the lower one (such a query is refused
+/// The positions of `queries` sorted by their Morton keys in the cube enclosing `domain`
+/// ([`RootGeometry::key`], the order of a point tree's own points): a coordinate outside the
+/// cube counts as on its nearest face, and a NaN lands on a face too (such a query is refused
 /// when answered; its place in the order only decides when).
 ///
 /// # Complexity
@@ -62,26 +61,11 @@ pub(crate) fn morton_order<S: Scalar, const D: usize>(
     queries: &[[S; D]],
     domain: &Aabb<f64, D>,
 ) -> Vec<usize> {
-    let bits = (64 / D as u32).min(32);
-    let top = ((1u64 << bits) - 1) as f64;
-    let scale: [f64; D] = core::array::from_fn(|a| {
-        let extent = domain.max[a] - domain.min[a];
-        if extent > 0.0 && extent.is_finite() {
-            top / extent
-        } else {
-            0.0
-        }
-    });
+    let geometry = RootGeometry::enclosing(domain);
     let mut keyed: Vec<(u64, usize)> = queries
         .iter()
         .enumerate()
-        .map(|(i, q)| {
-            // A NaN stays NaN through `clamp`, and `as` makes it 0.
-            let cell: [u32; D] = core::array::from_fn(|a| {
-                ((q[a].to_f64() - domain.min[a]) * scale[a]).clamp(0.0, top) as u32
-            });
-            (interleave(cell, bits), i)
-        })
+        .map(|(i, q)| (geometry.scalar_key(q), i))
         .collect();
     keyed.sort_unstable();
     keyed.into_iter().map(|(_, i)| i).collect()
@@ -112,10 +96,6 @@ pub(crate) fn in_query_order<A>(
     }
 }
 
-/// A neighbour found in set `P`.
-type NeighborIn<'a, P, const D: usize> =
-    Neighbor<'a, <P as PointSet<D>>::Scalar, <P as PointSet<D>>::Item, D>;
-
 /// Hands `visit` the `k` nearest points of `set` to each query under `metric`, query by query
 /// in Morton order, with the query's position; one list reused for every query.
 fn visit_by<'s, P: PointSet<D> + ?Sized, M: Metric<D>, const D: usize>(
@@ -132,7 +112,7 @@ fn visit_by<'s, P: PointSet<D> + ?Sized, M: Metric<D>, const D: usize>(
         .collect::<Result<Vec<[f64; D]>, BatchError>>()?;
     let index = set.index();
     let mut list = Vec::with_capacity(k.min(index.points().len()));
-    for q in morton_order(queries, set.domain()) {
+    for q in morton_order(&exact, set.domain()) {
         let found = k_nearest(index, &exact[q], k, f64::INFINITY, metric);
         list.clear();
         list.extend(
@@ -262,8 +242,10 @@ mod tests {
         let at = |i: usize| order.iter().position(|&j| j == i).unwrap();
         assert_eq!(at(1).abs_diff(at(5)), 1);
         assert_eq!(at(0).abs_diff(at(2)), 1);
-        // A degenerate domain (one point) orders every query as equal: by position.
+        // A degenerate domain (one point, as a tree of one point has) orders them too.
         let flat = Aabb::new([1.0, 1.0], [1.0, 1.0]).unwrap();
-        assert_eq!(morton_order(&queries, &flat), [0, 1, 2, 3, 4, 5]);
+        let mut sorted = morton_order(&queries, &flat);
+        sorted.sort_unstable();
+        assert_eq!(sorted, [0, 1, 2, 3, 4, 5]);
     }
 }
