@@ -332,7 +332,7 @@ fn pairs_of<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, Br, const D: usi
         r2,
         boundary,
         visit,
-        block: scan::Block::boxed(),
+        block: scan::Block::boxed([a.len(), b.len()]),
     };
     let start = traverse::roots((a.index(), b.index(), metric), same, (), &mut v);
     Ok(traverse::run(a.index(), b.index(), metric, start, &mut v))
@@ -358,7 +358,7 @@ fn count_of<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, const D: usize>(
         r2: &r2,
         boundary,
         diff: vec![0; r2.len() + 1],
-        block: scan::Block::boxed(),
+        block: scan::Block::boxed([a.len(), b.len()]),
     };
     let start = traverse::roots((a.index(), b.index(), metric), same, (0, r2.len()), &mut v);
     let _ = traverse::run(a.index(), b.index(), metric, start, &mut v);

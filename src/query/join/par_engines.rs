@@ -22,9 +22,10 @@ use super::pairs::{CountWithin, PairsWithin};
 use super::radius::{squared_radii, squared_radius, Boundary};
 use super::scan::Block;
 use super::sparse::SparseDistances;
-use super::traverse::{roots, run, split_top};
+use super::traverse::{roots, run, split_top, Pair};
+
 use crate::huge_pages;
-use crate::query::{PointSet, QueryError};
+use crate::query::{PointSet, QueryError, SpatialIndex};
 use core::convert::Infallible;
 use core::ops::ControlFlow;
 use core::sync::atomic::{AtomicBool, Ordering};
@@ -80,6 +81,7 @@ fn pairs_visitor<'s, A, B, P, F, Br, const D: usize>(
     same: bool,
     r2: f64,
     boundary: Boundary,
+    points: [usize; 2],
     visit: F,
 ) -> PairsWithin<'s, A, B, P, F, D>
 where
@@ -93,8 +95,20 @@ where
         r2,
         boundary,
         visit,
-        block: Block::boxed(),
+        block: Block::boxed(points),
     }
+}
+
+/// The points of each side of a frontier pair: all that its part of the traversal can meet, to
+/// size the kernel's caches ([`Block::boxed`]).
+fn part_points<A: PointSet<D>, B: PointSet<D>, T, const D: usize>(
+    (a, b): (&A, &B),
+    pair: &Pair<<A::Index as SpatialIndex<D>>::Node, <B::Index as SpatialIndex<D>>::Node, T, D>,
+) -> [usize; 2] {
+    [
+        a.index().run(pair.0 .0).len(),
+        b.index().run(pair.1 .0).len(),
+    ]
 }
 
 /// Every pair within `r` between `a` and `b` under `metric` (`same`: `b` is `a`, unordered pairs
@@ -120,7 +134,14 @@ where
     let r2 = squared_radius(r)?;
     let (ia, ib) = (a.index(), b.index());
     let frontier = {
-        let mut v = pairs_visitor((a, b, metric), same, r2, boundary, &visit);
+        let mut v = pairs_visitor(
+            (a, b, metric),
+            same,
+            r2,
+            boundary,
+            [a.len(), b.len()],
+            &visit,
+        );
         let start = roots((ia, ib, metric), same, (), &mut v);
         match split_top(ia, ib, metric, start, want(), &mut v) {
             ControlFlow::Continue(f) => f,
@@ -141,7 +162,8 @@ where
                 Some(br)
             })
         };
-        let mut v = pairs_visitor((a, b, metric), same, r2, boundary, each);
+        let points = part_points((a, b), &pair);
+        let mut v = pairs_visitor((a, b, metric), same, r2, boundary, points, each);
         match run(a.index(), b.index(), metric, vec![pair], &mut v) {
             ControlFlow::Break(br) => br,
             ControlFlow::Continue(()) => None,
@@ -181,7 +203,7 @@ where
             fold(&mut top, s, t, d);
             ControlFlow::<Infallible>::Continue(())
         };
-        let mut v = pairs_visitor((a, b, metric), same, r2, boundary, each);
+        let mut v = pairs_visitor((a, b, metric), same, r2, boundary, [a.len(), b.len()], each);
         let start = roots((ia, ib, metric), same, (), &mut v);
         let ControlFlow::Continue(f) = split_top(ia, ib, metric, start, want(), &mut v);
         f
@@ -194,7 +216,8 @@ where
                 fold(&mut acc, s, t, d);
                 ControlFlow::<Infallible>::Continue(())
             };
-            let mut v = pairs_visitor((a, b, metric), same, r2, boundary, each);
+            let points = part_points((a, b), &pair);
+            let mut v = pairs_visitor((a, b, metric), same, r2, boundary, points, each);
             let _ = run(a.index(), b.index(), metric, vec![pair], &mut v);
             acc
         })
@@ -253,23 +276,23 @@ where
     if r2.is_empty() {
         return Ok(Vec::new());
     }
-    let counter = || CountWithin {
+    let counter = |points| CountWithin {
         metric,
         a,
         b,
         r2: &r2,
         boundary,
         diff: vec![0; r2.len() + 1],
-        block: Block::boxed(),
+        block: Block::boxed(points),
     };
     let (ia, ib) = (a.index(), b.index());
-    let mut top = counter();
+    let mut top = counter([a.len(), b.len()]);
     let start = roots((ia, ib, metric), same, (0, r2.len()), &mut top);
     let ControlFlow::Continue(frontier) = split_top(ia, ib, metric, start, want(), &mut top);
     let parts: Vec<Vec<i128>> = frontier
         .into_par_iter()
         .map(|pair| {
-            let mut c = counter();
+            let mut c = counter(part_points((a, b), &pair));
             let _ = run(a.index(), b.index(), metric, vec![pair], &mut c);
             c.diff
         })

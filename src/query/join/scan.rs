@@ -45,31 +45,43 @@ pub(crate) struct Block<const D: usize> {
     level: Level,
 }
 
-/// The number of runs whose tight boxes are kept per side.
-const SLOTS: usize = 1024;
+/// The most runs whose tight boxes are kept per side.
+const SLOTS: usize = 1 << SLOTS_LOG2;
+
+/// The hash bits that pick one of [`SLOTS`].
+const SLOTS_LOG2: u32 = 10;
 
 /// The tight boxes of recently scanned runs, each in the slot its first position hashes to
 /// (the last one there wins): a run meets its neighbours at nearby times of the depth-first
 /// traversal, so its box is mostly found instead of computed again.
+///
+/// Sized for the points the traversal will meet on that side (a slot per 16 points, a power of
+/// two from 2 to [`SLOTS`]): a join of a few leaves, or each of the many small parts of a
+/// parallel join, clears a few slots instead of 1024 (64 KiB in 3-D) for every part.
 struct TightBoxes<const D: usize> {
+    /// The run in each slot; a power of two of them.
     runs: Vec<Range<usize>>,
+    /// Its tight box.
     boxes: Vec<Aabb<f64, D>>,
 }
 
 impl<const D: usize> TightBoxes<D> {
-    fn new() -> Self {
+    /// Empty slots for a side of `points` points.
+    fn new(points: usize) -> Self {
+        let slots = points.div_ceil(16).next_power_of_two().clamp(2, SLOTS);
         TightBoxes {
-            runs: vec![0..0; SLOTS],
-            boxes: vec![Aabb::empty(); SLOTS],
+            runs: vec![0..0; slots],
+            boxes: vec![Aabb::empty(); slots],
         }
     }
 
     /// The tight box of the points of `points[run]` as `f64` (`run` not empty).
     #[inline(always)]
     fn get<S: Scalar>(&mut self, points: &[[S; D]], run: Range<usize>) -> Aabb<f64, D> {
-        // Fibonacci hashing of the first position onto the slots.
-        let slot = ((run.start as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
-            >> (64 - SLOTS.trailing_zeros())) as usize;
+        // Fibonacci hashing of the first position: its top bits, as many as the slots need
+        // (an empty slot holds `0..0`, which no run equals).
+        let hash = (run.start as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) >> (64 - SLOTS_LOG2);
+        let slot = hash as usize & (self.runs.len() - 1);
         if self.runs[slot] != run {
             self.boxes[slot] = Aabb::around(&points[run.clone()]);
             self.runs[slot] = run;
@@ -79,14 +91,15 @@ impl<const D: usize> TightBoxes<D> {
 }
 
 impl<const D: usize> Block<D> {
-    /// An empty block on the heap (a few kilobytes: kept out of the traversal's frames).
-    pub(crate) fn boxed() -> Box<Self> {
+    /// An empty block on the heap (a few kilobytes: kept out of the traversal's frames), for a
+    /// traversal meeting `points[0]` points of its first set and `points[1]` of its second.
+    pub(crate) fn boxed(points: [usize; 2]) -> Box<Self> {
         Box::new(Block {
             cols: [[0.0; BLOCK]; D],
             at: [0; BLOCK],
             dist: [0.0; BLOCK],
             len: 0,
-            tight: [TightBoxes::new(), TightBoxes::new()],
+            tight: [TightBoxes::new(points[0]), TightBoxes::new(points[1])],
             level: Level::detected(),
         })
     }
@@ -473,7 +486,7 @@ mod tests {
             out.push((i, j, d.to_bits()));
             ControlFlow::<()>::Continue(())
         };
-        let mut block = Block::<3>::boxed();
+        let mut block = Block::<3>::boxed([0, 0]); // two slots a side: evictions all along
         block.level = level;
         let _ = scan_pairs(&mut block, a, b, same, &Euclid, r2, boundary, each);
         out
@@ -488,7 +501,7 @@ mod tests {
     ) -> Vec<i128> {
         let mut diff = vec![0i128; r2.len() + 1];
         let radii = (r2, 0, r2.len());
-        let mut block = Block::<3>::boxed();
+        let mut block = Block::<3>::boxed([0, 0]); // two slots a side: evictions all along
         block.level = level;
         scan_counts(&mut block, a, b, same, &Euclid, radii, boundary, &mut diff);
         diff
