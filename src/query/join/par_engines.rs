@@ -23,7 +23,6 @@ use super::radius::{squared_radii, squared_radius, Boundary};
 use super::scan::Block;
 use super::sparse::SparseDistances;
 use super::traverse::{roots, run, split_top, Pair};
-
 use crate::huge_pages;
 use crate::query::{PointSet, QueryError, SpatialIndex};
 use core::convert::Infallible;
