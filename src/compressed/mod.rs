@@ -61,7 +61,7 @@ use crate::error::ValidationError;
 use crate::geom::RootGeometry;
 use crate::geom::{Aabb, DeepCell, DeepKey, Scalar};
 use crate::points::PointTree;
-use crate::query::{Location, PointSet, QueryError};
+use crate::query::{Location, PointSet, PositionSlots, QueryError};
 use topology::NIL;
 
 /// A compressed quadtree (D = 2), octree (D = 3) or 2^D-tree storing (point, item) pairs: the
@@ -268,6 +268,11 @@ impl<S: Scalar, T, const D: usize> PointSet<D> for CompressedTree<S, T, D> {
     #[inline(always)]
     fn slot_of(&self, _: usize, payload: &u32) -> usize {
         *payload as usize
+    }
+
+    #[inline]
+    fn position_slots(&self) -> PositionSlots<'_> {
+        PositionSlots::Table(crate::query::SpatialIndex::payloads(&self.index))
     }
 
     /// The index the query engines run on: nodes, cells, and the points in Morton order.

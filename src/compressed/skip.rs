@@ -36,7 +36,8 @@ use crate::error::ValidationError;
 use crate::geom::{Aabb, DeepCell, DeepKey, Scalar};
 use crate::query::{InsertError, Location};
 use crate::query::{
-    Metric, Neighbor, PointSet, PointSetMut, QueryError, SpatialIndex, SquaredEuclidean,
+    Metric, Neighbor, PointSet, PointSetMut, PositionSlots, QueryError, SpatialIndex,
+    SquaredEuclidean,
 };
 use smallvec::SmallVec;
 use std::cmp::Ordering;
@@ -328,6 +329,11 @@ impl<S: Scalar, T, const D: usize> PointSet<D> for SkipQuadtree<S, T, D> {
     #[inline(always)]
     fn slot_of(&self, position: usize, payload: &u32) -> usize {
         self.base.slot_of(position, payload)
+    }
+
+    #[inline]
+    fn position_slots(&self) -> PositionSlots<'_> {
+        self.base.position_slots()
     }
 
     #[inline]

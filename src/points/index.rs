@@ -267,6 +267,11 @@ macro_rules! point_index {
                 position
             }
 
+            #[inline]
+            fn position_slots(&self) -> $crate::query::PositionSlots<'_> {
+                $crate::query::PositionSlots::Same
+            }
+
             /// The items, in the order of the points (Morton order).
             #[inline]
             fn items(&self) -> &[T] {

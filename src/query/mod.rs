@@ -64,7 +64,7 @@ pub use periodic::{OutsidePoints, PeriodicError, Torus};
 pub use periodic_metric::{AxisMetric, MinImage};
 pub use periodic_queries::PeriodicQueries;
 pub use periodic_region::{PeriodicBall, PeriodicBox};
-pub use point_set::{Payload, PointSet};
+pub use point_set::{Payload, PointSet, PositionSlots};
 pub use point_set_mut::{InsertError, PointSetMut};
 pub use range::QueryStats;
 pub use region::{Ball, HalfSpace, Region, Relation};

@@ -30,6 +30,18 @@ pub type Payload<P, const D: usize> = <<P as PointSet<D>>::Index as SpatialIndex
 pub(crate) type NeighborIn<'a, P, const D: usize> =
     Neighbor<'a, <P as PointSet<D>>::Scalar, <P as PointSet<D>>::Item, D>;
 
+/// How the positions of a [`PointSet`]'s index points map to its slots, as
+/// [`PointSet::position_slots`] tells.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PositionSlots<'a> {
+    /// The slot of each position is the position.
+    Same,
+    /// The slot of position `i` is `table[i]`.
+    Table(&'a [u32]),
+    /// Only [`PointSet::slot_of`] knows.
+    Other,
+}
+
 /// A set of (point, item) pairs in a 2^D-tree, with every query.
 ///
 /// Implemented by [`PointTree`](crate::PointTree), [`DynamicPointTree`](crate::DynamicPointTree),
@@ -66,6 +78,14 @@ pub trait PointSet<const D: usize> {
     fn item_of<'a>(&'a self, payload: &'a Payload<Self, D>) -> &'a Self::Item;
     /// The slot of the point at `position` in the index's points, whose payload is `payload`.
     fn slot_of(&self, position: usize, payload: &Payload<Self, D>) -> usize;
+    /// [`slot_of`](Self::slot_of) for every position at once, when it is the position itself or
+    /// a table of slots: the radius joins' leaf kernel then reads slots without knowing the
+    /// set's type, and is compiled once per visitor instead of once per pair of set types. The
+    /// default, [`PositionSlots::Other`], is right for every set (the joins call `slot_of`).
+    #[inline]
+    fn position_slots(&self) -> PositionSlots<'_> {
+        PositionSlots::Other
+    }
     /// The items, by slot.
     fn items(&self) -> &[Self::Item];
     /// The point of slot `slot`.

@@ -14,7 +14,7 @@ use crate::common;
 use common::points::config;
 use core::ops::ControlFlow;
 use orthtree::prelude::*;
-use orthtree::query::{Boundary, QueryError};
+use orthtree::query::{Boundary, Payload, QueryError};
 use orthtree::{CompressedTree, DynamicPointTree, PointTree, SkipQuadtree};
 use proptest::prelude::*;
 
@@ -659,4 +659,54 @@ fn empty_sets_join_to_nothing() {
             Ok(vec![0])
         );
     }
+}
+
+/// A point set of the caller's own: a compressed tree behind the trait's required methods only,
+/// so that the joins find its slots through `slot_of` (`PositionSlots::Other`), not a table.
+struct OwnSet(CompressedTree<f64, usize, 2>);
+
+impl PointSet<2> for OwnSet {
+    type Scalar = f64;
+    type Item = usize;
+    type Index = <CompressedTree<f64, usize, 2> as PointSet<2>>::Index;
+
+    fn index(&self) -> &Self::Index {
+        self.0.index()
+    }
+    fn item_of<'a>(&'a self, payload: &'a Payload<Self, 2>) -> &'a usize {
+        self.0.item_of(payload)
+    }
+    fn slot_of(&self, position: usize, payload: &Payload<Self, 2>) -> usize {
+        self.0.slot_of(position, payload)
+    }
+    fn items(&self) -> &[usize] {
+        self.0.items()
+    }
+    fn point(&self, slot: usize) -> &[f64; 2] {
+        self.0.point(slot)
+    }
+    fn domain(&self) -> &orthtree::Aabb<f64, 2> {
+        self.0.domain()
+    }
+    fn validate(&self) -> Result<(), orthtree::ValidationError> {
+        self.0.validate()
+    }
+}
+
+#[test]
+fn a_set_without_a_slot_table_joins_as_the_tree_it_wraps() {
+    use orthtree::query::PositionSlots;
+    let mut rng = common::rng(8);
+    use rand::Rng;
+    let pa: Vec<[f64; 2]> = (0..300).map(|_| [rng.r#gen(), rng.r#gen()]).collect();
+    let pb: Vec<[f64; 2]> = (0..200)
+        .map(|_| [f64::from(rng.gen_range(0u8..=8)) / 8.0, rng.r#gen()])
+        .collect();
+    let own = OwnSet(CompressedTree::new(&entries(&pa)).unwrap());
+    assert_eq!(own.position_slots(), PositionSlots::Other);
+    assert!(matches!(own.0.position_slots(), PositionSlots::Table(_)));
+    let b = PointTree::new(&entries(&pb)).unwrap();
+    assert_eq!(b.position_slots(), PositionSlots::Same);
+    check_all(&own, &pa, &b, &pb, &radii(0.07));
+    check_all(&b, &pb, &own, &pa, &radii(0.07));
 }

@@ -62,7 +62,7 @@ use super::{splits, PointTree};
 use crate::error::{Error, ValidationError};
 use crate::geom::RootGeometry;
 use crate::geom::{Aabb, Cell, Scalar};
-use crate::query::PointSet;
+use crate::query::{PointSet, PositionSlots};
 use crate::tree::Tree;
 use pool::{Pool, GAP};
 
@@ -235,6 +235,11 @@ impl<S: Scalar, T, const D: usize> PointSet<D> for DynamicPointTree<S, T, D> {
     #[inline(always)]
     fn slot_of(&self, _: usize, payload: &u32) -> usize {
         *payload as usize
+    }
+
+    #[inline]
+    fn position_slots(&self) -> PositionSlots<'_> {
+        PositionSlots::Table(crate::query::SpatialIndex::payloads(&self.index))
     }
 
     /// The index the queries run on.

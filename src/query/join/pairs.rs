@@ -16,10 +16,10 @@
 
 use super::bounds::PairDistance;
 use super::radius::Boundary;
-use super::scan::{scan_counts, scan_pairs, Block};
+use super::scan::{scan_counts, scan_pairs, Block, Run};
 use super::traverse::{PairVisitor, Step};
-use crate::geom::Aabb;
-use crate::query::{PointSet, SpatialIndex};
+use crate::geom::{Aabb, Scalar};
+use crate::query::{PointSet, PositionSlots, SpatialIndex};
 use core::ops::{ControlFlow, Range};
 
 /// Every pair within `r2` between sets `a` and `b` (each unordered pair once, the smaller slot
@@ -64,27 +64,115 @@ where
         same: bool,
     ) -> ControlFlow<Br> {
         let this = self;
-        let (ia, ib) = (this.a.index(), this.b.index());
+        let (a, b) = (this.a, this.b);
+        let (ia, ib) = (a.index(), b.index());
         let (qa, qb) = (ia.payloads(), ib.payloads());
-        let (a, b, visit, unordered) = (this.a, this.b, &mut this.visit, this.unordered);
-        scan_pairs(
-            &mut this.block,
-            (ia.points(), ra, ba),
-            (ib.points(), rb, bb),
-            same,
-            this.metric,
-            this.r2,
-            this.boundary,
-            |i, j, d| {
-                let (s, t) = (a.slot_of(i, &qa[i]), b.slot_of(j, &qb[j]));
-                if unordered && t < s {
-                    visit(t, s, d)
-                } else {
-                    visit(s, t, d)
-                }
-            },
-        )
+        let (slot_a, slot_b) = (
+            |i: usize| a.slot_of(i, &qa[i]),
+            |j: usize| b.slot_of(j, &qb[j]),
+        );
+        let to_slots = (
+            SlotView::of(a.position_slots(), &slot_a),
+            SlotView::of(b.position_slots(), &slot_b),
+        );
+        let (runs, test) = (
+            ((ia.points(), ra, ba), (ib.points(), rb, bb)),
+            (same, this.metric, this.r2, this.boundary),
+        );
+        if let (SlotView::Same, SlotView::Same) = to_slots {
+            // The common case (two point trees, or one with itself) without a look-up per pair.
+            scan(
+                &mut this.block,
+                runs,
+                test,
+                in_order(this.unordered, &mut this.visit),
+            )
+        } else {
+            scan(
+                &mut this.block,
+                runs,
+                test,
+                in_slots(to_slots, this.unordered, &mut this.visit),
+            )
+        }
     }
+}
+
+/// [`scan_pairs`] with its arguments grouped.
+#[inline(always)]
+fn scan<SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D: usize>(
+    block: &mut Block<D>,
+    (a, b): (Run<'_, SA, D>, Run<'_, SB, D>),
+    (same, metric, r2, boundary): (bool, &P, f64, Boundary),
+    each: impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
+) -> ControlFlow<Br> {
+    scan_pairs(block, a, b, same, metric, r2, boundary, each)
+}
+
+/// The kernel's visitor where positions are slots: the smaller first when `unordered`, then
+/// `visit`. Generic over the visitor only, as [`in_slots`].
+#[inline]
+fn in_order<'a, F, Br>(
+    unordered: bool,
+    visit: &'a mut F,
+) -> impl FnMut(usize, usize, f64) -> ControlFlow<Br> + 'a
+where
+    F: FnMut(usize, usize, f64) -> ControlFlow<Br>,
+{
+    move |s, t, d| {
+        if unordered && t < s {
+            visit(t, s, d)
+        } else {
+            visit(s, t, d)
+        }
+    }
+}
+
+/// The slots of one side's positions, without the set's type (see
+/// [`PointSet::position_slots`]).
+#[derive(Clone, Copy)]
+enum SlotView<'a> {
+    Same,
+    Table(&'a [u32]),
+    Other(&'a dyn Fn(usize) -> usize),
+}
+
+impl<'a> SlotView<'a> {
+    /// The view of `slots`, with `slot_of` for [`PositionSlots::Other`].
+    #[inline]
+    fn of(slots: PositionSlots<'a>, slot_of: &'a dyn Fn(usize) -> usize) -> Self {
+        match slots {
+            PositionSlots::Same => SlotView::Same,
+            PositionSlots::Table(t) => SlotView::Table(t),
+            PositionSlots::Other => SlotView::Other(slot_of),
+        }
+    }
+
+    /// The slot of position `i`.
+    #[inline(always)]
+    fn slot(self, i: usize) -> usize {
+        match self {
+            SlotView::Same => i,
+            SlotView::Table(t) => t[i] as usize,
+            SlotView::Other(f) => f(i),
+        }
+    }
+}
+
+/// The kernel's visitor: positions to slots (the smaller first when `unordered`), then
+/// `visit`. Generic over the visitor only, so that the kernel it is inlined into is compiled
+/// once per visitor, not once per pair of set types.
+#[inline]
+fn in_slots<'a, F, Br>(
+    (a, b): (SlotView<'a>, SlotView<'a>),
+    unordered: bool,
+    visit: &'a mut F,
+) -> impl FnMut(usize, usize, f64) -> ControlFlow<Br> + 'a
+where
+    F: FnMut(usize, usize, f64) -> ControlFlow<Br>,
+{
+    let mut visit = in_order(unordered, visit);
+    move |i, j, d| visit(a.slot(i), b.slot(j), d)
 }
 
 /// The number of pairs within each of the sorted squared radii `r2`, as differences: radius `i`

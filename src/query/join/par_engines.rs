@@ -152,15 +152,7 @@ where
         if stopped.load(Ordering::Relaxed) {
             return None;
         }
-        let each = |s, t, d| {
-            if stopped.load(Ordering::Relaxed) {
-                return ControlFlow::Break(None);
-            }
-            visit(s, t, d).map_break(|br| {
-                stopped.store(true, Ordering::Relaxed);
-                Some(br)
-            })
-        };
+        let each = until_stopped(&visit, &stopped);
         let points = part_points((a, b), &pair);
         let mut v = pairs_visitor((a, b, metric), same, r2, boundary, points, each);
         match run(a.index(), b.index(), metric, vec![pair], &mut v) {
@@ -198,10 +190,7 @@ where
     let (ia, ib) = (a.index(), b.index());
     let mut top = identity();
     let frontier = {
-        let each = |s, t, d| {
-            fold(&mut top, s, t, d);
-            ControlFlow::<Infallible>::Continue(())
-        };
+        let each = folding(&fold, &mut top);
         let mut v = pairs_visitor((a, b, metric), same, r2, boundary, [a.len(), b.len()], each);
         let start = roots((ia, ib, metric), same, (), &mut v);
         let ControlFlow::Continue(f) = split_top(ia, ib, metric, start, want(), &mut v);
@@ -211,17 +200,50 @@ where
         .into_par_iter()
         .map(|pair| {
             let mut acc = identity();
-            let each = |s, t, d| {
-                fold(&mut acc, s, t, d);
-                ControlFlow::<Infallible>::Continue(())
-            };
+            let each = folding(&fold, &mut acc);
             let points = part_points((a, b), &pair);
             let mut v = pairs_visitor((a, b, metric), same, r2, boundary, points, each);
             let _ = run(a.index(), b.index(), metric, vec![pair], &mut v);
+            drop(v);
             acc
         })
         .reduce(&identity, &reduce);
     Ok(reduce(top, rest))
+}
+
+/// `visit`, stopping every part once one has broken (`stopped`): its break, `None` for the
+/// others. Generic over the visitor only (not the sets), as the leaf kernel it goes into.
+fn until_stopped<'a, F, Br>(
+    visit: &'a F,
+    stopped: &'a AtomicBool,
+) -> impl FnMut(usize, usize, f64) -> ControlFlow<Option<Br>> + 'a
+where
+    F: Fn(usize, usize, f64) -> ControlFlow<Br>,
+{
+    move |s, t, d| {
+        if stopped.load(Ordering::Relaxed) {
+            return ControlFlow::Break(None);
+        }
+        visit(s, t, d).map_break(|br| {
+            stopped.store(true, Ordering::Relaxed);
+            Some(br)
+        })
+    }
+}
+
+/// Every pair folded into `acc` by `fold`. Generic over the fold only (not the sets), as the
+/// leaf kernel it goes into.
+fn folding<'a, T, F>(
+    fold: &'a F,
+    acc: &'a mut T,
+) -> impl FnMut(usize, usize, f64) -> ControlFlow<Infallible> + 'a
+where
+    F: Fn(&mut T, usize, usize, f64),
+{
+    move |s, t, d| {
+        fold(acc, s, t, d);
+        ControlFlow::Continue(())
+    }
 }
 
 /// The sparse distance matrix of the pairs within `r` between `a` and `b` under `metric`.
