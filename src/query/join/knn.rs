@@ -19,9 +19,10 @@
 use super::bounds::PairDistance;
 use super::knn_group::Search;
 use super::knn_map::{swap_rows, to_slot_order};
+use super::slots::SlotView;
 use super::traverse::{children, Side, SCAN};
 use crate::cpu::compiled_copy;
-use crate::geom::Aabb;
+use crate::geom::{Aabb, Scalar};
 use crate::huge_pages;
 use crate::query::{PointSet, SpatialIndex};
 use core::ops::Range;
@@ -131,11 +132,12 @@ pub(crate) fn parts<'t>(
 }
 
 /// Searches one part's group ([`Search::group`]) and writes its rows: the neighbours' slots in
-/// `b` and their distances. `k` is at least 1. Runs the copy compiled for x86-64-v3 where the
-/// processor has it ([`cpu`](crate::cpu)): the same rows.
+/// `b` and their distances. `k` is at least 1. The work is [`fill_from`], which sees `a`'s
+/// points, `b`'s index and `b`'s slots without the sets' types.
+#[inline]
 pub(crate) fn fill<A, B, P, const D: usize>(
     search: &mut Search<<B::Index as SpatialIndex<D>>::Node, D>,
-    sets: (&A, &B, &P),
+    (a, b, metric): (&A, &B, &P),
     part: Part<'_>,
     k: usize,
     same: bool,
@@ -144,54 +146,66 @@ pub(crate) fn fill<A, B, P, const D: usize>(
     B: PointSet<D>,
     P: PairDistance<D>,
 {
+    let qb = b.index().payloads();
+    let slot_of = |j: usize| b.slot_of(j, &qb[j]);
+    let slots = SlotView::of(b.position_slots(), &slot_of);
+    fill_from(
+        search,
+        (a.index().points(), b.index(), slots, metric),
+        part,
+        k,
+        same,
+    );
+}
+
+/// The sides of a group's search: the query points, the index searched, its slots, the metric.
+type Sides<'a, SA, I, P, const D: usize> = (&'a [[SA; D]], &'a I, SlotView<'a>, &'a P);
+
+/// [`fill`]'s work, compiled once per point type, index and metric. Runs the copy compiled for
+/// x86-64-v3 where the processor has it ([`cpu`](crate::cpu)): the same rows.
+#[inline(never)]
+fn fill_from<SA: Scalar, I: SpatialIndex<D>, P: PairDistance<D>, const D: usize>(
+    search: &mut Search<I::Node, D>,
+    sides: Sides<'_, SA, I, P, D>,
+    part: Part<'_>,
+    k: usize,
+    same: bool,
+) {
     #[cfg(target_arch = "x86_64")]
     if crate::cpu::has_v3() {
         // SAFETY: `fill_v3` is `fill_rows` compiled for the features `has_v3` has just found
         // on this processor.
         #[allow(unsafe_code)]
         unsafe {
-            return fill_v3(search, sets, part, k, same);
+            return fill_v3(search, sides, part, k, same);
         }
     }
-    fill_rows(search, sets, part, k, same);
+    fill_rows(search, sides, part, k, same);
 }
 
 compiled_copy! {
     /// [`fill_rows`] compiled for x86-64-v3 (see [`cpu`](crate::cpu)).
     fill_v3 = fill_rows for "avx,avx2,bmi1,bmi2,lzcnt,popcnt",
-    [A, B, P, const D: usize]
-    (search: &mut Search<<B::Index as SpatialIndex<D>>::Node, D>, sets: (&A, &B, &P),
-     part: Part<'_>, k: usize, same: bool)
-    where [A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>]
+    [SA: Scalar, I: SpatialIndex<D>, P: PairDistance<D>, const D: usize]
+    (search: &mut Search<I::Node, D>, sides: Sides<'_, SA, I, P, D>, part: Part<'_>, k: usize,
+     same: bool)
 }
 
-/// The work of [`fill`], compiled into each of its copies.
+/// The work of [`fill_from`], compiled into each of its copies.
 #[inline(always)]
-fn fill_rows<A, B, P, const D: usize>(
-    search: &mut Search<<B::Index as SpatialIndex<D>>::Node, D>,
-    (a, b, metric): (&A, &B, &P),
+fn fill_rows<SA: Scalar, I: SpatialIndex<D>, P: PairDistance<D>, const D: usize>(
+    search: &mut Search<I::Node, D>,
+    (pa, b, slots_b, metric): Sides<'_, SA, I, P, D>,
     (group, slots, distances): Part<'_>,
     k: usize,
     same: bool,
-) where
-    A: PointSet<D>,
-    B: PointSet<D>,
-    P: PairDistance<D>,
-{
-    let gbox = Aabb::around(&a.index().points()[group.clone()]);
-    search.group(
-        a.index(),
-        b.index(),
-        metric,
-        (group.clone(), &gbox),
-        k,
-        same,
-    );
-    let qb = b.index().payloads();
+) {
+    let gbox = Aabb::around(&pa[group.clone()]);
+    search.group(pa, b, metric, (group.clone(), &gbox), k, same);
     let rows = slots.chunks_mut(k).zip(distances.chunks_mut(k));
     for (qi, (rs, rd)) in rows.enumerate() {
         for ((&(d, j), s), t) in search.list(qi, k).iter().zip(rs).zip(rd) {
-            *s = b.slot_of(j, &qb[j]);
+            *s = slots_b.slot(j);
             *t = d;
         }
     }
@@ -265,13 +279,16 @@ pub(crate) fn assert_copies_agree<P: PointSet<D>, const D: usize>(set: &P, k: us
     let (mut s1, mut d1) = (vec![0; n], vec![0.0; n]);
     let (mut s2, mut d2) = (vec![0; n], vec![0.0; n]);
     let (mut search1, mut search2) = (Search::new(), Search::new());
-    let sets = (set, set, &Euclid);
+    let q = set.index().payloads();
+    let slot_of = |j: usize| set.slot_of(j, &q[j]);
+    let slots = SlotView::of(set.position_slots(), &slot_of);
     for (p1, p2) in parts(&gs, k, &mut s1, &mut d1)
         .into_iter()
         .zip(parts(&gs, k, &mut s2, &mut d2))
     {
-        fill(&mut search1, sets, p1, k, true);
-        fill_rows(&mut search2, sets, p2, k, true);
+        fill(&mut search1, (set, set, &Euclid), p1, k, true);
+        let sides = (set.index().points(), set.index(), slots, &Euclid);
+        fill_rows(&mut search2, sides, p2, k, true);
     }
     assert_eq!(s1, s2);
     assert!(d1.iter().zip(&d2).all(|(x, y)| x.to_bits() == y.to_bits()));

@@ -86,21 +86,21 @@ impl<N: Copy, const D: usize> Search<N, D> {
         &self.lists[qi * k..(qi + 1) * k]
     }
 
-    /// Finds the `k` nearest points of `b` to every point of the group `run` of `a` (whose
-    /// points lie in the closed box `gbox`), into the lists of [`Search::list`]. `same`: `b` is
+    /// Finds the `k` nearest points of `b` to every point of the group `a[run]` (points that
+    /// lie in the closed box `gbox`), into the lists of [`Search::list`]. `same`: `b` is
     /// `a`, and a point skips its own position. `k` must be at least 1 and at most what `b`
     /// holds (others, when `same`).
     #[inline(always)]
-    pub(crate) fn group<A, B, P>(
+    pub(crate) fn group<SA, B, P>(
         &mut self,
-        a: &A,
+        a: &[[SA; D]],
         b: &B,
         metric: &P,
         (run, gbox): (Range<usize>, &Aabb<f64, D>),
         k: usize,
         same: bool,
     ) where
-        A: SpatialIndex<D>,
+        SA: Scalar,
         B: SpatialIndex<D, Node = N>,
         P: PairDistance<D>,
     {
@@ -109,11 +109,8 @@ impl<N: Copy, const D: usize> Search<N, D> {
             return;
         }
         self.qs.clear();
-        self.qs.extend(
-            a.points()[run.clone()]
-                .iter()
-                .map(|p| p.map(Scalar::to_f64)),
-        );
+        self.qs
+            .extend(a[run.clone()].iter().map(|p| p.map(Scalar::to_f64)));
         self.lists.clear();
         self.lists.resize(m * k, (f64::INFINITY, usize::MAX));
         self.done.clear();

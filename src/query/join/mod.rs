@@ -29,6 +29,7 @@ mod periodic;
 mod periodic_parallel;
 mod radius;
 mod scan;
+mod slots;
 mod sparse;
 mod traverse;
 

@@ -17,9 +17,10 @@
 use super::bounds::PairDistance;
 use super::radius::Boundary;
 use super::scan::{scan_counts, scan_pairs, Block, Run};
+use super::slots::SlotView;
 use super::traverse::{PairVisitor, Step};
 use crate::geom::{Aabb, Scalar};
-use crate::query::{PointSet, PositionSlots, SpatialIndex};
+use crate::query::{PointSet, SpatialIndex};
 use core::ops::{ControlFlow, Range};
 
 /// Every pair within `r2` between sets `a` and `b` (each unordered pair once, the smaller slot
@@ -124,37 +125,6 @@ where
             visit(t, s, d)
         } else {
             visit(s, t, d)
-        }
-    }
-}
-
-/// The slots of one side's positions, without the set's type (see
-/// [`PointSet::position_slots`]).
-#[derive(Clone, Copy)]
-enum SlotView<'a> {
-    Same,
-    Table(&'a [u32]),
-    Other(&'a dyn Fn(usize) -> usize),
-}
-
-impl<'a> SlotView<'a> {
-    /// The view of `slots`, with `slot_of` for [`PositionSlots::Other`].
-    #[inline]
-    fn of(slots: PositionSlots<'a>, slot_of: &'a dyn Fn(usize) -> usize) -> Self {
-        match slots {
-            PositionSlots::Same => SlotView::Same,
-            PositionSlots::Table(t) => SlotView::Table(t),
-            PositionSlots::Other => SlotView::Other(slot_of),
-        }
-    }
-
-    /// The slot of position `i`.
-    #[inline(always)]
-    fn slot(self, i: usize) -> usize {
-        match self {
-            SlotView::Same => i,
-            SlotView::Table(t) => t[i] as usize,
-            SlotView::Other(f) => f(i),
         }
     }
 }
