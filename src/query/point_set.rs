@@ -79,9 +79,23 @@ pub trait PointSet<const D: usize> {
     /// The slot of the point at `position` in the index's points, whose payload is `payload`.
     fn slot_of(&self, position: usize, payload: &Payload<Self, D>) -> usize;
     /// [`slot_of`](Self::slot_of) for every position at once, when it is the position itself or
-    /// a table of slots: the radius joins' leaf kernel then reads slots without knowing the
-    /// set's type, and is compiled once per visitor instead of once per pair of set types. The
-    /// default, [`PositionSlots::Other`], is right for every set (the joins call `slot_of`).
+    /// a table of slots: the joins' kernels then read slots without knowing the set's type, and
+    /// are compiled once per index and visitor instead of once per pair of set types. An
+    /// implementation must agree with `slot_of`. The default, [`PositionSlots::Other`], is
+    /// right for every set (the joins then call `slot_of`).
+    ///
+    /// ```
+    /// use orthtree::prelude::*;
+    /// use orthtree::query::{PositionSlots, SpatialIndex};
+    /// use orthtree::{CompressedTree, PointTree};
+    /// let pts = [([0.0, 0.0], 'a'), ([1.0, 1.0], 'b')];
+    /// // A point tree keeps its points in slot order; a compressed tree has a table.
+    /// assert_eq!(PointTree::new(&pts).unwrap().position_slots(), PositionSlots::Same);
+    /// let t = CompressedTree::new(&pts).unwrap();
+    /// let PositionSlots::Table(table) = t.position_slots() else { panic!() };
+    /// let q = t.index().payloads();
+    /// assert!((0..2).all(|i| table[i] as usize == t.slot_of(i, &q[i])));
+    /// ```
     #[inline]
     fn position_slots(&self) -> PositionSlots<'_> {
         PositionSlots::Other
