@@ -146,12 +146,9 @@ pub(crate) fn fill<A, B, P, const D: usize>(
     B: PointSet<D>,
     P: PairDistance<D>,
 {
-    let qb = b.index().payloads();
-    let slot_of = |j: usize| b.slot_of(j, &qb[j]);
-    let slots = SlotView::of(b.position_slots(), &slot_of);
     fill_from(
         search,
-        (a.index().points(), b.index(), slots, metric),
+        (a.index().points(), b.index(), SlotView::of(b), metric),
         part,
         k,
         same,
@@ -159,7 +156,7 @@ pub(crate) fn fill<A, B, P, const D: usize>(
 }
 
 /// The sides of a group's search: the query points, the index searched, its slots, the metric.
-type Sides<'a, SA, I, P, const D: usize> = (&'a [[SA; D]], &'a I, SlotView<'a>, &'a P);
+type Sides<'a, SA, I, P, const D: usize> = (&'a [[SA; D]], &'a I, SlotView<'a, D>, &'a P);
 
 /// [`fill`]'s work, compiled once per point type, index and metric. Runs the copy compiled for
 /// x86-64-v3 where the processor has it ([`cpu`](crate::cpu)): the same rows.
@@ -279,15 +276,17 @@ pub(crate) fn assert_copies_agree<P: PointSet<D>, const D: usize>(set: &P, k: us
     let (mut s1, mut d1) = (vec![0; n], vec![0.0; n]);
     let (mut s2, mut d2) = (vec![0; n], vec![0.0; n]);
     let (mut search1, mut search2) = (Search::new(), Search::new());
-    let q = set.index().payloads();
-    let slot_of = |j: usize| set.slot_of(j, &q[j]);
-    let slots = SlotView::of(set.position_slots(), &slot_of);
     for (p1, p2) in parts(&gs, k, &mut s1, &mut d1)
         .into_iter()
         .zip(parts(&gs, k, &mut s2, &mut d2))
     {
         fill(&mut search1, (set, set, &Euclid), p1, k, true);
-        let sides = (set.index().points(), set.index(), slots, &Euclid);
+        let sides = (
+            set.index().points(),
+            set.index(),
+            SlotView::of(set),
+            &Euclid,
+        );
         fill_rows(&mut search2, sides, p2, k, true);
     }
     assert_eq!(s1, s2);

@@ -67,15 +67,7 @@ where
         let this = self;
         let (a, b) = (this.a, this.b);
         let (ia, ib) = (a.index(), b.index());
-        let (qa, qb) = (ia.payloads(), ib.payloads());
-        let (slot_a, slot_b) = (
-            |i: usize| a.slot_of(i, &qa[i]),
-            |j: usize| b.slot_of(j, &qb[j]),
-        );
-        let to_slots = (
-            SlotView::of(a.position_slots(), &slot_a),
-            SlotView::of(b.position_slots(), &slot_b),
-        );
+        let to_slots = (SlotView::of(a), SlotView::of(b));
         let (runs, test) = (
             ((ia.points(), ra, ba), (ib.points(), rb, bb)),
             (same, this.metric, this.r2, this.boundary),
@@ -133,8 +125,8 @@ where
 /// `visit`. Generic over the visitor only, so that the kernel it is inlined into is compiled
 /// once per visitor, not once per pair of set types.
 #[inline]
-fn in_slots<'a, F, Br>(
-    (a, b): (SlotView<'a>, SlotView<'a>),
+fn in_slots<'a, F, Br, const D: usize>(
+    (a, b): (SlotView<'a, D>, SlotView<'a, D>),
     unordered: bool,
     visit: &'a mut F,
 ) -> impl FnMut(usize, usize, f64) -> ControlFlow<Br> + 'a
