@@ -67,6 +67,8 @@ mod huge_pages;
 pub mod image;
 pub mod io;
 pub mod mesh;
+#[cfg(feature = "rayon")]
+mod par_tasks;
 pub mod points;
 mod prefetch;
 pub mod query;

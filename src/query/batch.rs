@@ -14,14 +14,14 @@ use super::ordered_batch::{in_query_order, morton_order};
 use super::point_set::NeighborIn;
 use super::range::{for_each_in, scan_limit};
 use super::{BatchError, PointSet, QueryError, Region};
-use rayon::prelude::*;
+use crate::par_tasks::map_indices;
 
 /// Runs `answer` on every query in parallel; the first error in batch order wins.
 fn run_batch<Q: Sync, A: Send>(
     queries: &[Q],
-    answer: impl Fn(&Q) -> Result<A, QueryError> + Sync + Send,
+    answer: impl Fn(&Q) -> Result<A, QueryError> + Sync,
 ) -> Result<Vec<A>, BatchError> {
-    let answers: Vec<Result<A, QueryError>> = queries.par_iter().map(answer).collect();
+    let answers = map_indices(queries.len(), &|i| answer(&queries[i]));
     answers
         .into_iter()
         .enumerate()
@@ -59,10 +59,7 @@ where
         // In Morton order, as the serial batch (`ordered_batch.rs`): each thread's share of the
         // queries then walks one part of the tree.
         let order = morton_order(queries, self.domain());
-        let answers: Vec<_> = order
-            .par_iter()
-            .map(|&i| self.k_nearest(&queries[i], k))
-            .collect();
+        let answers = map_indices(order.len(), &|j| self.k_nearest(&queries[order[j]], k));
         in_query_order(&order, answers)
     }
 

@@ -108,24 +108,32 @@ where
     P: PairDistance<D>,
     T: Send,
 {
-    use rayon::prelude::*;
+    use crate::par_tasks::{chunks, map_indices};
     let w = width(k, b.len(), same);
     if w == 0 {
-        return (0..a.len())
-            .into_par_iter()
-            .map(|s| f(s, &[], &[]))
-            .collect();
+        return map_indices(a.len(), &|s| f(s, &[], &[]));
     }
     let gs = groups(a.index());
-    let mut out: Vec<T> = gs
-        .par_iter()
-        .map_init(Scratch::new, |scratch, g| {
-            let mut values = Vec::with_capacity(g.len());
-            map_group(scratch, (a, b, metric), g, (w, same), &mut &f, &mut values);
-            values
-        })
-        .flatten_iter()
-        .collect();
+    // Runs of consecutive groups, one scratch space a run, the values concatenated in order.
+    let size = gs.len().div_ceil(chunks()).max(1);
+    let runs = map_indices(gs.len().div_ceil(size), &|c| {
+        let (mut scratch, mut values) = (Scratch::new(), Vec::new());
+        for g in &gs[c * size..gs.len().min((c + 1) * size)] {
+            map_group(
+                &mut scratch,
+                (a, b, metric),
+                g,
+                (w, same),
+                &mut &f,
+                &mut values,
+            );
+        }
+        values
+    });
+    let mut out: Vec<T> = Vec::with_capacity(a.len());
+    for run in runs {
+        out.extend(run);
+    }
     if let Some(mut order) = row_slots(a, &gs) {
         to_slot_order(&mut order, |x, y| out.swap(x, y));
     }

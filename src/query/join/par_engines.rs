@@ -3,8 +3,11 @@
 //! independent parts run on rayon's threads.
 //!
 //! - The k-nearest joins hand the querying tree's groups (see [`knn`](super::knn)) to the
-//!   threads; each thread reuses one [`Search`] for all its groups and writes the groups' rows
-//!   of one table directly.
+//!   threads in runs of consecutive groups; each run reuses one [`Search`] for all its groups
+//!   and writes their rows of one table directly.
+//!
+//! The threads are reached through [`par_tasks`](crate::par_tasks), so that rayon's machinery
+//! is compiled once for all the engines' closures.
 //! - The radius joins split the top of the dual-tree traversal (Gray and Moore, 2001) into at
 //!   least 16 independent node pairs per thread ([`split_top`]) and traverse each on a thread:
 //!   the counts of the parts are summed, the pairs of the sparse matrix concatenated and sorted,
@@ -24,19 +27,17 @@ use super::scan::Block;
 use super::sparse::SparseDistances;
 use super::traverse::{roots, run, split_top, Pair};
 use crate::huge_pages;
+use crate::par_tasks::{chunks, for_each_chunk, for_each_index, lock, map_indices};
 use crate::query::{PointSet, QueryError, SpatialIndex};
 use core::convert::Infallible;
 use core::ops::ControlFlow;
 use core::sync::atomic::{AtomicBool, Ordering};
-use rayon::prelude::*;
+use std::sync::{Mutex, PoisonError};
 
-/// Node pairs per thread that the top of a parallel traversal is split into: enough for the
+/// The number of node pairs to split a traversal's top into: enough per thread for the
 /// threads to even out the uneven parts.
-const PAIRS_PER_THREAD: usize = 16;
-
-/// The number of node pairs to split a traversal's top into.
 fn want() -> usize {
-    rayon::current_num_threads() * PAIRS_PER_THREAD
+    chunks()
 }
 
 /// The k-nearest join of `a` in `b` under `metric` (`same`: the self-join), the groups of `a`
@@ -59,11 +60,13 @@ where
     }
     let gs = groups(a.index());
     let (mut slots, mut distances) = (huge_pages::zeros(n * w), huge_pages::zeros(n * w));
-    parts(&gs, w, &mut slots, &mut distances)
-        .into_par_iter()
-        .for_each_init(Search::new, |search, part| {
-            fill(search, (a, b, metric), part, w, same);
-        });
+    let parts = parts(&gs, w, &mut slots, &mut distances);
+    for_each_chunk(parts, chunks(), &|run| {
+        let mut search = Search::new();
+        for part in run {
+            fill(&mut search, (a, b, metric), part, w, same);
+        }
+    });
     if let Some(mut order) = row_slots(a, &gs) {
         to_slot_order(&mut order, |x, y| {
             swap_rows(&mut slots, x, y, w);
@@ -148,18 +151,23 @@ where
         }
     };
     let stopped = AtomicBool::new(false);
-    let found = frontier.into_par_iter().find_map_any(|pair| {
+    let found = Mutex::new(None);
+    for_each_index(frontier.len(), &|i| {
         if stopped.load(Ordering::Relaxed) {
-            return None;
+            return;
         }
+        let pair = frontier[i];
         let each = until_stopped(&visit, &stopped);
         let points = part_points((a, b), &pair);
         let mut v = pairs_visitor((a, b, metric), same, r2, boundary, points, each);
-        match run(a.index(), b.index(), metric, vec![pair], &mut v) {
-            ControlFlow::Break(br) => br,
-            ControlFlow::Continue(()) => None,
+        if let ControlFlow::Break(Some(br)) = run(a.index(), b.index(), metric, vec![pair], &mut v)
+        {
+            // The first break is kept; a later one (from a part that had not yet seen the flag)
+            // is dropped.
+            lock(&found).get_or_insert(br);
         }
     });
+    let found = found.into_inner().unwrap_or_else(PoisonError::into_inner);
     Ok(found.map_or(ControlFlow::Continue(()), ControlFlow::Break))
 }
 
@@ -196,19 +204,17 @@ where
         let ControlFlow::Continue(f) = split_top(ia, ib, metric, start, want(), &mut v);
         f
     };
-    let rest = frontier
-        .into_par_iter()
-        .map(|pair| {
-            let mut acc = identity();
-            let each = folding(&fold, &mut acc);
-            let points = part_points((a, b), &pair);
-            let mut v = pairs_visitor((a, b, metric), same, r2, boundary, points, each);
-            let _ = run(a.index(), b.index(), metric, vec![pair], &mut v);
-            drop(v);
-            acc
-        })
-        .reduce(&identity, &reduce);
-    Ok(reduce(top, rest))
+    let accs = map_indices(frontier.len(), &|i| {
+        let pair = frontier[i];
+        let mut acc = identity();
+        let each = folding(&fold, &mut acc);
+        let points = part_points((a, b), &pair);
+        let mut v = pairs_visitor((a, b, metric), same, r2, boundary, points, each);
+        let _ = run(a.index(), b.index(), metric, vec![pair], &mut v);
+        drop(v);
+        acc
+    });
+    Ok(accs.into_iter().fold(top, reduce))
 }
 
 /// `visit`, stopping every part once one has broken (`stopped`): its break, `None` for the
@@ -310,14 +316,12 @@ where
     let mut top = counter([a.len(), b.len()]);
     let start = roots((ia, ib, metric), same, (0, r2.len()), &mut top);
     let ControlFlow::Continue(frontier) = split_top(ia, ib, metric, start, want(), &mut top);
-    let parts: Vec<Vec<i128>> = frontier
-        .into_par_iter()
-        .map(|pair| {
-            let mut c = counter(part_points((a, b), &pair));
-            let _ = run(a.index(), b.index(), metric, vec![pair], &mut c);
-            c.diff
-        })
-        .collect();
+    let parts = map_indices(frontier.len(), &|i| {
+        let pair = frontier[i];
+        let mut c = counter(part_points((a, b), &pair));
+        let _ = run(a.index(), b.index(), metric, vec![pair], &mut c);
+        c.diff
+    });
     for part in parts {
         for (t, p) in top.diff.iter_mut().zip(part) {
             *t += p;
