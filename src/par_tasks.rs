@@ -5,8 +5,8 @@
 //! joining and job code with it; the engines' closures differ for every point set, metric and
 //! visitor they serve, so a program calling the parallel forms on several sets compiled that
 //! machinery dozens of times (about a tenth of the code generated for the point trees' tests).
-//! Here it is compiled once: [`for_each_index`] takes `&dyn Fn(usize)`, and the helpers above
-//! it hand out results and chunks of work by index. The cost is one indirect call per task (a
+//! Here it is compiled once: [`for_each_index`] takes `&dyn Fn(usize)`, and the helpers built
+//! on it hand out results and chunks of work by index. The cost is one indirect call per task (a
 //! task is a query, a group of points or a part of a traversal: microseconds of work).
 
 use rayon::prelude::*;

@@ -5,9 +5,6 @@
 //! - The k-nearest joins hand the querying tree's groups (see [`knn`](super::knn)) to the
 //!   threads in runs of consecutive groups; each run reuses one [`Search`] for all its groups
 //!   and writes their rows of one table directly.
-//!
-//! The threads are reached through [`par_tasks`](crate::par_tasks), so that rayon's machinery
-//! is compiled once for all the engines' closures.
 //! - The radius joins split the top of the dual-tree traversal (Gray and Moore, 2001) into at
 //!   least 16 independent node pairs per thread ([`split_top`]) and traverse each on a thread:
 //!   the counts of the parts are summed, the pairs of the sparse matrix concatenated and sorted,
@@ -15,7 +12,9 @@
 //!   thread at the first break), or folded into one accumulator per part and reduced.
 //!
 //! Nothing here holds all the pairs of a visitor or a fold in memory: each thread holds its
-//! traversal's stack and a block of 64 gathered points.
+//! traversal's stack and a block of 64 gathered points. The threads are reached through
+//! [`par_tasks`](crate::par_tasks), so that rayon's machinery is compiled once for all the
+//! engines' closures.
 
 use super::bounds::PairDistance;
 use super::knn::{fill, groups, parts, row_slots, table, width, KnnTable};
