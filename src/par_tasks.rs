@@ -9,6 +9,7 @@
 //! on it hand out results and chunks of work by index. The cost is one indirect call per task (a
 //! task is a query, a group of points or a part of a traversal: microseconds of work).
 
+use core::ops::Range;
 use rayon::prelude::*;
 use std::sync::{Mutex, PoisonError};
 
@@ -35,6 +36,24 @@ pub(crate) fn map_indices<A: Send>(n: usize, f: &(dyn Fn(usize) -> A + Sync)) ->
         .collect()
 }
 
+/// `0..n` cut into at most `parts` ranges of consecutive indices, none empty, in order.
+fn ranges(n: usize, parts: usize) -> Vec<Range<usize>> {
+    let size = n.div_ceil(parts.max(1)).max(1);
+    (0..n).step_by(size).map(|s| s..n.min(s + size)).collect()
+}
+
+/// `f(range)` for each of at most `chunks` ranges of consecutive indices covering `0..n`, on
+/// rayon's threads, in range order (`f` sees a whole range on one thread: scratch space can
+/// serve all of it).
+pub(crate) fn map_ranges<A: Send>(
+    n: usize,
+    chunks: usize,
+    f: &(dyn Fn(Range<usize>) -> A + Sync),
+) -> Vec<A> {
+    let rs = ranges(n, chunks);
+    map_indices(rs.len(), &|c| f(rs[c].clone()))
+}
+
 /// Hands `items` to `work` on rayon's threads in at most `chunks` runs of consecutive items
 /// (`work` sees each run whole, in order, on one thread: scratch space can serve a whole run).
 pub(crate) fn for_each_chunk<T: Send>(
@@ -42,16 +61,11 @@ pub(crate) fn for_each_chunk<T: Send>(
     chunks: usize,
     work: &(dyn Fn(Vec<T>) + Sync),
 ) {
-    let size = items.len().div_ceil(chunks.max(1)).max(1);
     let mut rest = items.into_iter();
-    let mut runs = Vec::new();
-    loop {
-        let run: Vec<T> = rest.by_ref().take(size).collect();
-        if run.is_empty() {
-            break;
-        }
-        runs.push(Mutex::new(run));
-    }
+    let runs: Vec<Mutex<Vec<T>>> = ranges(rest.len(), chunks)
+        .into_iter()
+        .map(|r| Mutex::new(rest.by_ref().take(r.len()).collect()))
+        .collect();
     for_each_index(runs.len(), &|c| work(core::mem::take(&mut *lock(&runs[c]))));
 }
 
@@ -100,6 +114,9 @@ mod tests {
             assert!(runs.len() <= chunks.max(1));
             runs.sort();
             assert_eq!(runs.concat(), (0..n).collect::<Vec<_>>());
+            let mapped = map_ranges(n, chunks, &|r| r.collect::<Vec<_>>());
+            assert!(mapped.len() <= chunks.max(1) && mapped.iter().all(|r| !r.is_empty()));
+            assert_eq!(mapped.concat(), (0..n).collect::<Vec<_>>());
         }
     }
 }

@@ -108,17 +108,16 @@ where
     P: PairDistance<D>,
     T: Send,
 {
-    use crate::par_tasks::{chunks, map_indices};
+    use crate::par_tasks::{chunks, map_indices, map_ranges};
     let w = width(k, b.len(), same);
     if w == 0 {
         return map_indices(a.len(), &|s| f(s, &[], &[]));
     }
     let gs = groups(a.index());
     // Runs of consecutive groups, one scratch space a run, the values concatenated in order.
-    let size = gs.len().div_ceil(chunks()).max(1);
-    let runs = map_indices(gs.len().div_ceil(size), &|c| {
+    let runs = map_ranges(gs.len(), chunks(), &|run| {
         let (mut scratch, mut values) = (Scratch::new(), Vec::new());
-        for g in &gs[c * size..gs.len().min((c + 1) * size)] {
+        for g in &gs[run] {
             map_group(
                 &mut scratch,
                 (a, b, metric),

@@ -33,12 +33,6 @@ use core::ops::ControlFlow;
 use core::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Mutex, PoisonError};
 
-/// The number of node pairs to split a traversal's top into: enough per thread for the
-/// threads to even out the uneven parts.
-fn want() -> usize {
-    chunks()
-}
-
 /// The k-nearest join of `a` in `b` under `metric` (`same`: the self-join), the groups of `a`
 /// on rayon's threads.
 pub(crate) fn par_knn<A, B, P, const D: usize>(
@@ -144,7 +138,7 @@ where
             &visit,
         );
         let start = roots((ia, ib, metric), same, (), &mut v);
-        match split_top(ia, ib, metric, start, want(), &mut v) {
+        match split_top(ia, ib, metric, start, chunks(), &mut v) {
             ControlFlow::Continue(f) => f,
             ControlFlow::Break(br) => return Ok(ControlFlow::Break(br)),
         }
@@ -200,7 +194,7 @@ where
         let each = folding(&fold, &mut top);
         let mut v = pairs_visitor((a, b, metric), same, r2, boundary, [a.len(), b.len()], each);
         let start = roots((ia, ib, metric), same, (), &mut v);
-        let ControlFlow::Continue(f) = split_top(ia, ib, metric, start, want(), &mut v);
+        let ControlFlow::Continue(f) = split_top(ia, ib, metric, start, chunks(), &mut v);
         f
     };
     let accs = map_indices(frontier.len(), &|i| {
@@ -314,7 +308,7 @@ where
     let (ia, ib) = (a.index(), b.index());
     let mut top = counter([a.len(), b.len()]);
     let start = roots((ia, ib, metric), same, (0, r2.len()), &mut top);
-    let ControlFlow::Continue(frontier) = split_top(ia, ib, metric, start, want(), &mut top);
+    let ControlFlow::Continue(frontier) = split_top(ia, ib, metric, start, chunks(), &mut top);
     let parts = map_indices(frontier.len(), &|i| {
         let pair = frontier[i];
         let mut c = counter(part_points((a, b), &pair));
