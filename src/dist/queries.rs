@@ -255,7 +255,7 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
             .collect();
         let points = self.local.points();
         let search = |region: &R, center: Option<[f64; D]>, hits: &mut Vec<(f64, usize)>| {
-            let _ = for_each_in(&self.local, region, scan_limit(D), true, |i| {
+            let _ = for_each_in(&self.local, region, scan_limit::<D>(), true, |i| {
                 let d = center.map_or(0.0, |c| {
                     SquaredEuclidean.distance(&c, &points[i].map(Scalar::to_f64))
                 });

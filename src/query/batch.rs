@@ -106,7 +106,7 @@ where
             let index = self.index();
             let payloads = index.payloads();
             let mut found = Vec::new();
-            for_each_in(index, r, scan_limit(D), false, |i| {
+            for_each_in(index, r, scan_limit::<D>(), false, |i| {
                 found.push(self.slot_of(i, &payloads[i]))
             })?;
             found.sort_unstable();

@@ -34,7 +34,7 @@ where
     // The worst of the kept pairs on top; capacity bounded by the data, never by `n` alone.
     let mut kept: BinaryHeap<(K, usize, usize)> = BinaryHeap::with_capacity(n.min(set.len()));
     if n > 0 {
-        for_each_in(index, &ball, scan_limit(D), true, |i| {
+        for_each_in(index, &ball, scan_limit::<D>(), true, |i| {
             let slot = set.slot_of(i, &payloads[i]);
             let k = key(set.item_of(&payloads[i]));
             if kept.len() < n {

@@ -98,6 +98,26 @@ pub trait SpatialIndex<const D: usize> {
     }
 }
 
+/// The most points a node's contiguous run may hold for an engine to scan it whole rather than
+/// descend: the engine's own `base` (measured in 2D and 3D) below 6D, and from 6D up at least
+/// 4 per child (4 × 2^D). There a node has up to 2^D children, each of which costs D operations
+/// to bound and a place on the engine's stack, as much as measuring a point: a node of 4 points
+/// per child is scanned at about the cost of looking at its children. Measured with kiddo's
+/// k-nearest queries beside (10^6 uniform points, k = 10): 6D 1.8x, 8D 1.7x faster than with the
+/// base limits; 4D and 5D were slower with it, so they keep theirs.
+#[inline(always)]
+pub(crate) const fn scan_limit<const D: usize>(base: usize) -> usize {
+    if D < 6 {
+        return base;
+    }
+    let per_children = 4usize << (if D < 16 { D } else { 16 });
+    if per_children > base {
+        per_children
+    } else {
+        base
+    }
+}
+
 /// Whether the engines scan `node`'s run whole rather than descend: its run is contiguous
 /// ([`SpatialIndex::NESTED_RUNS`]) and holds at most `limit` points. (A leaf is scanned
 /// either way.)

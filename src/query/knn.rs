@@ -22,7 +22,7 @@
 //! first `k` of all points within the maximum distance sorted by `(distance, index)`. A box whose
 //! bound equals the `k`-th distance is still searched, so a tie cannot be lost.
 
-use super::index::{scans_whole, SpatialIndex};
+use super::index::{scan_limit, scans_whole, SpatialIndex};
 use super::knn_images::Images;
 use super::metric::Metric;
 use crate::geom::{Aabb, Scalar};
@@ -150,7 +150,7 @@ impl Best {
 
 /// A node whose run holds at most this many points is scanned as if it were a leaf: its run is
 /// contiguous, and a tight loop over a few points costs less than bounding and ordering its
-/// children (kd-trees scan buckets of this size).
+/// children (kd-trees scan buckets of this size). More from 6D up ([`scan_limit`]).
 const SCAN: usize = 48;
 
 /// Nodes still to search: (lower bound, node, closed box), nearest on top.
@@ -254,7 +254,7 @@ pub(super) fn seeded<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: us
         let (mut node, mut nb) = (root, b);
         loop {
             path.push((node, nb));
-            let next = if !scans_whole(index, node, SCAN) {
+            let next = if !scans_whole(index, node, scan_limit::<D>(SCAN)) {
                 index.nearest_child(node, &nb, qb, bm)
             } else {
                 None
@@ -291,6 +291,7 @@ pub(super) fn seeded<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: us
                 push_nearer(index, points, &mut stack, 0, qb, bm, prune, child, cb);
             }
         });
+        order_pushed(&mut stack, 0);
         (bound, prune) = drain(
             index,
             &mut stack,
@@ -358,10 +359,11 @@ fn drain<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
             continue;
         }
         let before = stack.len();
-        let internal = !scans_whole(index, node, SCAN)
+        let internal = !scans_whole(index, node, scan_limit::<D>(SCAN))
             && index.for_each_child_in(node, &b, |child, cb| {
                 push_nearer(index, points, stack, before, qb, bm, prune, child, cb);
             });
+        order_pushed(stack, before);
         if !internal {
             bound = scan_run(best, points, index.run(node), (qp, pm), bound);
             prune = best.prune(cut);
@@ -440,17 +442,47 @@ fn push_nearer<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
         return;
     }
     let run = index.run(child);
-    if run.len() <= SCAN {
+    if run.len() <= scan_limit::<D>(SCAN) {
         // It will be scanned if the bound still lets it: start the load now.
         prefetch_run(points, run);
     }
-    // Insertion sort, farthest first.
     let mut at = stack.len();
     stack.push((d, child, *cb));
+    if many_children::<D>() {
+        return; // ordered once all are pushed (`order_pushed`)
+    }
+    // Insertion sort, farthest first.
     while at > before && stack[at - 1].0 < d {
         stack.swap(at - 1, at);
         at -= 1;
     }
+}
+
+/// `true` from 4D up: a node has up to 2^D children, and moving each child's entry (its box
+/// alone is 16 D bytes) about half the pushed ones over in an insertion sort costs more than
+/// ordering the lot once ([`order_pushed`]).
+#[inline(always)]
+const fn many_children<const D: usize>() -> bool {
+    D >= 6
+}
+
+/// Puts the entries pushed above `before` farthest first (the nearest on top), when
+/// [`push_nearer`] left them in child order: their distances sorted beside their positions,
+/// then each entry moved once.
+#[inline(always)]
+fn order_pushed<N: Copy, const D: usize>(stack: &mut Pending<N, D>, before: usize) {
+    if !many_children::<D>() || stack.len() - before < 2 {
+        return;
+    }
+    let pushed = &mut stack[before..];
+    let mut order: SmallVec<[(f64, u32); 256]> = pushed
+        .iter()
+        .enumerate()
+        .map(|(i, e)| (e.0, i as u32))
+        .collect();
+    order.sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+    let moved: Pending<N, D> = order.iter().map(|&(_, i)| pushed[i as usize]).collect();
+    pushed.copy_from_slice(&moved);
 }
 
 /// `true` when no point outside the closed box `b` can be within `bound` of `q` under `metric`:

@@ -190,7 +190,7 @@ pub trait PointSet<const D: usize> {
     /// ```
     #[inline]
     fn query_count<R: Region<D>>(&self, region: R) -> Result<usize, QueryError> {
-        for_each_in(self.index(), &region, scan_limit(D), false, |_| {}).map(|s| s.count)
+        for_each_in(self.index(), &region, scan_limit::<D>(), false, |_| {}).map(|s| s.count)
     }
 
     /// Calls `visit(point, item)` for every point in `region`, in the traversal's order.
@@ -214,7 +214,7 @@ pub trait PointSet<const D: usize> {
     ) -> Result<(), QueryError> {
         let index = self.index();
         let (points, payloads) = (index.points(), index.payloads());
-        for_each_in(index, &region, scan_limit(D), true, |i| {
+        for_each_in(index, &region, scan_limit::<D>(), true, |i| {
             visit(&points[i], self.item_of(&payloads[i]))
         })
         .map(|_| ())
@@ -257,7 +257,7 @@ pub trait PointSet<const D: usize> {
     ) -> Result<Option<B>, QueryError> {
         let index = self.index();
         let (points, payloads) = (index.points(), index.payloads());
-        for_each_until(index, &region, scan_limit(D), true, |i| {
+        for_each_until(index, &region, scan_limit::<D>(), true, |i| {
             visit(&points[i], self.item_of(&payloads[i]))
         })
         .map(|(_, stop)| stop)

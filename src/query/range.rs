@@ -57,7 +57,7 @@ pub struct QueryStats {
 /// region (report its run) or crossing it (look at its children, or test its points).
 type Stack<N, const D: usize> = SmallVec<[(N, Aabb<f64, D>, bool); 48]>;
 
-/// A crossing node whose run holds at most `scan_limit(D)` points has them tested one by one
+/// A crossing node whose run holds at most `scan_limit::<D>()` points has them tested one by one
 /// instead of its children classified: its run is contiguous, so the scan streams through
 /// memory, where descending reads the children's runs and boxes (a cache miss per level) and
 /// classifies up to 2^D of them. Used by the iterator, the count and the visitor;
@@ -68,12 +68,8 @@ type Stack<N, const D: usize> = SmallVec<[(N, Aabb<f64, D>, bool); 48]>;
 /// and 3, 10 and 1000 results in 2D): in 2D, 128 makes ball queries 1.2-1.35x and box queries
 /// 1.2-1.5x faster than 48 (kd-trees' bucket size, the limit before), on every workload and
 /// answer size tried; in 3D, 48 and 96 tie and 128 is slower on uniform balls, so 64.
-pub(crate) const fn scan_limit(d: usize) -> usize {
-    if d <= 2 {
-        128
-    } else {
-        64
-    }
+pub(crate) const fn scan_limit<const D: usize>() -> usize {
+    super::index::scan_limit::<D>(if D <= 2 { 128 } else { 64 })
 }
 
 /// The engine of [`RegionIter`](super::RegionIter): the points of an index in a region with
@@ -97,7 +93,15 @@ impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> IndexRegionIter<'a, I
         region.validate()?;
         let mut stack = Stack::new();
         if let Some((root, b)) = index.root() {
-            push_child(&mut stack, index, &region, root, &b, scan_limit(D), true);
+            push_child(
+                &mut stack,
+                index,
+                &region,
+                root,
+                &b,
+                scan_limit::<D>(),
+                true,
+            );
         }
         Ok(IndexRegionIter {
             index,
@@ -142,13 +146,13 @@ impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> Iterator
                 self.run = self.index.run(node);
                 continue;
             }
-            if scans_whole(self.index, node, scan_limit(D)) {
+            if scans_whole(self.index, node, scan_limit::<D>()) {
                 self.pending = self.index.run(node);
                 continue;
             }
             let (stack, index, region) = (&mut self.stack, self.index, &self.region);
             let internal = self.index.for_each_child_in(node, &b, |child, b| {
-                push_child(stack, index, region, child, b, scan_limit(D), true);
+                push_child(stack, index, region, child, b, scan_limit::<D>(), true);
             });
             if !internal {
                 self.pending = self.index.run(node);

@@ -12,7 +12,8 @@ use common::points::check_all;
 use common::{dist2, rng};
 use orthtree::prelude::*;
 use orthtree::{
-    query::HalfSpace, Aabb, Ball, Cell, CompressedTree, DynamicPointTree, PointTree, SkipQuadtree,
+    query::{Boundary, HalfSpace},
+    Aabb, Ball, Cell, CompressedTree, DynamicPointTree, PointTree, SkipQuadtree,
 };
 use rand::rngs::SmallRng;
 use rand::Rng;
@@ -282,4 +283,78 @@ every_dimension! {
     points_in_6d: 6;
     points_in_7d: 7;
     points_in_8d: 8;
+}
+
+/// Thousands of points from 6D up: the nodes hold more points than the nearest-neighbour
+/// search scans whole and have tens to hundreds of children each, so that search orders whole
+/// sets of pushed children at once. Every tree against a scan, and the point tree's k nearest,
+/// slots included, against the first k of all points sorted by (distance, slot); its
+/// k-nearest self-join and pair counts, whose traversals scan more per node there too.
+fn many_points<const D: usize>(seed: u64) {
+    let mut r = rng(seed);
+    let entries = sample_points::<D>(&mut r, 3000);
+    let t = PointTree::builder().build(&entries).unwrap();
+    t.validate().unwrap();
+    check_queries(&t, &entries, &mut r);
+    let dynamic = DynamicPointTree::new(&entries).unwrap();
+    check_queries(&dynamic, &entries, &mut r);
+    check_queries(&compressed(&entries), &entries, &mut r);
+    // every slot but `skip` by (distance from `q`, slot)
+    let by_distance = |q: &[f64; D], skip: Option<usize>| {
+        let mut all: Vec<(f64, usize)> = (0..t.len())
+            .filter(|&s| Some(s) != skip)
+            .map(|s| (dist2(t.point(s), q), s))
+            .collect();
+        all.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        all
+    };
+    for k in [1, 7, 40] {
+        let random: [f64; D] = core::array::from_fn(|_| r.r#gen());
+        // a stored point: its copies tie with it at 0
+        let stored = *t.point(r.gen_range(0..t.len()));
+        for q in [random, stored] {
+            let got: Vec<(f64, usize)> = t
+                .k_nearest(&q, k)
+                .unwrap()
+                .iter()
+                .map(|n| (n.distance, n.index))
+                .collect();
+            assert_eq!(
+                got,
+                by_distance(&q, None)[..k],
+                "D = {D}, {k} nearest of {q:?}"
+            );
+        }
+    }
+    // the joins: each row the first k others by (distance, slot); pair counts by a double loop
+    let k = 5;
+    let table = t.k_nearest_self(k);
+    for row in (0..t.len()).step_by(7) {
+        let all = by_distance(t.point(row), Some(row));
+        let (slots, dists) = table.row(row);
+        let want: (Vec<usize>, Vec<f64>) = all[..k].iter().map(|&(d, s)| (s, d)).unzip();
+        assert_eq!(
+            (slots, dists),
+            (&want.0[..], &want.1[..]),
+            "D = {D}, row {row}"
+        );
+    }
+    let radii = [0.0, 0.05, 0.4];
+    let counts = t.count_pairs_within(&radii, Boundary::Inclusive).unwrap();
+    for (r, &count) in radii.iter().zip(&counts) {
+        let mut want = 0;
+        for i in 0..t.len() {
+            for j in i + 1..t.len() {
+                want += u64::from(dist2(t.point(i), t.point(j)) <= r * r);
+            }
+        }
+        assert_eq!(count, want, "D = {D}, pairs within {r}");
+    }
+}
+
+#[test]
+fn thousands_of_points_in_6d_7d_and_8d() {
+    many_points::<6>(61);
+    many_points::<7>(71);
+    many_points::<8>(81);
 }

@@ -21,7 +21,7 @@
 //! and of the batch `par_k_nearest` (k = 10) over one `k_nearest` call per query, on uniform
 //! points, with all of rayon's threads.
 //!
-//! Workloads: D = 2 and 3, f64; uniform in the unit cube, 64 Gaussian clusters (sigma 0.01),
+//! Workloads: D = 2 and 3 (or 4, 6 or 8 with `--dim`), f64; uniform in the unit cube, 64 Gaussian clusters (sigma 0.01),
 //! duplicate-heavy (N / 8 uniform points, each 8 times) and lattice (integer grid points). Rows:
 //! build; box queries with about 100 results; radius queries with about 100 results; k-nearest for
 //! k = 1, 10, 100. Query centres follow the data's distribution; the box side and radius are
@@ -56,8 +56,8 @@ struct Args {
     /// Timed runs per row, median reported
     #[arg(long, value_name = "R", default_value_t = 5, value_parser = limits::number(1usize, 1000))]
     reps: usize,
-    /// Only dimension 2 or 3
-    #[arg(long, value_name = "D", value_parser = limits::number(2usize, 3))]
+    /// Only dimension D: 2 or 3 (both by default), or 4, 6 or 8
+    #[arg(long, value_name = "D", value_parser = dimension)]
     dim: Option<usize>,
     /// Only workloads whose name starts with NAME (uniform, clustered, duplicates, lattice)
     #[arg(long, value_name = "NAME", value_parser = workload)]
@@ -65,6 +65,32 @@ struct Args {
     /// Also rayon's speed-ups (needs the `rayon` feature)
     #[arg(long)]
     parallel: bool,
+}
+
+/// A `--dim` this program is built for.
+fn dimension(raw: &str) -> Result<usize, String> {
+    match raw.parse() {
+        Ok(d @ (2 | 3 | 4 | 6 | 8)) => Ok(d),
+        _ => Err("the dimensions run are 2, 3, 4, 6 and 8".into()),
+    }
+}
+
+/// Calls `$f::<D>($args)` for each dimension `--dim` asks for: 2 and 3 when it is absent.
+macro_rules! each_dimension {
+    ($a:expr, $f:ident($($arg:expr),*)) => {
+        match $a.dim {
+            None => {
+                $f::<2>($($arg),*);
+                $f::<3>($($arg),*);
+            }
+            Some(2) => $f::<2>($($arg),*),
+            Some(3) => $f::<3>($($arg),*),
+            Some(4) => $f::<4>($($arg),*),
+            Some(6) => $f::<6>($($arg),*),
+            Some(8) => $f::<8>($($arg),*),
+            Some(d) => unreachable!("--dim {d} is refused by its parser"),
+        }
+    };
 }
 
 /// A `--workload` that starts at least one workload's name.
@@ -99,8 +125,14 @@ fn parse() -> Args {
     }
     // The lattice workload rounds N to side^D points, at most (N^(1/2) + 1)^2 in 2D.
     let lattice = ((a.n as f64).sqrt() + 1.0).powi(2);
-    let bytes =
-        (a.n as f64).max(lattice) * PEAK_BYTES_PER_POINT + a.queries as f64 * PEAK_BYTES_PER_QUERY;
+    // Points take D / 3 times their 3D bytes; the lattice at most 2^D times N from 4D up.
+    let scale = (a.dim.unwrap_or(3) as f64 / 3.0).max(1.0);
+    let lattice = match a.dim {
+        Some(d) if d > 3 => lattice.max((a.n as f64).powf(1.0 / d as f64).round().powi(d as i32)),
+        _ => lattice,
+    };
+    let bytes = (a.n as f64).max(lattice) * PEAK_BYTES_PER_POINT * scale
+        + a.queries as f64 * PEAK_BYTES_PER_QUERY;
     if let Err(e) = limits::check_memory(&format!("--n {} --queries {}", a.n, a.queries), bytes) {
         refuse(e);
     }
@@ -304,12 +336,7 @@ where
 fn main() {
     let a = parse();
     let mut rows = Vec::new();
-    if a.dim != Some(3) {
-        workloads::<2>(&a, &mut rows);
-    }
-    if a.dim != Some(2) {
-        workloads::<3>(&a, &mut rows);
-    }
+    each_dimension!(a, workloads(&a, &mut rows));
     println!(
         "\nN = {}, {} queries per row, median of {} runs, ms (total over all queries; build: one build)\n",
         a.n, a.queries, a.reps
@@ -334,12 +361,7 @@ fn main() {
     );
     println!("| dimension | PointTree | DynamicPointTree | kiddo KdTree | rstar RTree | DynamicPointTree / best rival |");
     println!("| --- | ---: | ---: | ---: | ---: | ---: |");
-    if a.dim != Some(3) {
-        updates::<2>(&a);
-    }
-    if a.dim != Some(2) {
-        updates::<3>(&a);
-    }
+    each_dimension!(a, updates(&a));
     #[cfg(feature = "rayon")]
     if a.parallel {
         println!(
@@ -349,12 +371,7 @@ fn main() {
         );
         println!("| workload | operation | serial | rayon | speed-up |");
         println!("| --- | --- | ---: | ---: | ---: |");
-        if a.dim != Some(3) {
-            parallel::<2>(&a);
-        }
-        if a.dim != Some(2) {
-            parallel::<3>(&a);
-        }
+        each_dimension!(a, parallel(&a));
     }
 }
 

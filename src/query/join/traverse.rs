@@ -16,7 +16,7 @@
 
 use super::bounds::PairDistance;
 use crate::geom::Aabb;
-use crate::query::index::{scans_whole, SpatialIndex};
+use crate::query::index::{scan_limit, scans_whole, SpatialIndex};
 use core::ops::{ControlFlow, Range};
 use smallvec::SmallVec;
 
@@ -45,7 +45,7 @@ pub(crate) type Pair<A, B, T, const D: usize> = (Side<A, D>, Side<B, D>, bool, T
 pub(crate) type Kids<N, const D: usize> = SmallVec<[Side<N, D>; 8]>;
 
 /// The children of a node with their boxes; empty for a node to scan (a leaf, or a node whose
-/// contiguous run holds at most `scan` points).
+/// contiguous run holds at most `scan` points, more from 6D up: [`scan_limit`]).
 #[inline]
 pub(crate) fn children<I: SpatialIndex<D>, const D: usize>(
     index: &I,
@@ -68,7 +68,7 @@ pub(crate) fn push_children<I: SpatialIndex<D>, const D: usize>(
     scan: usize,
     mut push: impl FnMut(Side<I::Node, D>),
 ) {
-    if !scans_whole(index, side.0, scan) {
+    if !scans_whole(index, side.0, scan_limit::<D>(scan)) {
         index.for_each_child_in(side.0, &side.1, |c, cb| push((c, *cb)));
     }
 }
