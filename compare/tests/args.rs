@@ -92,7 +92,12 @@ fn missing_and_bad_values_are_named() {
             refused(name, &[flag, bad], &[flag, "expected a number from"]);
         }
     }
-    refused("compare", &["--dim", "4"], &["--dim", "from 2 to 3"]);
+    refused("compare", &["--dim", "9"], &["--dim", "from 2 to 8"]);
+    refused(
+        "compare",
+        &["--dim", "5"],
+        &["--dim", "one of 2, 3, 4, 6 and 8"],
+    );
     refused(
         "compare",
         &["--workload", "gaussian"],
@@ -147,6 +152,7 @@ fn small_valid_runs_succeed() {
     for args in [
         &["--n", "1", "--queries", "1", "--reps", "1"][..],
         &["--n", "7", "--queries", "3", "--reps", "1", "--dim", "3"],
+        &["--n", "300", "--queries", "3", "--reps", "1", "--dim", "8"],
         &[
             "--n",
             "2000",

@@ -69,9 +69,9 @@ struct Args {
 
 /// A `--dim` this program is built for.
 fn dimension(raw: &str) -> Result<usize, String> {
-    match raw.parse() {
-        Ok(d @ (2 | 3 | 4 | 6 | 8)) => Ok(d),
-        _ => Err("the dimensions run are 2, 3, 4, 6 and 8".into()),
+    match limits::parse_number(raw, 2usize, 8)? {
+        d @ (2 | 3 | 4 | 6 | 8) => Ok(d),
+        _ => Err("expected a number from 2 to 8, one of 2, 3, 4, 6 and 8".into()),
     }
 }
 
