@@ -81,6 +81,22 @@ pub trait SpatialIndex<const D: usize> {
         self.for_each_child(node, f)
     }
 
+    /// [`SpatialIndex::for_each_child_in`] for a search bounded by `bound` around `q` under
+    /// `metric`: an index may leave out children none of whose points can lie within `bound`
+    /// (those of a half of `bbox` whose [`Metric::box_distance`] exceeds it), without bounding
+    /// them one by one. The default hands every child.
+    #[inline(always)]
+    fn for_each_child_near<M: Metric<D>>(
+        &self,
+        node: Self::Node,
+        bbox: &Aabb<f64, D>,
+        (q, metric, bound): (&[f64; D], &M, f64),
+        f: impl FnMut(Self::Node, &Aabb<f64, D>),
+    ) -> bool {
+        let _ = (q, metric, bound);
+        self.for_each_child_in(node, bbox, f)
+    }
+
     /// The child of `node` (whose closed box `bbox` the caller holds) to search first for
     /// points near `q`: the non-empty child whose box is nearest under `metric`, the first of
     /// equals, with its box; `None` for a leaf. The nearest-neighbour engines walk these down

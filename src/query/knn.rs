@@ -286,7 +286,7 @@ pub(super) fn seeded<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: us
             break;
         }
         let (node, nb) = path[level];
-        index.for_each_child_in(node, &nb, |child, cb| {
+        index.for_each_child_near(node, &nb, (qb, bm, prune), |child, cb| {
             if child != inner {
                 push_nearer(index, points, &mut stack, 0, qb, bm, prune, child, cb);
             }
@@ -360,7 +360,7 @@ fn drain<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
         }
         let before = stack.len();
         let internal = !scans_whole(index, node, scan_limit::<D>(SCAN))
-            && index.for_each_child_in(node, &b, |child, cb| {
+            && index.for_each_child_near(node, &b, (qb, bm, prune), |child, cb| {
                 push_nearer(index, points, stack, before, qb, bm, prune, child, cb);
             });
         order_pushed(stack, before);

@@ -285,9 +285,9 @@ every_dimension! {
     points_in_8d: 8;
 }
 
-/// Thousands of points from 6D up: the nodes hold more points than the nearest-neighbour
-/// search scans whole and have tens to hundreds of children each, so that search orders whole
-/// sets of pushed children at once. Every tree against a scan, and the point tree's k nearest,
+/// Thousands of points from 4D up: the nodes hold more points than the nearest-neighbour
+/// search scans whole and have 16 to 256 children each, which that search leaves out by
+/// halves beyond its bound, and from 6D orders once pushed. Every tree against a scan, and the point tree's k nearest,
 /// slots included, against the first k of all points sorted by (distance, slot); its
 /// k-nearest self-join and pair counts, whose traversals scan more per node there too.
 fn many_points<const D: usize>(seed: u64) {
@@ -353,7 +353,9 @@ fn many_points<const D: usize>(seed: u64) {
 }
 
 #[test]
-fn thousands_of_points_in_6d_7d_and_8d() {
+fn thousands_of_points_from_4d_to_8d() {
+    many_points::<4>(41);
+    many_points::<5>(51);
     many_points::<6>(61);
     many_points::<7>(71);
     many_points::<8>(81);
