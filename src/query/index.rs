@@ -81,19 +81,19 @@ pub trait SpatialIndex<const D: usize> {
         self.for_each_child(node, f)
     }
 
-    /// [`SpatialIndex::for_each_child_in`] for a search bounded by `bound` around `q` under
-    /// `metric`: an index may leave out children none of whose points can lie within `bound`
-    /// (those of a half of `bbox` whose [`Metric::box_distance`] exceeds it), without bounding
-    /// them one by one. The default hands every child.
+    /// [`SpatialIndex::for_each_child_in`] for a search that wants no point of a box for
+    /// which `out` holds: an index may leave out the children in such a box (a half of `bbox`
+    /// on either side of a split line) without bounding them one by one. The default hands
+    /// every child.
     #[inline(always)]
-    fn for_each_child_near<M: Metric<D>>(
+    fn for_each_child_unless(
         &self,
         node: Self::Node,
         bbox: &Aabb<f64, D>,
-        (q, metric, bound): (&[f64; D], &M, f64),
+        out: impl Fn(&Aabb<f64, D>) -> bool,
         f: impl FnMut(Self::Node, &Aabb<f64, D>),
     ) -> bool {
-        let _ = (q, metric, bound);
+        let _ = out;
         self.for_each_child_in(node, bbox, f)
     }
 

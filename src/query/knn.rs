@@ -286,11 +286,16 @@ pub(super) fn seeded<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: us
             break;
         }
         let (node, nb) = path[level];
-        index.for_each_child_near(node, &nb, (qb, bm, prune), |child, cb| {
-            if child != inner {
-                push_nearer(index, points, &mut stack, 0, qb, bm, prune, child, cb);
-            }
-        });
+        index.for_each_child_unless(
+            node,
+            &nb,
+            |h| bm.box_distance(qb, h) > prune,
+            |child, cb| {
+                if child != inner {
+                    push_nearer(index, points, &mut stack, 0, qb, bm, prune, child, cb);
+                }
+            },
+        );
         order_pushed(&mut stack, 0);
         (bound, prune) = drain(
             index,
@@ -360,9 +365,14 @@ fn drain<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
         }
         let before = stack.len();
         let internal = !scans_whole(index, node, scan_limit::<D>(SCAN))
-            && index.for_each_child_near(node, &b, (qb, bm, prune), |child, cb| {
-                push_nearer(index, points, stack, before, qb, bm, prune, child, cb);
-            });
+            && index.for_each_child_unless(
+                node,
+                &b,
+                |h| bm.box_distance(qb, h) > prune,
+                |child, cb| {
+                    push_nearer(index, points, stack, before, qb, bm, prune, child, cb);
+                },
+            );
         order_pushed(stack, before);
         if !internal {
             bound = scan_run(best, points, index.run(node), (qp, pm), bound);

@@ -151,7 +151,8 @@ impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> Iterator
                 continue;
             }
             let (stack, index, region) = (&mut self.stack, self.index, &self.region);
-            let internal = self.index.for_each_child_in(node, &b, |child, b| {
+            let out = |h: &Aabb<f64, D>| region.classify(h) == Relation::Outside;
+            let internal = self.index.for_each_child_unless(node, &b, out, |child, b| {
                 push_child(stack, index, region, child, b, scan_limit::<D>(), true);
             });
             if !internal {
@@ -282,8 +283,10 @@ pub(crate) fn for_each_until<I: SpatialIndex<D>, R: Region<D>, B, const D: usize
             continue;
         }
         let mut visited = 0;
+        // `scan` 0 runs the chapter's algorithm as stated: every child classified and counted.
+        let out = |h: &Aabb<f64, D>| scan != 0 && region.classify(h) == Relation::Outside;
         let internal = !scans_whole(index, node, scan)
-            && index.for_each_child_in(node, &b, |child, b| {
+            && index.for_each_child_unless(node, &b, out, |child, b| {
                 visited += 1;
                 push_child(&mut stack, index, region, child, b, scan, reads);
             });
