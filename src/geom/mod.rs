@@ -19,7 +19,7 @@ pub(crate) use cell::{digit, same_cell, Dim};
 pub use deep::{DeepCell, DeepKey};
 pub use direction::{Connectivity, Direction};
 pub use float_bits::FloatBits;
-pub(crate) use root::child_box;
 pub use root::RootGeometry;
+pub(crate) use root::{child_box, halves_kept};
 pub(crate) use scalar::{check_point, exact_point, fault, Checked, Fault};
 pub use scalar::{validate_point, Scalar};

@@ -11,7 +11,7 @@
 //! - [`PointTree`]'s own use of them.
 
 use super::PointTree;
-use crate::geom::{child_box, Aabb, Cell, Dim, RootGeometry, Scalar};
+use crate::geom::{child_box, halves_kept, Aabb, Cell, Dim, RootGeometry, Scalar};
 use crate::query::{nearest_child_by_boxes, Metric, SpatialIndex};
 use crate::tree::NodeId;
 use core::ops::Range;
@@ -180,20 +180,10 @@ impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointArrays<'_, S, T, D> 
             return false;
         }
         let mid = self.geometry.mids(&node.cell);
-        // `mask`: the axes along which one half is out; `want`: the other (bit set: the upper).
-        let (mut mask, mut want) = (0usize, 0usize);
-        for (a, &m) in mid.iter().enumerate() {
-            let (mut lower, mut upper) = (*bbox, *bbox);
-            lower.max[a] = m;
-            upper.min[a] = m;
-            match (out(&lower), out(&upper)) {
-                (true, true) => return true, // every child is out: an inner node all the same
-                (false, true) => mask |= 1 << a,
-                (true, false) => (mask, want) = (mask | 1 << a, want | 1 << a),
-                (false, false) => {}
-            }
+        match halves_kept(bbox, &mid, out) {
+            Some(kept) => self.for_each_child_where(node, bbox, kept, f),
+            None => true, // every child is out: an inner node all the same
         }
-        self.for_each_child_where(node, bbox, (mask, want), f)
     }
 }
 

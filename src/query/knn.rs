@@ -13,7 +13,10 @@
 //! only the children beside it that can still hold a neighbour, and stops going up once the
 //! ball of the bound lies inside the box walked through. Any node of at most `SCAN` points is
 //! scanned as a leaf (its run is contiguous), as kd-trees scan buckets; for k = 1 the scan keeps
-//! the run's nearest point without a branch per point.
+//! the run's nearest point without a branch per point. From 4D up, where a node has 16 to 256
+//! children, the index is asked only for the children outside the halves of the node whose box
+//! is beyond the bound ([`SpatialIndex::for_each_child_unless`]), and from 6D up the children
+//! pushed are ordered once rather than by insertion.
 //!
 //! A minimum-image metric on a periodic domain ([`Metric::torus`]) runs the same search from the
 //! query's images, one after another into the same candidate list ([`super::knn_images`]).

@@ -3,7 +3,10 @@
 //!
 //! Start at the root. A node whose closed box is outside the region is skipped; one inside it
 //! reports its whole run of points without testing them; one crossing the region's boundary
-//! passes to its children, or, at a leaf, tests its points one by one.
+//! passes to its children, or, at a leaf, tests its points one by one. From 4D up the index may
+//! leave out at once the children in a half of a node (either side of a split line) that the
+//! region classifies outside ([`SpatialIndex::for_each_child_unless`]);
+//! [`PointSet::query_stats`](super::PointSet::query_stats) still classifies every child.
 //!
 //! # Worst-case query time (exercise 14.13)
 //!

@@ -5,7 +5,7 @@
 
 use super::pool::Pool;
 use super::NodeData;
-use crate::geom::{child_box, Aabb, Cell, RootGeometry, Scalar};
+use crate::geom::{child_box, halves_kept, Aabb, Cell, RootGeometry, Scalar};
 use crate::query::{Metric, SpatialIndex};
 use crate::tree::{NodeId, Tree};
 use core::ops::Range;
@@ -37,6 +37,28 @@ impl<S: Scalar, const D: usize> DynamicIndex<S, D> {
             id: NodeId(first.0 + i as u32),
             cell: node.cell.child(i),
         }
+    }
+
+    /// The non-empty children `i` of `node` with `i & mask == want` (bit `a` of a child's
+    /// number set: the upper half along axis `a`), with their boxes; `false` for a leaf.
+    #[inline(always)]
+    fn for_each_child_where(
+        &self,
+        node: DynamicNode<D>,
+        bbox: &Aabb<f64, D>,
+        (mask, want): (usize, usize),
+        mut f: impl FnMut(DynamicNode<D>, &Aabb<f64, D>),
+    ) -> bool {
+        let Some(first) = self.tree.child(node.id, 0) else {
+            return false;
+        };
+        let mid = self.geometry.mids(&node.cell);
+        for i in 0..1 << D {
+            if i & mask == want && self.nodes[first.index() + i].count != 0 {
+                f(Self::child(node, first, i), &child_box(bbox, &mid, i));
+            }
+        }
+        true
     }
 }
 
@@ -97,18 +119,28 @@ impl<S: Scalar, const D: usize> SpatialIndex<D> for DynamicIndex<S, D> {
         &self,
         node: DynamicNode<D>,
         bbox: &Aabb<f64, D>,
-        mut f: impl FnMut(DynamicNode<D>, &Aabb<f64, D>),
+        f: impl FnMut(DynamicNode<D>, &Aabb<f64, D>),
     ) -> bool {
-        let Some(first) = self.tree.child(node.id, 0) else {
-            return false;
-        };
-        let mid = self.geometry.mids(&node.cell);
-        for i in 0..1 << D {
-            if self.nodes[first.index() + i].count != 0 {
-                f(Self::child(node, first, i), &child_box(bbox, &mid, i));
-            }
+        self.for_each_child_where(node, bbox, (0, 0), f)
+    }
+
+    /// As [`PointTree`](crate::PointTree)'s: from 4D up the halves of the node that are out
+    /// are left out whole (`halves_kept`); in 2D and 3D every child.
+    #[inline(always)]
+    fn for_each_child_unless(
+        &self,
+        node: DynamicNode<D>,
+        bbox: &Aabb<f64, D>,
+        out: impl Fn(&Aabb<f64, D>) -> bool,
+        f: impl FnMut(DynamicNode<D>, &Aabb<f64, D>),
+    ) -> bool {
+        if D < 4 || self.tree.child(node.id, 0).is_none() {
+            return self.for_each_child_in(node, bbox, f);
         }
-        true
+        match halves_kept(bbox, &self.geometry.mids(&node.cell), out) {
+            Some(kept) => self.for_each_child_where(node, bbox, kept, f),
+            None => true, // every child is out: an inner node all the same
+        }
     }
 
     /// The child holding `q` by the split lines when `q` lies in the node's box (as
