@@ -70,6 +70,7 @@ impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointArrays<'_, S, T, D> 
     type Scalar = S;
     type Payload = T;
     type Node = PointNode<D>;
+    const LEAVES_OUT_HALVES: bool = true;
 
     #[inline]
     fn points(&self) -> &[[S; D]] {
@@ -239,6 +240,7 @@ macro_rules! point_index {
             type Scalar = S;
             type Payload = T;
             type Node = $crate::points::PointNode<D>;
+            const LEAVES_OUT_HALVES: bool = true;
 
             #[inline]
             fn points(&self) -> &[[S; D]] {

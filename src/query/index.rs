@@ -46,6 +46,12 @@ pub trait SpatialIndex<const D: usize> {
     /// leaves). Decided at compile time: the engines' other branch is not generated.
     const NESTED_RUNS: bool = true;
 
+    /// `true` when [`SpatialIndex::for_each_child_unless`] leaves out the children in the halves
+    /// that are out (not every child handed, as the default does): the k-nearest search then
+    /// asks it even of a node it scans whole, and scans only the children left. Decided at
+    /// compile time, like [`SpatialIndex::NESTED_RUNS`].
+    const LEAVES_OUT_HALVES: bool = false;
+
     /// Every point, in the order the runs index.
     fn points(&self) -> &[[Self::Scalar; D]];
     /// What the index stores with each point, in the order of [`SpatialIndex::points`]: the

@@ -367,15 +367,19 @@ fn drain<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
             continue;
         }
         let before = stack.len();
-        let internal = !scans_whole(index, node, scan_limit::<D>(SCAN))
-            && index.for_each_child_unless(
-                node,
-                &b,
-                |h| bm.box_distance(qb, h) > prune,
-                |child, cb| {
-                    push_nearer(index, points, stack, before, qb, bm, prune, child, cb);
-                },
-            );
+        if scans_whole(index, node, scan_limit::<D>(SCAN)) {
+            bound = scan_node(index, (node, &b), best, (qp, pm), (qb, bm), (bound, prune));
+            prune = best.prune(cut);
+            continue;
+        }
+        let internal = index.for_each_child_unless(
+            node,
+            &b,
+            |h| bm.box_distance(qb, h) > prune,
+            |child, cb| {
+                push_nearer(index, points, stack, before, qb, bm, prune, child, cb);
+            },
+        );
         order_pushed(stack, before);
         if !internal {
             bound = scan_run(best, points, index.run(node), (qp, pm), bound);
@@ -383,6 +387,46 @@ fn drain<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
         }
     }
     (bound, prune)
+}
+
+/// Scans the points of `node` (with box `b`), a node small enough to be scanned whole, into
+/// `best`; returns the new bound. From 6D up the children of an inner node in the halves of `b`
+/// beyond `prune` are left out ([`SpatialIndex::for_each_child_unless`], for an index that
+/// [leaves them out](SpatialIndex::LEAVES_OUT_HALVES)), the runs of the rest scanned as one
+/// where they touch. In 6D such a node holds up to 256 points in 64 children; 10^6 uniform
+/// points, 2 x 10^5 queries, alternated: 1-NN 1978-2175 -> 1735-1856 ms, 5 x 10^4 10-NN
+/// 1279-1323 -> 1080-1157. In 4D and 5D (nodes of at most 48 points) no gain was measured.
+#[inline(always)]
+fn scan_node<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
+    index: &I,
+    (node, b): (I::Node, &Aabb<f64, D>),
+    best: &mut Best,
+    (qp, pm): (&[f64; D], &P),
+    (qb, bm): (&[f64; D], &B),
+    (mut bound, prune): (f64, f64),
+) -> f64 {
+    let points = index.points();
+    if I::LEAVES_OUT_HALVES && many_children::<D>() {
+        let mut run = 0..0;
+        let inner = index.for_each_child_unless(
+            node,
+            b,
+            |h| bm.box_distance(qb, h) > prune,
+            |child, _| {
+                let next = index.run(child);
+                if next.start == run.end {
+                    run.end = next.end;
+                } else {
+                    bound = scan_run(best, points, run.clone(), (qp, pm), bound);
+                    run = next;
+                }
+            },
+        );
+        if inner {
+            return scan_run(best, points, run, (qp, pm), bound);
+        }
+    }
+    scan_run(best, points, index.run(node), (qp, pm), bound)
 }
 
 /// Scans a run, offering every point within `bound` of `q` to `best`; returns the new bound.

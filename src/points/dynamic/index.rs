@@ -67,6 +67,7 @@ impl<S: Scalar, const D: usize> SpatialIndex<D> for DynamicIndex<S, D> {
     type Payload = u32;
     type Node = DynamicNode<D>;
     const NESTED_RUNS: bool = false;
+    const LEAVES_OUT_HALVES: bool = true;
 
     #[inline]
     fn points(&self) -> &[[S; D]] {
