@@ -288,8 +288,8 @@ every_dimension! {
 /// Thousands of points from 4D up: the nodes hold more points than the nearest-neighbour
 /// search scans whole and have 16 to 256 children each, which that search leaves out by
 /// halves beyond its bound, and from 6D orders once pushed; buckets of 8 points, so that
-/// the nodes it scans whole are inner nodes, whose halves beyond the bound it leaves out
-/// from 6D up. Every tree against a scan, and the point tree's k nearest, slots included,
+/// the nodes it scans whole are inner nodes. Every tree against a scan, and the point tree's
+/// k nearest, slots included,
 /// against the first k of all points sorted by (distance, slot); its k-nearest self-join and
 /// pair counts, whose traversals scan more per node there too.
 fn many_points<const D: usize>(seed: u64) {
@@ -361,4 +361,29 @@ fn thousands_of_points_from_4d_to_8d() {
     many_points::<6>(61);
     many_points::<7>(71);
     many_points::<8>(81);
+}
+
+/// Uniform points in 6D, 190 to a node of the first level on average, in buckets of 8: the
+/// nearest-neighbour search scans such a node whole but for the children in the halves of
+/// it beyond its bound. Its k nearest against the first k of all points by (distance, slot).
+#[test]
+fn nodes_scanned_but_for_their_far_halves_in_6d() {
+    let mut r = rng(66);
+    let entries: Vec<([f64; 6], usize)> = (0..12_000)
+        .map(|i| (core::array::from_fn(|_| r.r#gen()), i))
+        .collect();
+    let t = PointTree::builder().bucket_size(8).build(&entries).unwrap();
+    t.validate().unwrap();
+    for k in [1, 3, 10].repeat(8) {
+        let q: [f64; 6] = core::array::from_fn(|_| r.r#gen());
+        let mut all: Vec<(f64, usize)> = (0..t.len()).map(|s| (dist2(t.point(s), &q), s)).collect();
+        all.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let got: Vec<(f64, usize)> = t
+            .k_nearest(&q, k)
+            .unwrap()
+            .iter()
+            .map(|n| (n.distance, n.index))
+            .collect();
+        assert_eq!(got, all[..k], "{k} nearest of {q:?}");
+    }
 }
