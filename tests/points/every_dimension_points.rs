@@ -315,14 +315,8 @@ fn many_points<const D: usize>(seed: u64) {
         // a stored point: its copies tie with it at 0
         let stored = *t.point(r.gen_range(0..t.len()));
         for q in [random, stored] {
-            let got: Vec<(f64, usize)> = t
-                .k_nearest(&q, k)
-                .unwrap()
-                .iter()
-                .map(|n| (n.distance, n.index))
-                .collect();
             assert_eq!(
-                got,
+                nearest_pairs(&t, &q, k),
                 by_distance(&q, None)[..k],
                 "D = {D}, {k} nearest of {q:?}"
             );
@@ -378,12 +372,16 @@ fn nodes_scanned_but_for_their_far_halves_in_6d() {
         let q: [f64; 6] = core::array::from_fn(|_| r.r#gen());
         let mut all: Vec<(f64, usize)> = (0..t.len()).map(|s| (dist2(t.point(s), &q), s)).collect();
         all.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        let got: Vec<(f64, usize)> = t
-            .k_nearest(&q, k)
-            .unwrap()
-            .iter()
-            .map(|n| (n.distance, n.index))
-            .collect();
-        assert_eq!(got, all[..k], "{k} nearest of {q:?}");
+        assert_eq!(nearest_pairs(&t, &q, k), all[..k], "{k} nearest of {q:?}");
     }
+}
+
+/// The `k` nearest points of `t` to `q` as (distance, slot) pairs.
+fn nearest_pairs<const D: usize>(
+    t: &PointTree<f64, usize, D>,
+    q: &[f64; D],
+    k: usize,
+) -> Vec<(f64, usize)> {
+    let found = t.k_nearest(q, k).unwrap();
+    found.iter().map(|n| (n.distance, n.index)).collect()
 }
