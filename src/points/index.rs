@@ -174,14 +174,10 @@ impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointArrays<'_, S, T, D> 
         out: impl Fn(&Aabb<f64, D>) -> bool,
         f: impl FnMut(PointNode<D>, &Aabb<f64, D>),
     ) -> bool {
-        if D < 4 {
+        if D < 4 || self.first_child_of(&node).is_none() {
             return self.for_each_child_in(node, bbox, f);
         }
-        if self.first_child_of(&node).is_none() {
-            return false;
-        }
-        let mid = self.geometry.mids(&node.cell);
-        match halves_kept(bbox, &mid, out) {
+        match halves_kept(bbox, &self.geometry.mids(&node.cell), out) {
             Some(kept) => self.for_each_child_where(node, bbox, kept, f),
             None => true, // every child is out: an inner node all the same
         }

@@ -415,8 +415,9 @@ fn scan_node<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
     let points = index.points();
     if I::LEAVES_OUT_HALVES && many_children::<D>() && index.count(node) >= HALVES_MIN << D {
         // The runs to scan, adjacent ones joined (gathered first: a visitor that scans is
-        // too large to be inlined into the index's child loop).
-        let mut runs: SmallVec<[core::ops::Range<usize>; 32]> = SmallVec::new();
+        // too large to be inlined into the index's child loop). At most 2^(D-1) of them (every
+        // other child kept): inline up to 8D, so that no query allocates here.
+        let mut runs: SmallVec<[core::ops::Range<usize>; 128]> = SmallVec::new();
         let inner = index.for_each_child_unless(
             node,
             b,
