@@ -25,7 +25,7 @@
 //! first `k` of all points within the maximum distance sorted by `(distance, index)`. A box whose
 //! bound equals the `k`-th distance is still searched, so a tie cannot be lost.
 
-use super::index::{scan_limit, scans_whole, SpatialIndex};
+use super::index::{for_each_kept_run, scan_limit, scans_whole, Runs, SpatialIndex};
 use super::knn_images::Images;
 use super::metric::Metric;
 use crate::geom::{Aabb, Scalar};
@@ -389,20 +389,9 @@ fn drain<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
     (bound, prune)
 }
 
-/// The fewest points per child (on average) for which [`scan_node`] asks for the halves of a
-/// node it scans: below it the 2 D box bounds and the walk over the children cost more than
-/// the points they spare (6D, 20 tight clusters, 10^5 10-NN queries: 4-10% slower than
-/// scanning whole from 1 point per child, 2-5% from 2).
-const HALVES_MIN: usize = 2;
-
 /// Scans the points of `node` (with box `b`), a node small enough to be scanned whole, into
-/// `best`; returns the new bound. From 6D up the children of an inner node in the halves of `b`
-/// beyond `prune` are left out ([`SpatialIndex::for_each_child_unless`], for an index that
-/// [leaves them out](SpatialIndex::LEAVES_OUT_HALVES)), the runs of the rest scanned as one
-/// where they touch, when the node holds at least [`HALVES_MIN`] points per child. In 6D
-/// such a node holds up to 256 points in 64 children; 10^6 uniform points, 2 x 10^5 1-NN
-/// queries, alternated: 1880-1979 -> 1630-1672 ms. In 4D and 5D (nodes of at most 48 points)
-/// no gain was measured.
+/// `best`; returns the new bound. From 6D up only the runs of the children outside the halves
+/// of `b` beyond `prune` ([`for_each_kept_run`]).
 #[inline(always)]
 fn scan_node<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
     index: &I,
@@ -413,31 +402,17 @@ fn scan_node<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
     (mut bound, prune): (f64, f64),
 ) -> f64 {
     let points = index.points();
-    if I::LEAVES_OUT_HALVES && many_children::<D>() && index.count(node) >= HALVES_MIN << D {
-        // The runs to scan, adjacent ones joined (gathered first: a visitor that scans is
-        // too large to be inlined into the index's child loop). At most 2^(D-1) of them (every
-        // other child kept): inline up to 8D, so that no query allocates here.
-        let mut runs: SmallVec<[core::ops::Range<usize>; 128]> = SmallVec::new();
-        let inner = index.for_each_child_unless(
-            node,
-            b,
-            |h| bm.box_distance(qb, h) > prune,
-            |child, _| {
-                let next = index.run(child);
-                match runs.last_mut() {
-                    Some(run) if run.end == next.start => run.end = next.end,
-                    _ => runs.push(next),
-                }
-            },
-        );
-        if inner {
-            for run in runs {
-                bound = scan_run(best, points, run, (qp, pm), bound);
-            }
-            return bound;
-        }
+    // Gathered first: a visitor that scans is too large to be inlined into the index's child
+    // loop.
+    let mut runs = Runs::new();
+    let out = |h: &Aabb<f64, D>| bm.box_distance(qb, h) > prune;
+    if !for_each_kept_run(index, node, b, out, |run| runs.push(run)) {
+        return scan_run(best, points, index.run(node), (qp, pm), bound);
     }
-    scan_run(best, points, index.run(node), (qp, pm), bound)
+    for run in &runs {
+        bound = scan_run(best, points, run.clone(), (qp, pm), bound);
+    }
+    bound
 }
 
 /// Scans a run, offering every point within `bound` of `q` to `best`; returns the new bound.

@@ -5,7 +5,9 @@
 //! reports its whole run of points without testing them; one crossing the region's boundary
 //! passes to its children, or, at a leaf, tests its points one by one. From 4D up the index may
 //! leave out at once the children in a half of a node (either side of a split line) that the
-//! region classifies outside ([`SpatialIndex::for_each_child_unless`]);
+//! region excludes ([`SpatialIndex::for_each_child_unless`], [`Region::excludes`]), and from
+//! 6D up those of a node small enough to be tested whole too, whose other children's runs are
+//! then tested alone (`for_each_kept_run`, `query/index.rs`);
 //! [`PointSet::query_stats`](super::PointSet::query_stats) still classifies every child.
 //!
 //! # Worst-case query time (exercise 14.13)
@@ -36,7 +38,7 @@
 //! `O(sqrt n + k)`; a quadtree's depth is bounded by the spread of the points (Lemma 14.1), not by
 //! their number.
 
-use super::index::{scans_whole, SpatialIndex};
+use super::index::{for_each_kept_run, scans_whole, Runs, SpatialIndex};
 use super::region::{Region, Relation};
 use super::QueryError;
 use crate::geom::{Aabb, Scalar};
@@ -85,6 +87,9 @@ pub(crate) struct IndexRegionIter<'a, I: SpatialIndex<D>, R, const D: usize> {
     run: Range<usize>,
     /// The rest of a crossing node's run: tested [`CHUNK`] points at a time.
     pending: Range<usize>,
+    /// From 6D up, the runs of a node scanned whole still to test, the next last
+    /// ([`for_each_kept_run`]); empty below.
+    kept: Vec<Range<usize>>,
     /// The points of the chunk tested last that lie in the region, bit `j` for `base + j`.
     mask: u64,
     base: usize,
@@ -112,6 +117,7 @@ impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> IndexRegionIter<'a, I
             stack,
             run: 0..0,
             pending: 0..0,
+            kept: Vec::new(),
             mask: 0,
             base: 0,
         })
@@ -141,6 +147,12 @@ impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> Iterator
                 self.mask = contains_mask(&self.region, &points[chunk]);
                 continue;
             }
+            if D >= 6
+                && let Some(run) = self.kept.pop()
+            {
+                self.pending = run;
+                continue;
+            }
             let (node, b, inside) = self.stack.pop()?;
             if inside {
                 if !I::NESTED_RUNS && descend_inside(self.index, &mut self.stack, node, &b) {
@@ -149,13 +161,18 @@ impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> Iterator
                 self.run = self.index.run(node);
                 continue;
             }
-            if scans_whole(self.index, node, scan_limit::<D>()) {
-                self.pending = self.index.run(node);
+            let (stack, index, region) = (&mut self.stack, self.index, &self.region);
+            let out = |h: &Aabb<f64, D>| region.excludes(h);
+            if scans_whole(index, node, scan_limit::<D>()) {
+                let kept = &mut self.kept;
+                if for_each_kept_run(index, node, &b, out, |run| kept.push(run)) {
+                    kept.reverse();
+                } else {
+                    self.pending = index.run(node);
+                }
                 continue;
             }
-            let (stack, index, region) = (&mut self.stack, self.index, &self.region);
-            let out = |h: &Aabb<f64, D>| region.classify(h) == Relation::Outside;
-            let internal = self.index.for_each_child_unless(node, &b, out, |child, b| {
+            let internal = index.for_each_child_unless(node, &b, out, |child, b| {
                 push_child(stack, index, region, child, b, scan_limit::<D>(), true);
             });
             if !internal {
@@ -287,28 +304,54 @@ pub(crate) fn for_each_until<I: SpatialIndex<D>, R: Region<D>, B, const D: usize
         }
         let mut visited = 0;
         // `scan` 0 runs the chapter's algorithm as stated: every child classified and counted.
-        let out = |h: &Aabb<f64, D>| scan != 0 && region.classify(h) == Relation::Outside;
+        let out = |h: &Aabb<f64, D>| scan != 0 && region.excludes(h);
         let internal = !scans_whole(index, node, scan)
             && index.for_each_child_unless(node, &b, out, |child, b| {
                 visited += 1;
                 push_child(&mut stack, index, region, child, b, scan, reads);
             });
         stats.nodes_visited += visited;
-        if !internal {
-            let run = index.run(node);
+        if internal {
+            continue;
+        }
+        // A leaf, or a node scanned whole: from 6D up only its children's runs outside the
+        // halves that are out, below it the whole run.
+        let (whole, mut kept) = (index.run(node), Runs::new());
+        let runs = if for_each_kept_run(index, node, &b, out, |run| kept.push(run)) {
+            &kept[..]
+        } else {
+            core::slice::from_ref(&whole)
+        };
+        for run in runs {
             stats.points_tested += run.len();
-            for (c, chunk) in points[run.clone()].chunks(CHUNK).enumerate() {
-                let mut mask = contains_mask(region, chunk);
-                stats.count += mask.count_ones() as usize;
-                while mask != 0 {
-                    let i = run.start + c * CHUNK + mask.trailing_zeros() as usize;
-                    if let ControlFlow::Break(stop) = report(i) {
-                        return Ok((stats, Some(stop)));
-                    }
-                    mask &= mask - 1;
-                }
+            if let Some(stop) = test_run(points, region, run.clone(), &mut stats, &mut report) {
+                return Ok((stats, Some(stop)));
             }
         }
     }
     Ok((stats, None))
+}
+
+/// Tests the points of `run` against `region` [`CHUNK`] at a time, counting and reporting those
+/// inside; the first [`ControlFlow::Break`] of `report` is returned.
+#[inline(always)]
+fn test_run<S: Scalar, R: Region<D>, B, const D: usize>(
+    points: &[[S; D]],
+    region: &R,
+    run: Range<usize>,
+    stats: &mut QueryStats,
+    report: &mut impl FnMut(usize) -> ControlFlow<B>,
+) -> Option<B> {
+    for (c, chunk) in points[run.clone()].chunks(CHUNK).enumerate() {
+        let mut mask = contains_mask(region, chunk);
+        stats.count += mask.count_ones() as usize;
+        while mask != 0 {
+            let i = run.start + c * CHUNK + mask.trailing_zeros() as usize;
+            if let ControlFlow::Break(stop) = report(i) {
+                return Some(stop);
+            }
+            mask &= mask - 1;
+        }
+    }
+    None
 }

@@ -59,6 +59,13 @@ pub trait Region<const D: usize> {
     fn classify(&self, cell: &Aabb<f64, D>) -> Relation;
     /// `true` when `p` lies in the region.
     fn contains(&self, p: &[f64; D]) -> bool;
+    /// `true` when `classify(cell)` is [`Relation::Outside`]; a region may answer it with less
+    /// work (a ball needs only the box's nearest point). The engines ask it of the halves of a
+    /// node, to leave their children out together.
+    #[inline]
+    fn excludes(&self, cell: &Aabb<f64, D>) -> bool {
+        self.classify(cell) == Relation::Outside
+    }
     /// Checks the region's parameters before a query; the default accepts everything.
     ///
     /// # Errors
@@ -76,6 +83,10 @@ impl<const D: usize, R: Region<D> + ?Sized> Region<D> for &R {
     #[inline]
     fn contains(&self, p: &[f64; D]) -> bool {
         (**self).contains(p)
+    }
+    #[inline]
+    fn excludes(&self, cell: &Aabb<f64, D>) -> bool {
+        (**self).excludes(cell)
     }
     fn validate(&self) -> Result<(), QueryError> {
         (**self).validate()
@@ -169,6 +180,27 @@ impl<const D: usize> Ball<D> {
         let r = self.radius * s;
         (s, r * r)
     }
+
+    /// The offsets from the centre to the low and high sides of `cell` along axis `a`, as
+    /// `p - c` rounds for a point there.
+    #[inline(always)]
+    fn offsets(&self, cell: &Aabb<f64, D>, a: usize) -> (f64, f64) {
+        let c = self.center[a];
+        (c - cell.min[a], cell.max[a] - c)
+    }
+}
+
+/// The offset from a ball's centre to the nearest point of a box's interval along one axis,
+/// given the offsets to its low (`dl`) and high (`dh`) sides: 0 when the centre lies in it.
+#[inline(always)]
+fn nearest_offset(dl: f64, dh: f64) -> f64 {
+    if dl < 0.0 {
+        -dl
+    } else if dh < 0.0 {
+        -dh
+    } else {
+        0.0
+    }
 }
 
 impl<const D: usize> Region<D> for Ball<D> {
@@ -180,23 +212,29 @@ impl<const D: usize> Region<D> for Ball<D> {
         let (s, r2) = self.scaled_radius();
         let (mut near, mut far) = (0.0, 0.0);
         for a in 0..D {
-            let c = self.center[a];
-            // the offsets to the box's sides, as `p - c` rounds for a point there
-            let (dl, dh) = (c - cell.min[a], cell.max[a] - c);
-            // Nearest and farthest offsets along this axis (0 when c lies in the interval).
-            let n = if dl < 0.0 {
-                -dl
-            } else if dh < 0.0 {
-                -dh
-            } else {
-                0.0
-            };
-            let f = dl.abs().max(dh.abs());
-            let (n, f) = (n * s, f * s);
+            let (dl, dh) = self.offsets(cell, a);
+            let f = dl.abs().max(dh.abs()) * s;
+            let n = nearest_offset(dl, dh) * s;
             near += n * n;
             far += f * f;
         }
         ball_relation(near, far, r2)
+    }
+    /// The nearest squared offset of [`Ball::classify`](Region::classify), summed in the
+    /// same order: the same answer for half the work.
+    #[inline]
+    fn excludes(&self, cell: &Aabb<f64, D>) -> bool {
+        if self.radius == f64::INFINITY {
+            return false;
+        }
+        let (s, r2) = self.scaled_radius();
+        let mut near = 0.0;
+        for a in 0..D {
+            let (dl, dh) = self.offsets(cell, a);
+            let n = nearest_offset(dl, dh) * s;
+            near += n * n;
+        }
+        near > r2
     }
     #[inline]
     fn contains(&self, p: &[f64; D]) -> bool {

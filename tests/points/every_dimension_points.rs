@@ -10,9 +10,10 @@ use crate::common;
 
 use common::points::check_all;
 use common::{dist2, rng};
+use core::ops::ControlFlow;
 use orthtree::prelude::*;
 use orthtree::{
-    query::{Boundary, HalfSpace},
+    query::{Boundary, HalfSpace, Region},
     Aabb, Ball, Cell, CompressedTree, DynamicPointTree, PointTree, SkipQuadtree,
 };
 use rand::rngs::SmallRng;
@@ -373,6 +374,71 @@ fn nodes_scanned_but_for_their_far_halves_in_6d() {
         let mut all: Vec<(f64, usize)> = (0..t.len()).map(|s| (dist2(t.point(s), &q), s)).collect();
         all.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         assert_eq!(nearest_pairs(&t, &q, k), all[..k], "{k} nearest of {q:?}");
+    }
+}
+
+/// The same kind of tree: the region queries scan such a node whole but for the children in
+/// the halves of it outside the region. Balls (one through a stored point, so that a point lies
+/// on its sphere), boxes and half-spaces: the iterator, the count, the visitor and the visitor
+/// that stops, against a scan of the items.
+#[test]
+fn region_queries_leave_out_far_halves_of_scanned_nodes_in_6d() {
+    let mut r = rng(67);
+    let entries: Vec<([f64; 6], usize)> = (0..12_000)
+        .map(|i| (core::array::from_fn(|_| r.r#gen()), i))
+        .collect();
+    let t = PointTree::builder().bucket_size(8).build(&entries).unwrap();
+    t.validate().unwrap();
+    let check = |region: &dyn Region<6>, what: &str| {
+        let mut want: Vec<usize> = entries
+            .iter()
+            .filter(|(p, _)| region.contains(p))
+            .map(|e| e.1)
+            .collect();
+        want.sort_unstable();
+        let mut got: Vec<usize> = t.query(region).unwrap().map(|(_, &i)| i).collect();
+        got.sort_unstable();
+        assert_eq!(got, want, "{what}: iterator");
+        assert_eq!(t.query_count(region).unwrap(), want.len(), "{what}: count");
+        let mut visited = Vec::new();
+        t.query_with(region, |_, &i| visited.push(i)).unwrap();
+        visited.sort_unstable();
+        assert_eq!(visited, want, "{what}: visitor");
+        let mut seen = 0;
+        let stop = t
+            .query_until(region, |_, &i| {
+                seen += 1;
+                if seen == 5 {
+                    ControlFlow::Break(i)
+                } else {
+                    ControlFlow::Continue(())
+                }
+            })
+            .unwrap();
+        assert_eq!(stop.is_some(), want.len() >= 5, "{what}: stopped");
+        assert!(
+            stop.is_none_or(|i| want.binary_search(&i).is_ok()),
+            "{what}: stop item"
+        );
+    };
+    for radius in [0.05, 0.15, 0.25, 0.4].repeat(4) {
+        let c: [f64; 6] = core::array::from_fn(|_| r.r#gen());
+        check(
+            &Ball::new(c, radius).unwrap(),
+            &format!("ball {c:?} {radius}"),
+        );
+        let on = entries[r.gen_range(0..entries.len())].0;
+        let through = Ball::new(c, dist2(&on, &c).sqrt()).unwrap();
+        check(&through, &format!("ball {c:?} through {on:?}"));
+        let side = radius * 2.0;
+        let b = Aabb::new(c.map(|x| x - side / 2.0), c.map(|x| x + side / 2.0)).unwrap();
+        check(&b, &format!("box {b:?}"));
+        let normal: [f64; 6] = core::array::from_fn(|_| r.gen_range(-1.0..1.0));
+        let offset = normal.iter().zip(&c).map(|(n, x)| n * x).sum::<f64>() - radius;
+        check(
+            &HalfSpace::new(normal, offset).unwrap(),
+            &format!("half-space {normal:?}"),
+        );
     }
 }
 

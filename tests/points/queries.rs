@@ -543,3 +543,38 @@ proptest! {
         check_nearest_child_walk(&points3, bucket, &q3, &Chebyshev);
     }
 }
+
+/// A value on the dyadic grid of `grid`, scaled by one of several powers of two (tiny, plain
+/// and huge), or an infinity.
+fn scaled_grid() -> impl Strategy<Value = f64> {
+    (
+        grid(),
+        prop::sample::select(vec![-1040, -520, 0, 500, 1000]),
+        0u8..20,
+    )
+        .prop_map(|(x, e, inf)| match inf {
+            0 => f64::INFINITY,
+            1 => f64::NEG_INFINITY,
+            _ => x * 2f64.powi(e),
+        })
+}
+
+proptest! {
+    #![proptest_config(config(512, 106))]
+    /// A ball's shortcut for "outside" answers as its classification does, on boxes and balls
+    /// on a grid (spheres through corners), at tiny and huge scales, with infinite sides.
+    #[test]
+    fn ball_excludes_exactly_what_it_classifies_outside(
+        lo in proptest::array::uniform3(scaled_grid()),
+        hi in proptest::array::uniform3(scaled_grid()),
+        c in proptest::array::uniform3(grid()),
+        r in scaled_grid(),
+        scale in prop::sample::select(vec![2f64.powi(-1040), 1.0, 2f64.powi(1000)]),
+    ) {
+        let cell = Aabb { min: core::array::from_fn(|a| lo[a].min(hi[a])), max: core::array::from_fn(|a| lo[a].max(hi[a])) };
+        let Ok(ball) = Ball::new(c.map(|x| x * scale), r.abs()) else { return Ok(()) };
+        prop_assert_eq!(ball.excludes(&cell), ball.classify(&cell) == Relation::Outside);
+        // through a reference, as the engines take a region
+        prop_assert_eq!(Region::excludes(&&ball, &cell), ball.excludes(&cell));
+    }
+}
