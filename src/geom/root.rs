@@ -364,31 +364,6 @@ impl<const D: usize> RootGeometry<D> {
     }
 }
 
-/// The children of a node of box `bbox` split at `mid` that lie in no half of `bbox` (either
-/// side of a split line) for which `out` holds, as `(mask, want)`: child `i` (bit `a` set: the
-/// upper half along axis `a`, as [`child_box`]) is in none when `i & mask == want`. `None` when
-/// both halves along some axis are out, so every child is. 2 D calls of `out`.
-#[inline(always)]
-pub(crate) fn halves_kept<const D: usize>(
-    bbox: &Aabb<f64, D>,
-    mid: &[f64; D],
-    out: impl Fn(&Aabb<f64, D>) -> bool,
-) -> Option<(usize, usize)> {
-    let (mut mask, mut want) = (0usize, 0usize);
-    for (a, &m) in mid.iter().enumerate() {
-        let (mut lower, mut upper) = (*bbox, *bbox);
-        lower.max[a] = m;
-        upper.min[a] = m;
-        match (out(&lower), out(&upper)) {
-            (true, true) => return None,
-            (false, true) => mask |= 1 << a,
-            (true, false) => (mask, want) = (mask | 1 << a, want | 1 << a),
-            (false, false) => {}
-        }
-    }
-    Some((mask, want))
-}
-
 /// The closed box of child `i` of a cell with closed box `bbox` and middle boundaries `mid`
 /// ([`RootGeometry::mids`]): the parent's box gives the outer sides exactly
 /// (`boundary(2c, l + 1) == boundary(c, l)`).

@@ -11,7 +11,8 @@
 //! - [`PointTree`]'s own use of them.
 
 use super::PointTree;
-use crate::geom::{child_box, halves_kept, Aabb, Cell, Dim, RootGeometry, Scalar};
+use crate::geom::Halves;
+use crate::geom::{child_box, Aabb, Cell, Dim, RootGeometry, Scalar};
 use crate::query::{nearest_child_by_boxes, Metric, SpatialIndex};
 use crate::tree::NodeId;
 use core::ops::Range;
@@ -171,13 +172,13 @@ impl<S: Scalar, T, const D: usize> SpatialIndex<D> for PointArrays<'_, S, T, D> 
         &self,
         node: PointNode<D>,
         bbox: &Aabb<f64, D>,
-        out: impl Fn(&Aabb<f64, D>) -> bool,
+        out: impl Halves<D>,
         f: impl FnMut(PointNode<D>, &Aabb<f64, D>),
     ) -> bool {
         if D < 4 || self.first_child_of(&node).is_none() {
             return self.for_each_child_in(node, bbox, f);
         }
-        match halves_kept(bbox, &self.geometry.mids(&node.cell), out) {
+        match out.kept(bbox, &self.geometry.mids(&node.cell)) {
             Some(kept) => self.for_each_child_where(node, bbox, kept, f),
             None => true, // every child is out: an inner node all the same
         }
@@ -296,7 +297,7 @@ macro_rules! point_index {
                 &self,
                 node: Self::Node,
                 bbox: &$crate::Aabb<f64, D>,
-                out: impl Fn(&$crate::Aabb<f64, D>) -> bool,
+                out: impl $crate::geom::Halves<D>,
                 f: impl FnMut(Self::Node, &$crate::Aabb<f64, D>),
             ) -> bool {
                 self.arrays().for_each_child_unless(node, bbox, out, f)

@@ -8,6 +8,7 @@
 //! methods are the user-facing queries.
 
 use super::metric::Metric;
+use crate::geom::Halves;
 use crate::geom::{Aabb, Scalar};
 use core::ops::Range;
 
@@ -88,16 +89,16 @@ pub trait SpatialIndex<const D: usize> {
         self.for_each_child(node, f)
     }
 
-    /// [`SpatialIndex::for_each_child_in`] for a search that wants no point of a box for
-    /// which `out` holds: an index may leave out the children in such a box (a half of `bbox`
-    /// on either side of a split line) without bounding them one by one. The default hands
-    /// every child.
+    /// [`SpatialIndex::for_each_child_in`] for a search that wants no point of the halves of
+    /// `bbox` (either side of a split line) that `out` rules out ([`Halves`]; any
+    /// `Fn(&Aabb) -> bool` saying a box holds no wanted point is one): an index may leave out
+    /// the children in them without bounding them one by one. The default hands every child.
     #[inline(always)]
     fn for_each_child_unless(
         &self,
         node: Self::Node,
         bbox: &Aabb<f64, D>,
-        out: impl Fn(&Aabb<f64, D>) -> bool,
+        out: impl Halves<D>,
         f: impl FnMut(Self::Node, &Aabb<f64, D>),
     ) -> bool {
         let _ = out;
@@ -179,7 +180,7 @@ pub(crate) fn for_each_kept_run<I: SpatialIndex<D>, const D: usize>(
     index: &I,
     node: I::Node,
     b: &Aabb<f64, D>,
-    out: impl Fn(&Aabb<f64, D>) -> bool,
+    out: impl Halves<D>,
     mut keep: impl FnMut(Range<usize>),
 ) -> bool {
     if !(I::LEAVES_OUT_HALVES && D >= 6 && index.count(node) >= HALVES_MIN << D) {

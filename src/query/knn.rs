@@ -29,6 +29,7 @@ use super::index::{for_each_kept_run, scan_limit, scans_whole, Runs, SpatialInde
 use super::knn_images::Images;
 use super::metric::Metric;
 use crate::geom::{Aabb, Scalar};
+use crate::geom::{Halves, Kept};
 use crate::prefetch::prefetch_run;
 use smallvec::SmallVec;
 
@@ -289,16 +290,11 @@ pub(super) fn seeded<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: us
             break;
         }
         let (node, nb) = path[level];
-        index.for_each_child_unless(
-            node,
-            &nb,
-            |h| bm.box_distance(qb, h) > prune,
-            |child, cb| {
-                if child != inner {
-                    push_nearer(index, points, &mut stack, 0, qb, bm, prune, child, cb);
-                }
-            },
-        );
+        index.for_each_child_unless(node, &nb, Beyond(bm, qb, prune), |child, cb| {
+            if child != inner {
+                push_nearer(index, points, &mut stack, 0, qb, bm, prune, child, cb);
+            }
+        });
         order_pushed(&mut stack, 0);
         (bound, prune) = drain(
             index,
@@ -372,14 +368,9 @@ fn drain<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
             prune = best.prune(cut);
             continue;
         }
-        let internal = index.for_each_child_unless(
-            node,
-            &b,
-            |h| bm.box_distance(qb, h) > prune,
-            |child, cb| {
-                push_nearer(index, points, stack, before, qb, bm, prune, child, cb);
-            },
-        );
+        let internal = index.for_each_child_unless(node, &b, Beyond(bm, qb, prune), |child, cb| {
+            push_nearer(index, points, stack, before, qb, bm, prune, child, cb);
+        });
         order_pushed(stack, before);
         if !internal {
             bound = scan_run(best, points, index.run(node), (qp, pm), bound);
@@ -387,6 +378,18 @@ fn drain<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
         }
     }
     (bound, prune)
+}
+
+/// The halves of a box farther than a bound from a query under a metric ([`Halves`] through
+/// [`Metric::kept_within`]): the test a k-nearest search hands an index.
+#[derive(Clone, Copy)]
+struct Beyond<'m, M, const D: usize>(&'m M, &'m [f64; D], f64);
+
+impl<M: Metric<D>, const D: usize> Halves<D> for Beyond<'_, M, D> {
+    #[inline(always)]
+    fn kept(&self, bbox: &Aabb<f64, D>, mid: &[f64; D]) -> Kept {
+        self.0.kept_within(self.1, bbox, mid, self.2)
+    }
 }
 
 /// Scans the points of `node` (with box `b`), a node small enough to be scanned whole, into
@@ -405,7 +408,7 @@ fn scan_node<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
     // Gathered first: a visitor that scans is too large to be inlined into the index's child
     // loop.
     let mut runs = Runs::new();
-    let out = |h: &Aabb<f64, D>| bm.box_distance(qb, h) > prune;
+    let out = Beyond(bm, qb, prune);
     if !for_each_kept_run(index, node, b, out, |run| runs.push(run)) {
         return scan_run(best, points, index.run(node), (qp, pm), bound);
     }

@@ -13,6 +13,7 @@
 
 use super::periodic::Torus;
 use crate::geom::Aabb;
+use crate::geom::{halves_by_terms, Halves, Kept};
 
 /// A distance between points, and a lower bound of it over a box.
 ///
@@ -109,6 +110,23 @@ pub trait Metric<const D: usize> {
         let _ = margin;
         self.box_distance(q, b)
     }
+
+    /// The children of the box `cell` split at `mid` outside every half of it (either side of
+    /// a split line) whose [`Metric::box_distance`] from `q` exceeds `bound` ([`Kept`]). The
+    /// default bounds the 2 D half boxes; [`SquaredEuclidean`] and [`Manhattan`], sums over
+    /// the axes, change one term of the box's sum per half, with the same answers.
+    ///
+    /// ```
+    /// use orthtree::query::{Metric, SquaredEuclidean};
+    /// use orthtree::Aabb;
+    /// let b = Aabb { min: [0.0, 0.0], max: [2.0, 2.0] };
+    /// // from (-1, 1) within 1.5 (squared): nothing right of x = 1
+    /// assert_eq!(SquaredEuclidean.kept_within(&[-1.0, 1.0], &b, &[1.0, 1.0], 1.5), Some((1, 0)));
+    /// ```
+    #[inline(always)]
+    fn kept_within(&self, q: &[f64; D], cell: &Aabb<f64, D>, mid: &[f64; D], bound: f64) -> Kept {
+        (|h: &Aabb<f64, D>| self.box_distance(q, h) > bound).kept(cell, mid)
+    }
 }
 
 /// The offset from `q` to the nearest point of `[lo, hi]`, as `p - q` would round for that point
@@ -153,6 +171,14 @@ impl<const D: usize> Metric<D> for SquaredEuclidean {
     fn scale_distance(&self, d: f64, factor: f64) -> f64 {
         d * (factor * factor)
     }
+    #[inline(always)]
+    fn kept_within(&self, q: &[f64; D], cell: &Aabb<f64, D>, mid: &[f64; D], bound: f64) -> Kept {
+        let term = |a: usize, lo: f64, hi: f64| {
+            let d = axis_gap(q[a], lo, hi);
+            d * d
+        };
+        halves_by_terms(cell, mid, term, bound)
+    }
 }
 
 /// The Manhattan (L1) distance, sum of `|a_i - b_i|`.
@@ -176,6 +202,10 @@ impl<const D: usize> Metric<D> for Manhattan {
             s += axis_gap(q[i], b.min[i], b.max[i]);
         }
         s
+    }
+    #[inline(always)]
+    fn kept_within(&self, q: &[f64; D], cell: &Aabb<f64, D>, mid: &[f64; D], bound: f64) -> Kept {
+        halves_by_terms(cell, mid, |a, lo, hi| axis_gap(q[a], lo, hi), bound)
     }
 }
 

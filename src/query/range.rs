@@ -42,6 +42,7 @@ use super::index::{for_each_kept_run, scans_whole, Runs, SpatialIndex};
 use super::region::{Region, Relation};
 use super::QueryError;
 use crate::geom::{Aabb, Scalar};
+use crate::geom::{Halves, Kept};
 use crate::prefetch::prefetch_run;
 use core::convert::Infallible;
 use core::ops::{ControlFlow, Range};
@@ -162,7 +163,7 @@ impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> Iterator
                 continue;
             }
             let (stack, index, region) = (&mut self.stack, self.index, &self.region);
-            let out = |h: &Aabb<f64, D>| region.excludes(h);
+            let out = Excluded(region, true);
             if scans_whole(index, node, scan_limit::<D>()) {
                 let kept = &mut self.kept;
                 if for_each_kept_run(index, node, &b, out, |run| kept.push(run)) {
@@ -178,6 +179,28 @@ impl<'a, I: SpatialIndex<D>, R: Region<D>, const D: usize> Iterator
             if !internal {
                 self.pending = self.index.run(node);
             }
+        }
+    }
+}
+
+/// The halves of a box a region excludes ([`Halves`] through [`Region::kept_children`]), when
+/// the flag is set (else none): the test a region query hands an index.
+struct Excluded<'r, R>(&'r R, bool);
+
+impl<R> Clone for Excluded<'_, R> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<R> Copy for Excluded<'_, R> {}
+
+impl<R: Region<D>, const D: usize> Halves<D> for Excluded<'_, R> {
+    #[inline(always)]
+    fn kept(&self, bbox: &Aabb<f64, D>, mid: &[f64; D]) -> Kept {
+        if self.1 {
+            self.0.kept_children(bbox, mid)
+        } else {
+            Some((0, 0))
         }
     }
 }
@@ -304,7 +327,7 @@ pub(crate) fn for_each_until<I: SpatialIndex<D>, R: Region<D>, B, const D: usize
         }
         let mut visited = 0;
         // `scan` 0 runs the chapter's algorithm as stated: every child classified and counted.
-        let out = |h: &Aabb<f64, D>| scan != 0 && region.excludes(h);
+        let out = Excluded(region, scan != 0);
         let internal = !scans_whole(index, node, scan)
             && index.for_each_child_unless(node, &b, out, |child, b| {
                 visited += 1;

@@ -14,6 +14,7 @@
 
 use super::QueryError;
 use crate::geom::Aabb;
+use crate::geom::{halves_by_terms, Halves, Kept};
 
 /// Where a closed cell box lies with respect to a region.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -66,6 +67,14 @@ pub trait Region<const D: usize> {
     fn excludes(&self, cell: &Aabb<f64, D>) -> bool {
         self.classify(cell) == Relation::Outside
     }
+    /// The children of `cell` split at `mid` outside every half of it (either side of a split
+    /// line) that the region [excludes](Region::excludes) ([`Kept`]). The default asks
+    /// `excludes` of the 2 D half boxes; a [`Ball`] changes one term of the box's sum per half,
+    /// with the same answers.
+    #[inline]
+    fn kept_children(&self, cell: &Aabb<f64, D>, mid: &[f64; D]) -> Kept {
+        (|h: &Aabb<f64, D>| self.excludes(h)).kept(cell, mid)
+    }
     /// Checks the region's parameters before a query; the default accepts everything.
     ///
     /// # Errors
@@ -87,6 +96,10 @@ impl<const D: usize, R: Region<D> + ?Sized> Region<D> for &R {
     #[inline]
     fn excludes(&self, cell: &Aabb<f64, D>) -> bool {
         (**self).excludes(cell)
+    }
+    #[inline]
+    fn kept_children(&self, cell: &Aabb<f64, D>, mid: &[f64; D]) -> Kept {
+        (**self).kept_children(cell, mid)
     }
     fn validate(&self) -> Result<(), QueryError> {
         (**self).validate()
@@ -235,6 +248,20 @@ impl<const D: usize> Region<D> for Ball<D> {
             near += n * n;
         }
         near > r2
+    }
+    /// The sums of [`Ball::excludes`](Region::excludes), one term changed per half.
+    #[inline]
+    fn kept_children(&self, cell: &Aabb<f64, D>, mid: &[f64; D]) -> Kept {
+        if self.radius == f64::INFINITY {
+            return Some((0, 0));
+        }
+        let (s, r2) = self.scaled_radius();
+        let term = |a: usize, lo: f64, hi: f64| {
+            let c = self.center[a];
+            let n = nearest_offset(c - lo, hi - c) * s;
+            n * n
+        };
+        halves_by_terms(cell, mid, term, r2)
     }
     #[inline]
     fn contains(&self, p: &[f64; D]) -> bool {

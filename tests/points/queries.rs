@@ -4,6 +4,7 @@
 //! distances and on half-space boundaries, with many duplicates; D = 1, 2, 3; f64, f32 and i32.
 //! Plus empty trees, k > n, bad input, the untested inside cells, and exercise 14.13's worst case.
 
+use orthtree::geom::Halves;
 use orthtree::points::PointNode;
 use orthtree::prelude::*;
 use orthtree::query::{Chebyshev, Manhattan, Metric, QueryError, SpatialIndex, SquaredEuclidean};
@@ -562,7 +563,9 @@ fn scaled_grid() -> impl Strategy<Value = f64> {
 proptest! {
     #![proptest_config(config(512, 106))]
     /// A ball's shortcut for "outside" answers as its classification does, on boxes and balls
-    /// on a grid (spheres through corners), at tiny and huge scales, with infinite sides.
+    /// on a grid (spheres through corners), at tiny and huge scales, with infinite sides; the
+    /// halves a ball, the Euclidean and the Manhattan metric rule out by changed terms are those
+    /// their tests of the half boxes rule out.
     #[test]
     fn ball_excludes_exactly_what_it_classifies_outside(
         lo in proptest::array::uniform3(scaled_grid()),
@@ -573,6 +576,21 @@ proptest! {
     ) {
         let cell = Aabb { min: core::array::from_fn(|a| lo[a].min(hi[a])), max: core::array::from_fn(|a| lo[a].max(hi[a])) };
         let Ok(ball) = Ball::new(c.map(|x| x * scale), r.abs()) else { return Ok(()) };
+        // the halves, split anywhere in the box: by changed terms as by the half boxes
+        let mid: [f64; 3] = core::array::from_fn(|a| match (cell.min[a], cell.max[a]) {
+            (lo, hi) if lo.is_finite() && hi.is_finite() => lo + (hi - lo) / 2.0,
+            (lo, hi) if lo.is_finite() => lo.max(hi.min(0.0)),
+            (_, hi) => hi,
+        });
+        let by_boxes = |h: &Aabb<f64, 3>| ball.excludes(h);
+        prop_assert_eq!(ball.kept_children(&cell, &mid), by_boxes.kept(&cell, &mid));
+        let q = ball.center;
+        for bound in [0.0, r.abs(), r.abs() * r.abs()] {
+            let euclid = |h: &Aabb<f64, 3>| SquaredEuclidean.box_distance(&q, h) > bound;
+            prop_assert_eq!(SquaredEuclidean.kept_within(&q, &cell, &mid, bound), euclid.kept(&cell, &mid));
+            let manhattan = |h: &Aabb<f64, 3>| Manhattan.box_distance(&q, h) > bound;
+            prop_assert_eq!(Manhattan.kept_within(&q, &cell, &mid, bound), manhattan.kept(&cell, &mid));
+        }
         prop_assert_eq!(ball.excludes(&cell), ball.classify(&cell) == Relation::Outside);
         // through a reference, as the engines take a region
         prop_assert_eq!(Region::excludes(&&ball, &cell), ball.excludes(&cell));

@@ -5,7 +5,8 @@
 
 use super::pool::Pool;
 use super::NodeData;
-use crate::geom::{child_box, halves_kept, Aabb, Cell, RootGeometry, Scalar};
+use crate::geom::Halves;
+use crate::geom::{child_box, Aabb, Cell, RootGeometry, Scalar};
 use crate::query::{Metric, SpatialIndex};
 use crate::tree::{NodeId, Tree};
 use core::ops::Range;
@@ -126,19 +127,19 @@ impl<S: Scalar, const D: usize> SpatialIndex<D> for DynamicIndex<S, D> {
     }
 
     /// As [`PointTree`](crate::PointTree)'s: from 4D up the halves of the node that are out
-    /// are left out whole (`halves_kept`); in 2D and 3D every child.
+    /// are left out whole ([`Halves`]); in 2D and 3D every child.
     #[inline(always)]
     fn for_each_child_unless(
         &self,
         node: DynamicNode<D>,
         bbox: &Aabb<f64, D>,
-        out: impl Fn(&Aabb<f64, D>) -> bool,
+        out: impl Halves<D>,
         f: impl FnMut(DynamicNode<D>, &Aabb<f64, D>),
     ) -> bool {
         if D < 4 || self.tree.child(node.id, 0).is_none() {
             return self.for_each_child_in(node, bbox, f);
         }
-        match halves_kept(bbox, &self.geometry.mids(&node.cell), out) {
+        match out.kept(bbox, &self.geometry.mids(&node.cell)) {
             Some(kept) => self.for_each_child_where(node, bbox, kept, f),
             None => true, // every child is out: an inner node all the same
         }
