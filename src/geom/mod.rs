@@ -1,7 +1,8 @@
 //! The vocabulary shared by every layer: [`Scalar`] coordinates, closed boxes ([`Aabb`]), exact
 //! dyadic cells ([`Cell`]) with Morton keys, cells 64 levels deep on every axis ([`DeepCell`]),
-//! [`Direction`]s with their [`Connectivity`], and the [`RootGeometry`] that maps coordinates to
-//! cells exactly (used by every tree and by the query engines).
+//! [`Direction`]s with their [`Connectivity`], the [`RootGeometry`] that maps coordinates to
+//! cells exactly (used by every tree and by the query engines), and the [`Halves`] test by which
+//! a search tells an index the children of a box it may leave out.
 
 mod aabb;
 mod cell;
