@@ -73,9 +73,14 @@ type Stack<N, const D: usize> = SmallVec<[(N, Aabb<f64, D>, bool); 48]>;
 /// The limits are measured (`examples/compare`, 10^6 points, boxes and balls with ~100 results,
 /// and 3, 10 and 1000 results in 2D): in 2D, 128 makes ball queries 1.2-1.35x and box queries
 /// 1.2-1.5x faster than 48 (kd-trees' bucket size, the limit before), on every workload and
-/// answer size tried; in 3D, 48 and 96 tie and 128 is slower on uniform balls, so 64.
+/// answer size tried; in 3D, 48 and 96 tie and 128 is slower on uniform balls, so 64. In 4D
+/// and 5D 128 again: two alternated rounds of `compare --dim 4 --queries 50000`, against 64,
+/// clustered balls 624-678 -> 489-519 ms and boxes 391-424 -> 341-372, uniform balls 520-550
+/// -> 505-535, lattice balls 554-586 -> 624-637 (slower, still ahead of kiddo); a 4D/5D
+/// program alike (clustered 4D balls 841-865 -> 710-777 ms, 5D 913-977 -> 898-906); 24 was
+/// slower on clustered points. From 6D up the limit is 4 points per child anyway.
 pub(crate) const fn scan_limit<const D: usize>() -> usize {
-    super::index::scan_limit::<D>(if D <= 2 { 128 } else { 64 })
+    super::index::scan_limit::<D>(if D == 3 { 64 } else { 128 })
 }
 
 /// The engine of [`RegionIter`](super::RegionIter): the points of an index in a region with
