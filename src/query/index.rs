@@ -168,13 +168,14 @@ pub(crate) type Runs = smallvec::SmallVec<[Range<usize>; 128]>;
 /// For a node (`node`, box `b`) small enough to be scanned whole: from 6D up, when the index
 /// [leaves out halves](SpatialIndex::LEAVES_OUT_HALVES) and the node holds at least
 /// [`HALVES_MIN`] points per child, hands `keep` the runs of the children outside the halves of
-/// `b` that `out` rejects ([`SpatialIndex::for_each_child_unless`]), adjacent runs joined, and
+/// `b` that `out` rules out ([`SpatialIndex::for_each_child_unless`]), adjacent runs joined, and
 /// returns `true`; otherwise (a leaf, fewer dimensions, fewer points) hands nothing and returns
 /// `false`: the caller scans the node's whole run.
 ///
 /// In 6D such a node holds up to 256 points in 64 children, of which a query's ball reaches a
 /// fraction. 10^6 uniform points, 2 x 10^5 1-NN queries, alternated: 1880-1979 -> 1630-1672
-/// ms. In 4D and 5D (nodes of at most 48 points) no gain was measured.
+/// ms. In 4D and 5D no gain was measured for the k-nearest search (nodes of at most 48
+/// points); the region queries' 128-point nodes there were not tried with it.
 #[inline(always)]
 pub(crate) fn for_each_kept_run<I: SpatialIndex<D>, const D: usize>(
     index: &I,
