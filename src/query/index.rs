@@ -155,7 +155,7 @@ pub(crate) fn scans_whole<I: SpatialIndex<D>, const D: usize>(
 }
 
 /// The fewest points per child (on average) for which the engines ask for the halves of a node
-/// they scan whole ([`for_each_kept_run`]): below it the 2 D box tests and the walk over the
+/// they scan whole ([`for_each_kept_run`]): below it the halves' tests and the walk over the
 /// children cost more than the points they spare (6D, 20 tight clusters, 10^5 10-NN queries:
 /// 4-10% slower than scanning whole from 1 point per child, 2-5% from 2).
 const HALVES_MIN: usize = 2;

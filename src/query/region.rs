@@ -201,6 +201,15 @@ impl<const D: usize> Ball<D> {
         let c = self.center[a];
         (c - cell.min[a], cell.max[a] - c)
     }
+
+    /// The squared nearest offset along axis `a` to the interval `[lo, hi]`, scaled by `s`:
+    /// the term of [`Ball::classify`](Region::classify)'s nearest sum for that axis.
+    #[inline(always)]
+    fn near_term(&self, a: usize, lo: f64, hi: f64, s: f64) -> f64 {
+        let c = self.center[a];
+        let n = nearest_offset(c - lo, hi - c) * s;
+        n * n
+    }
 }
 
 /// The offset from a ball's centre to the nearest point of a box's interval along one axis,
@@ -243,9 +252,7 @@ impl<const D: usize> Region<D> for Ball<D> {
         let (s, r2) = self.scaled_radius();
         let mut near = 0.0;
         for a in 0..D {
-            let (dl, dh) = self.offsets(cell, a);
-            let n = nearest_offset(dl, dh) * s;
-            near += n * n;
+            near += self.near_term(a, cell.min[a], cell.max[a], s);
         }
         near > r2
     }
@@ -256,12 +263,7 @@ impl<const D: usize> Region<D> for Ball<D> {
             return Some((0, 0));
         }
         let (s, r2) = self.scaled_radius();
-        let term = |a: usize, lo: f64, hi: f64| {
-            let c = self.center[a];
-            let n = nearest_offset(c - lo, hi - c) * s;
-            n * n
-        };
-        halves_by_terms(cell, mid, term, r2)
+        halves_by_terms(cell, mid, |a, lo, hi| self.near_term(a, lo, hi, s), r2)
     }
     #[inline]
     fn contains(&self, p: &[f64; D]) -> bool {

@@ -358,17 +358,26 @@ fn thousands_of_points_from_4d_to_8d() {
     many_points::<8>(81);
 }
 
+/// Points in 6D with their input positions as items.
+type Entries6 = Vec<([f64; 6], usize)>;
+
+/// 12 000 uniform 6-D points and their point tree in buckets of 8, validated.
+fn uniform_6d_tree(r: &mut SmallRng) -> (Entries6, PointTree<f64, usize, 6>) {
+    let entries: Entries6 = (0..12_000)
+        .map(|i| (core::array::from_fn(|_| r.r#gen()), i))
+        .collect();
+    let t = PointTree::builder().bucket_size(8).build(&entries).unwrap();
+    t.validate().unwrap();
+    (entries, t)
+}
+
 /// Uniform points in 6D, 190 to a node of the first level on average, in buckets of 8: the
 /// nearest-neighbour search scans such a node whole but for the children in the halves of
 /// it beyond its bound. Its k nearest against the first k of all points by (distance, slot).
 #[test]
 fn nodes_scanned_but_for_their_far_halves_in_6d() {
     let mut r = rng(66);
-    let entries: Vec<([f64; 6], usize)> = (0..12_000)
-        .map(|i| (core::array::from_fn(|_| r.r#gen()), i))
-        .collect();
-    let t = PointTree::builder().bucket_size(8).build(&entries).unwrap();
-    t.validate().unwrap();
+    let (_, t) = uniform_6d_tree(&mut r);
     for k in [1, 3, 10].repeat(8) {
         let q: [f64; 6] = core::array::from_fn(|_| r.r#gen());
         let mut all: Vec<(f64, usize)> = (0..t.len()).map(|s| (dist2(t.point(s), &q), s)).collect();
@@ -384,11 +393,7 @@ fn nodes_scanned_but_for_their_far_halves_in_6d() {
 #[test]
 fn region_queries_leave_out_far_halves_of_scanned_nodes_in_6d() {
     let mut r = rng(67);
-    let entries: Vec<([f64; 6], usize)> = (0..12_000)
-        .map(|i| (core::array::from_fn(|_| r.r#gen()), i))
-        .collect();
-    let t = PointTree::builder().bucket_size(8).build(&entries).unwrap();
-    t.validate().unwrap();
+    let (entries, t) = uniform_6d_tree(&mut r);
     let check = |region: &dyn Region<6>, what: &str| {
         let mut want: Vec<usize> = entries
             .iter()
