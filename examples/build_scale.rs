@@ -14,6 +14,7 @@ use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
 use std::time::Instant;
 
+#[macro_use]
 #[path = "common/cli.rs"]
 mod cli;
 use cli::{Cli, CliError};
@@ -144,7 +145,7 @@ fn main() {
         let digest = tree.items().iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &i| {
             (h ^ u64::from(i)).wrapping_mul(0x100_0000_01b3)
         });
-        println!(
+        say!(
             "run {run}: {ns:.1} ns/point{cpu}{kernel}, {} nodes, {} leaves, items digest {digest:016x}",
             tree.node_count(),
             tree.leaf_count()
@@ -154,14 +155,14 @@ fn main() {
     costs.sort_by(f64::total_cmp);
     let median = costs[costs.len() / 2];
     let mode = if args.par { "par_build" } else { "build" };
-    print!("n {} {mode}: median {median:.1} ns/point", args.n);
+    say_raw!("n {} {mode}: median {median:.1} ns/point", args.n);
     match (before, peak_kib()) {
-        (Some(input), Some(peak)) => println!(
+        (Some(input), Some(peak)) => say!(
             ", peak RSS {:.2} GiB ({:.1} bytes/point; {:.1} before the builds, the input)",
             peak as f64 / (1 << 20) as f64,
             peak as f64 * 1024.0 / args.n as f64,
             input as f64 * 1024.0 / args.n as f64
         ),
-        _ => println!(),
+        _ => say!(),
     }
 }

@@ -16,6 +16,7 @@ use mpi::traits::*;
 use orthtree::dist::workload::BalanceWorkload;
 use orthtree::Connectivity;
 
+#[macro_use]
 #[path = "common/cli.rs"]
 mod cli;
 use cli::{Cli, CliError};
@@ -85,7 +86,7 @@ fn main() {
         world.abort(1)
     });
     if world.rank() == 0 {
-        print!("{report}");
+        say_raw!("{report}");
         if report.serial.is_some_and(|(_, same)| !same) {
             eprintln!("error: the distributed balance differs from the serial one");
             world.abort(1);

@@ -13,6 +13,7 @@
 use mpi::traits::*;
 use orthtree::dist::workload::PointsWorkload;
 
+#[macro_use]
 #[path = "common/cli.rs"]
 mod cli;
 use cli::{Cli, CliError};
@@ -54,6 +55,6 @@ fn main() {
         world.abort(1)
     });
     if world.rank() == 0 {
-        print!("{report}");
+        say_raw!("{report}");
     }
 }

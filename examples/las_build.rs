@@ -18,6 +18,7 @@ use rand::{Rng, SeedableRng};
 use std::path::PathBuf;
 use std::time::Instant;
 
+#[macro_use]
 #[path = "common/cli.rs"]
 mod cli;
 use cli::{Cli, CliError};
@@ -84,7 +85,7 @@ fn main() {
                 eprintln!("error: {}: {e}", path.display());
                 std::process::exit(1);
             }
-            println!("wrote {n} points to {}", path.display());
+            say!("wrote {n} points to {}", path.display());
         }
         Args::Read { path, runs } => {
             let mut rates = Vec::with_capacity(runs);
@@ -104,7 +105,7 @@ fn main() {
                 let total = start.elapsed().as_secs_f64();
                 let n = tree.len();
                 let rate = n as f64 / total / 1e6;
-                println!(
+                say!(
                     "run {run}: {n} points, read {:.3} s, build {:.3} s, {rate:.2} million points/s, \
                      {} leaves",
                     read,
@@ -114,7 +115,7 @@ fn main() {
                 rates.push(rate);
             }
             rates.sort_by(f64::total_cmp);
-            println!(
+            say!(
                 "median {:.2} million points/s (read and build)",
                 rates[rates.len() / 2]
             );

@@ -7,6 +7,10 @@
 //! cargo run --release --example periodic_knn [-- --help]
 //! ```
 
+#[macro_use]
+#[path = "common/cli.rs"]
+mod cli;
+
 use orthtree::prelude::*;
 use orthtree::query::{OutsidePoints, Torus};
 use orthtree::PointTree;
@@ -23,7 +27,7 @@ queries without the wrap, and checks a sample against a scan over all 27 images.
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     if let Some(arg) = std::env::args().nth(1) {
         if arg == "--help" || arg == "-h" {
-            println!("{USAGE}");
+            say!("{USAGE}");
             return Ok(());
         }
         eprintln!("error: unknown argument {arg:?}\n\n{USAGE}");
@@ -37,7 +41,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let entries: Vec<([f64; 3], usize)> = pts.iter().enumerate().map(|(i, p)| (*p, i)).collect();
     let start = Instant::now();
     let tree = PointTree::new(&entries)?;
-    println!(
+    say!(
         "build of {n} points: {:.3} s",
         start.elapsed().as_secs_f64()
     );
@@ -55,8 +59,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         plain_sum += tree.k_nearest(q, k)?[k - 1].distance;
     }
     let plain = start.elapsed().as_secs_f64();
-    println!("{queries} periodic k-nearest (k = {k}): {periodic:.3} s (mean k-th squared distance {:.3e})", sum / queries as f64);
-    println!(
+    say!("{queries} periodic k-nearest (k = {k}): {periodic:.3} s (mean k-th squared distance {:.3e})", sum / queries as f64);
+    say!(
         "{queries} plain k-nearest    (k = {k}): {plain:.3} s (mean k-th squared distance {:.3e})",
         plain_sum / queries as f64
     );
@@ -84,6 +88,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             );
         }
     }
-    println!("20 periodic answers agree with a scan over all 27 images");
+    say!("20 periodic answers agree with a scan over all 27 images");
     Ok(())
 }

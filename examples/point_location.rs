@@ -18,6 +18,7 @@ use std::time::Instant;
 #[path = "../benches/workloads/compressed.rs"]
 mod workload;
 
+#[macro_use]
 #[path = "common/cli.rs"]
 mod cli;
 use cli::{Cli, CliError};
@@ -88,7 +89,7 @@ fn main() {
     let out = cli::parse_or_exit(USAGE, parse);
     let k = 8;
     let s = subdivision(k, 12, [2.35, 3.3], 0.12);
-    println!(
+    say!(
         "{} vertices, {} edges, {} faces",
         s.vertices().len(),
         s.edges().len(),
@@ -98,7 +99,7 @@ fn main() {
     let queries: Vec<[f64; 2]> = (0..100_000)
         .map(|_| [rng.gen_range(-0.5..k as f64), rng.gen_range(-0.5..k as f64)])
         .collect();
-    println!("rule      nodes  height  build (ms)  locate (ns/query)");
+    say!("rule      nodes  height  build (ms)  locate (ns/query)");
     let mut shown = None;
     for (name, exercise) in [("relaxed", false), ("exercise", true)] {
         let t = Instant::now();
@@ -115,7 +116,7 @@ fn main() {
             .map(|q| locator.face(q).unwrap().0 as u64)
             .sum();
         let per = t.elapsed().as_secs_f64() * 1e9 / queries.len() as f64;
-        println!(
+        say!(
             "{name:9} {:6} {:7} {build:11.2} {per:18.0}   (checksum {sum})",
             locator.node_count(),
             locator.height()
@@ -155,5 +156,5 @@ fn main() {
         eprintln!("error: cannot write {}: {e}", out.display());
         std::process::exit(1);
     }
-    println!("wrote {}", out.display());
+    say!("wrote {}", out.display());
 }

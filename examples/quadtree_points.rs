@@ -14,6 +14,7 @@ use rand::{Rng, SeedableRng};
 use std::path::PathBuf;
 use std::time::Instant;
 
+#[macro_use]
 #[path = "common/cli.rs"]
 mod cli;
 use cli::{Cli, CliError};
@@ -111,7 +112,7 @@ fn run(name: &str, points: &[[f64; 2]], bucket: usize) -> (Quadtree<usize>, Quad
     let balance = start.elapsed();
     let valid = tree.validate().and(balanced.validate());
     let is_balanced = balanced.tree().is_balanced(Connectivity::Face);
-    println!(
+    say!(
         "{name:<10} {bucket:>6} {:>7} {:>5} {:>7} {:>7} {:>7} {:>7} {:>7} {:>9.3} {:>9.3}  {:<5} {}",
         tree.len(),
         tree.depth(),
@@ -135,7 +136,7 @@ fn main() {
     let Args { n, out_dir } = cli::parse_or_exit(USAGE, parse);
 
     let header = "data       bucket       n depth   nodes  leaves  nodes' leaves'  splits  build ms   bal. ms  valid balanced";
-    println!("{header}");
+    say!("{header}");
     let mut ok = true;
     for (name, points) in [("uniform", uniform(n, 1)), ("clustered", clustered(n, 2))] {
         let (tree, balanced, good) = run(name, &points, 1);
@@ -143,15 +144,15 @@ fn main() {
         ok &= run(name, &points, DEFAULT_BUCKET_SIZE).2;
         let file = out_dir.join(format!("quadtree_{name}.svg"));
         match std::fs::write(&file, point_tree_svg(&tree, Some(&balanced))) {
-            Ok(()) => println!("{:>10} wrote {}", "", file.display()),
+            Ok(()) => say!("{:>10} wrote {}", "", file.display()),
             Err(e) => {
                 eprintln!("error: cannot write {}: {e}", file.display());
                 ok = false;
             }
         }
     }
-    println!("(nodes', leaves': after 2:1 balance with face connectivity; solid lines in the");
-    println!(" pictures are the bucket-1 quadtree, dotted ones the cells balance adds)");
+    say!("(nodes', leaves': after 2:1 balance with face connectivity; solid lines in the");
+    say!(" pictures are the bucket-1 quadtree, dotted ones the cells balance adds)");
     if !ok {
         std::process::exit(1);
     }

@@ -15,6 +15,7 @@ use rand::{Rng, SeedableRng};
 use std::path::PathBuf;
 use std::time::Instant;
 
+#[macro_use]
 #[path = "common/cli.rs"]
 mod cli;
 use cli::{Cli, CliError};
@@ -138,41 +139,41 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     back.validate()?;
     let check = start.elapsed().as_secs_f64();
     let (build, load) = (median(builds), median(loads));
-    println!(
+    say!(
         "{n} points in 3D (f64, u32 items), {} runs (medians):",
         args.runs
     );
-    println!("  build           {:9.1} ms", build * 1e3);
+    say!("  build           {:9.1} ms", build * 1e3);
     if !par_builds.is_empty() {
-        println!(
+        say!(
             "  par_build       {:9.1} ms",
             median(par_builds.clone()) * 1e3
         );
     }
-    println!(
+    say!(
         "  save to memory  {:9.1} ms, {:.1} MB ({:.2} bytes a point)",
         median(saves) * 1e3,
         bytes.len() as f64 / 1e6,
         bytes.len() as f64 / n as f64
     );
-    println!(
+    say!(
         "  load from bytes {:9.1} ms: {:.1}x faster than the build (owned PointTree)",
         load * 1e3,
         build / load
     );
-    println!(
+    say!(
         "  of which check  {:9.1} ms (validate, run again alone)",
         check * 1e3
     );
     let open = median(opens);
-    println!(
+    say!(
         "  view, serial    {:9.2} ms: {:.1}x faster than the build (PointTreeView::open_serial)",
         open * 1e3,
         build / open
     );
     if !par_opens.is_empty() {
         let par = median(par_opens);
-        println!(
+        say!(
             "  view, rayon     {:9.2} ms: {:.1}x faster than the build, {:.1}x than par_build \
              (PointTreeView::open)",
             par * 1e3,
@@ -181,12 +182,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
     }
     let touch_time = median(touches);
-    println!(
+    say!(
         "  read the points {:9.2} ms ({:.1} GB/s: one pass over the points section, no check)",
         touch_time * 1e3,
         (n * 24) as f64 / touch_time / 1e9
     );
-    println!(
+    say!(
         "  view borrows    {} (heap bytes owned by the view: {})",
         view.is_borrowed(),
         view.heap_bytes()
@@ -199,7 +200,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let start = Instant::now();
         let from_file: PointTree<f64, u32, 3> = read_point_tree_file(path)?;
         let t = start.elapsed().as_secs_f64();
-        println!(
+        say!(
             "  load from file  {:9.1} ms: {:.1}x faster than the build ({})",
             t * 1e3,
             build / t,
@@ -208,7 +209,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         if from_file.points() != tree.points() || from_file.tree() != tree.tree() {
             return Err("the tree loaded from the file differs".into());
         }
-        println!(
+        say!(
             "  heap bytes      built {}, loaded {}",
             tree.heap_bytes(),
             from_file.heap_bytes()
@@ -228,14 +229,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 }
             }
             let t = median(maps);
-            println!(
+            say!(
                 "  map and view    {:9.2} ms: {:.1}x faster than the build (file in the page cache)",
                 t * 1e3,
                 build / t
             );
         }
     } else {
-        println!(
+        say!(
             "  heap bytes      built {}, loaded {}, view {} (plus the {} bytes it borrows)",
             tree.heap_bytes(),
             back.heap_bytes(),
@@ -246,7 +247,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if !same {
         return Err("the loaded tree differs from the built one".into());
     }
-    println!(
+    say!(
         "  the loaded tree and the view equal the built one (arrays, topology, 1000 10-nearest \
          queries) [{}]",
         sink % 10

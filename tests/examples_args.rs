@@ -240,3 +240,22 @@ fn small_valid_runs_succeed() {
     assert_eq!(digests[0], digests[1]);
     assert!(r.stdout.contains("n 5000 build: median"), "{}", r.stdout);
 }
+
+#[test]
+fn a_closed_standard_output_is_not_a_panic() {
+    let dir = scratch_dir("closed-pipe");
+    let out_dir = dir.to_str().unwrap();
+    let svg = dir.join("located.svg");
+    for (name, args) in [
+        ("quadtree_points", vec!["--n", "300", "--out-dir", out_dir]),
+        ("point_location", vec!["--out", svg.to_str().unwrap()]),
+        ("build_scale", vec!["--n", "5000", "--runs", "2"]),
+        ("build_scale", vec!["--help"]),
+    ] {
+        let exe = binaries().join(format!("{name}{}", std::env::consts::EXE_SUFFIX));
+        let (code, stderr) = programs::run_into_closed_pipe(&exe, name, &args);
+        assert_eq!(code, 0, "{name} {args:?}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{name} {args:?}: {stderr}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -69,6 +69,22 @@ pub fn clustered<const D: usize>(
         .collect()
 }
 
+/// `n` points on the surface of the sphere of radius 1/2 centred in the unit cube (a circle in
+/// 2D): data of one dimension less than the space, as a scan of a surface gives.
+#[allow(dead_code)] // a workload of the comparison program, not of the benches
+pub fn sphere_surface<const D: usize>(n: usize, seed: u64) -> Vec<[f64; D]> {
+    let mut rng = SmallRng::seed_from_u64(seed);
+    (0..n)
+        .map(|_| loop {
+            let v: [f64; D] = core::array::from_fn(|_| standard_normal(&mut rng));
+            let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+            if norm > 1e-9 {
+                break core::array::from_fn(|a| 0.5 + 0.5 * v[a] / norm);
+            }
+        })
+        .collect()
+}
+
 /// The seed of the cluster centres, shared by every point set.
 const CENTRE_SEED: u64 = 0x005E_EDC1;
 

@@ -197,36 +197,36 @@ fn run_in<const D: usize>(args: &Args) -> Result<(), Failure> {
         check_times.push(t.elapsed().as_secs_f64());
     }
     let check_s = median(&mut check_times);
-    println!(
+    say!(
         "dim {D}, level {}, {:?}{}",
         args.level,
         args.options,
         if args.parallel { ", parallel" } else { "" }
     );
-    println!("leaves before balance: {before}");
-    println!(
+    say!("leaves before balance: {before}");
+    say!(
         "estimated before:      {:.0}",
         fractal_leaves(D, args.level)
     );
-    println!("leaves after balance:  {}", tree.leaf_count());
-    println!("splits:                {}", split.len());
-    println!("refine time:           {refine_s:.4} s");
-    println!(
+    say!("leaves after balance:  {}", tree.leaf_count());
+    say!("splits:                {}", split.len());
+    say!("refine time:           {refine_s:.4} s");
+    say!(
         "balance time:          {balance_s:.4} s (median of {})",
         args.reps
     );
-    println!(
+    say!(
         "is_balanced time:      {check_s:.4} s ({balanced}), balance / is_balanced {:.1}",
         balance_s / check_s
     );
-    println!(
+    say!(
         "tree bytes per leaf:   {:.1}",
         tree.heap_bytes() as f64 / tree.leaf_count() as f64
     );
     if let Some(mib) = peak_memory_mib() {
-        println!("peak memory:           {mib:.1} MiB");
+        say!("peak memory:           {mib:.1} MiB");
     }
-    println!("checksum:              {:016x}", checksum(&tree));
+    say!("checksum:              {:016x}", checksum(&tree));
     if !balanced {
         return Err(Failure::Input(
             "the tree is not balanced after balance()".into(),
@@ -250,7 +250,7 @@ fn run_in<const D: usize>(args: &Args) -> Result<(), Failure> {
         }
         let incremental_s = t.elapsed().as_secs_f64();
         let same = checksum(&built) == checksum(&tree) && built.leaf_count() == tree.leaf_count();
-        println!("incremental (14.8):    {incremental_s:.4} s, vs refine + balance {:.4} s; same tree: {same}", refine_s + balance_s);
+        say!("incremental (14.8):    {incremental_s:.4} s, vs refine + balance {:.4} s; same tree: {same}", refine_s + balance_s);
         if !same {
             return Err(Failure::Input(
                 "split_balanced built another tree than refine + balance".into(),

@@ -95,7 +95,7 @@ pub fn run_balance(args: &DistBalanceArgs) -> Result<(), Failure> {
         .run(&world)
         .map_err(|e| Failure::Input(format!("rank {}: {e}", world.rank())))?;
     if world.rank() == 0 {
-        print!("{report}");
+        say_raw!("{report}");
     }
     match report.serial {
         Some((_, false)) => Err(Failure::Input(
@@ -122,7 +122,7 @@ pub fn run_points(args: &DistPointsArgs) -> Result<(), Failure> {
         .run(&world)
         .map_err(|e| Failure::Input(format!("rank {}: {e}", world.rank())))?;
     if world.rank() == 0 {
-        print!("{report}");
+        say_raw!("{report}");
     }
     Ok(())
 }

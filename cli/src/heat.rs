@@ -222,32 +222,32 @@ pub fn run(args: &HeatArgs) -> Result<(), Failure> {
     let t_min = t.iter().copied().fold(f64::INFINITY, f64::min);
     let t_max = t.iter().copied().fold(f64::NEG_INFINITY, f64::max);
 
-    println!(
+    say!(
         "board:      {name}: U = {}, {} components",
         board.size(),
         board.components().len()
     );
-    println!(
+    say!(
         "mesh:       {} triangles, {} vertices ({})",
         mesh.triangles.len(),
         mesh.vertices.len(),
         ms(mesh_time)
     );
-    println!(
+    say!(
         "system:     {} unknowns, {} stored entries (lower triangle), max off-diagonal {:e}",
         sys.n,
         sys.values.len(),
         sys.max_off_diagonal()
     );
-    println!("assembly:   {}", ms(assembly_time));
-    println!(
+    say!("assembly:   {}", ms(assembly_time));
+    say!(
         "solve:      {} (ordering + symbolic {}, Cholesky {}, substitution {})",
         ms(times.total()),
         ms(times.symbolic),
         ms(times.numeric),
         ms(times.substitution)
     );
-    println!("temperature: min {t_min:.6e} K, max {t_max:.6} K (rise over the board edge)");
+    say!("temperature: min {t_min:.6e} K, max {t_max:.6} K (rise over the board edge)");
     if !args.no_files {
         let _phase = Phase::start("writing the files");
         let start = Instant::now();
@@ -258,7 +258,7 @@ pub fn run(args: &HeatArgs) -> Result<(), Failure> {
         svg("heat.svg")
             .and_then(|_| picture::write_heat_vtk(&mesh, &t, "heat.vtk"))
             .map_err(|e| Failure::Input(format!("writing heat.svg / heat.vtk: {e}")))?;
-        println!("wrote:      heat.svg heat.vtk ({})", ms(start.elapsed()));
+        say!("wrote:      heat.svg heat.vtk ({})", ms(start.elapsed()));
     }
     Ok(())
 }

@@ -23,14 +23,6 @@ use std::error::Error;
 use std::path::Path;
 use std::time::Instant;
 
-/// `println!` that ignores a closed standard output (a pipe into `head`) instead of panicking.
-macro_rules! say {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = writeln!(std::io::stdout(), $($arg)*);
-    }};
-}
-
 fn read(path: &str) -> Result<ImageTree, Box<dyn Error>> {
     match extension(path).as_str() {
         "pbm" => Ok(pbm::read(path).map_err(|e| format!("{path}: {e}"))?),

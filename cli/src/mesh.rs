@@ -205,25 +205,25 @@ pub fn run(args: &MeshArgs) -> Result<(), Failure> {
     };
     let write_time = start.elapsed();
     let [lo, hi] = report.angle_range_deg.unwrap_or([f64::NAN; 2]);
-    println!(
+    say!(
         "board:       {name}: U = {}, {} components, perimeter {}",
         board.size(),
         board.components().len(),
         board.perimeter_steps()
     );
-    println!(
+    say!(
         "quadtree:    {:?} mode, grid unit {}, {} leaves, {} after 2:1 balance",
         options.current_mode(),
         out.grid_unit,
         out.leaves_before_balance,
         out.tree.leaf_count()
     );
-    println!(
+    say!(
         "mesh:        {} triangles, {} vertices, angles {lo:.1} to {hi:.1} degrees",
         out.mesh.triangles.len(),
         out.mesh.vertices.len()
     );
-    println!(
+    say!(
         "validation:  {}",
         if report.is_ok() {
             "ok (conforming, respects input, 45-90 degrees, regions, Euler, Delaunay)".to_string()
@@ -231,11 +231,11 @@ pub fn run(args: &MeshArgs) -> Result<(), Failure> {
             report.to_string()
         }
     );
-    println!(
+    say!(
         "memory:      {:.1} bytes per triangle",
         out.mesh.heap_bytes() as f64 / out.mesh.triangles.len().max(1) as f64
     );
-    println!(
+    say!(
         "time:        build {}, balance {}, triangulate {}, validate {}, write {}",
         ms(out.build_time),
         ms(out.balance_time),
@@ -244,9 +244,9 @@ pub fn run(args: &MeshArgs) -> Result<(), Failure> {
         ms(write_time)
     );
     if written.is_empty() {
-        println!("wrote:       nothing (--no-files)");
+        say!("wrote:       nothing (--no-files)");
     } else {
-        println!("wrote:       {}", written.join(" "));
+        say!("wrote:       {}", written.join(" "));
     }
     if report.is_ok() {
         Ok(())

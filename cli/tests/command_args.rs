@@ -243,6 +243,21 @@ fn outputs_in_missing_folders_are_refused_before_any_work() {
 }
 
 #[test]
+fn a_closed_standard_output_is_not_a_panic() {
+    let exe = Path::new(env!("CARGO_BIN_EXE_orthtree"));
+    for args in [
+        &["mesh", "--random", "2,8,16", "--no-files"][..],
+        &["balance", "--dim", "2", "--level", "3"],
+        &["image", "--help"],
+        &["--help"],
+    ] {
+        let (code, stderr) = programs::run_into_closed_pipe(exe, args[0], args);
+        assert_eq!(code, 0, "{args:?}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+    }
+}
+
+#[test]
 fn small_valid_runs_succeed() {
     // balance: the leaf estimate its memory check uses is exact.
     for (dim, level) in [("2", "0"), ("2", "3"), ("2", "7"), ("3", "5"), ("4", "4")] {

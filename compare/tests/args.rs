@@ -153,16 +153,6 @@ fn small_valid_runs_succeed() {
         &["--n", "1", "--queries", "1", "--reps", "1"][..],
         &["--n", "7", "--queries", "3", "--reps", "1", "--dim", "3"],
         &["--n", "300", "--queries", "3", "--reps", "1", "--dim", "8"],
-        &[
-            "--n",
-            "2000",
-            "--queries",
-            "50",
-            "--reps",
-            "1",
-            "--workload",
-            "lattice",
-        ],
     ] {
         let r = run("compare", args);
         assert_eq!(r.code, 0, "compare {args:?}: {}", r.stderr);
@@ -170,6 +160,31 @@ fn small_valid_runs_succeed() {
             .stdout
             .contains("| workload | operation | orthtree | kiddo | rstar |"));
     }
+    // the workloads one at a time
+    for workload in ["lattice", "sphere", "off-data"] {
+        let args = [
+            "--n",
+            "2000",
+            "--queries",
+            "50",
+            "--reps",
+            "1",
+            "--workload",
+            workload,
+        ];
+        let r = run("compare", &args);
+        assert_eq!(r.code, 0, "compare {args:?}: {}", r.stderr);
+        assert!(r.stdout.contains(&format!("| {workload}")), "{}", r.stdout);
+    }
     let r = run("mesh_compare", &["--target", "--runs", "1"]);
     assert_eq!(r.code, 0, "{}", r.stderr);
+}
+
+#[test]
+fn a_closed_standard_output_is_not_a_panic() {
+    let exe = Path::new(env!("CARGO_BIN_EXE_compare"));
+    let args = ["--n", "300", "--queries", "5", "--reps", "1", "--dim", "2"];
+    let (code, stderr) = programs::run_into_closed_pipe(exe, "compare", &args);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
 }

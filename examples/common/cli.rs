@@ -8,6 +8,24 @@
 //! 1 for a failure while running (a file that cannot be written, a check that fails).
 #![allow(dead_code)] // not every example uses every helper
 
+/// `println!` that ignores a closed standard output (a pipe into `head`) instead of panicking.
+#[allow(unused_macros)] // not every example prints both ways
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout(), $($arg)*);
+    }};
+}
+
+/// `print!` that ignores a closed standard output, as `say!` does.
+#[allow(unused_macros)]
+macro_rules! say_raw {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = write!(std::io::stdout(), $($arg)*);
+    }};
+}
+
 use std::collections::VecDeque;
 use std::fmt::Display;
 use std::path::{Path, PathBuf};
@@ -161,7 +179,7 @@ pub fn parse_or_exit<T>(usage: &str, parse: impl FnOnce(&mut Cli) -> Result<T, C
 pub fn exit_with(usage: &str, error: CliError) -> ! {
     match error {
         CliError::Help => {
-            println!("{}", usage.trim_end());
+            say!("{}", usage.trim_end());
             std::process::exit(0)
         }
         CliError::Invalid(message) => {

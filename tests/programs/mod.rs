@@ -67,6 +67,34 @@ pub fn run(exe: &Path, name: &str, args: &[&str], cwd: Option<&Path>, limit: Dur
     run
 }
 
+/// Runs `exe` with `args` in a fresh folder with its standard output a pipe whose reading end
+/// is already closed (as in `program | head` once `head` has quit), and returns its exit code
+/// and standard error: printing must then neither panic nor fail the run.
+///
+/// # Panics
+///
+/// When the program cannot start or ends by a signal.
+#[allow(dead_code)] // the tests of the distributed commands do not use it
+pub fn run_into_closed_pipe(exe: &Path, name: &str, args: &[&str]) -> (i32, String) {
+    let scratch = scratch_dir(name);
+    let (reader, writer) = std::io::pipe().expect("a pipe");
+    drop(reader);
+    let out = Command::new(exe)
+        .args(args)
+        .current_dir(&scratch)
+        .stdin(Stdio::null())
+        .stdout(writer)
+        .stderr(Stdio::piped())
+        .output()
+        .unwrap_or_else(|e| panic!("start {}: {e}", exe.display()));
+    let _ = std::fs::remove_dir_all(&scratch);
+    let code = out
+        .status
+        .code()
+        .unwrap_or_else(|| panic!("{name} {args:?}: killed by a signal: {:?}", out.status));
+    (code, String::from_utf8_lossy(&out.stderr).into_owned())
+}
+
 /// A fresh empty folder for one run, under the system's temporary folder.
 pub fn scratch_dir(name: &str) -> PathBuf {
     static NEXT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);

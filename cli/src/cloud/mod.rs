@@ -12,14 +12,6 @@
 //! pictures PNG (feature `png`) or SVG. With no file, a built-in synthetic scan
 //! ([`scan`]): two epochs of it for `diff`.
 
-/// `println!` that ignores a closed standard output (a pipe into `head`).
-macro_rules! say {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = writeln!(std::io::stdout(), $($arg)*);
-    }};
-}
-
 mod commands;
 mod index;
 mod input;

@@ -30,6 +30,7 @@ use orthtree::geom::Aabb;
 use orthtree_compare::limits;
 use orthtree_compare::points::uniform;
 use orthtree_compare::python::PythonRival;
+use orthtree_compare::say;
 use orthtree_compare::timing;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -164,8 +165,8 @@ fn main() -> ExitCode {
     }
     let points: Vec<[f64; 3]> = uniform::<3>(a.n, 11);
     let cloud = Cloud::from_points(points.clone());
-    println!("| workload | orthtree ms | open3d ms | open3d / orthtree | points out (orthtree / open3d) | sum of squared norms (orthtree / open3d) |");
-    println!("| --- | ---: | ---: | ---: | --- | --- |");
+    say!("| workload | orthtree ms | open3d ms | open3d / orthtree | points out (orthtree / open3d) | sum of squared norms (orthtree / open3d) |");
+    say!("| --- | ---: | ---: | ---: | --- | --- |");
     let wanted = |w: Workload| a.workload.is_none_or(|x| x == w);
     let rows: [(Workload, &str, Vec<String>); 2] = [
         (
@@ -200,7 +201,7 @@ fn main() -> ExitCode {
             .as_ref()
             .map(|o| open3d_side(o, name, &points, args, a.reps));
         match theirs {
-            Some(Ok(t)) => println!(
+            Some(Ok(t)) => say!(
                 "| {name} (N = {}) | {:.1} | {:.1} | {:.2}x | {} / {} | {:.9e} / {:.9e} |",
                 a.n,
                 ours.ms,
@@ -215,9 +216,12 @@ fn main() -> ExitCode {
                 eprintln!("error: {e}");
                 return ExitCode::FAILURE;
             }
-            None => println!(
+            None => say!(
                 "| {name} (N = {}) | {:.1} | - | - | {} / - | {:.9e} / - |",
-                a.n, ours.ms, ours.count, ours.dist2
+                a.n,
+                ours.ms,
+                ours.count,
+                ours.dist2
             ),
         }
     }

@@ -21,13 +21,15 @@
 //! and of the batch `par_k_nearest` (k = 10) over one `k_nearest` call per query, on uniform
 //! points, with all of rayon's threads.
 //!
-//! Workloads: D = 2 and 3 (or 4, 6 or 8 with `--dim`), f64; uniform in the unit cube, 64 Gaussian clusters (sigma 0.01),
-//! duplicate-heavy (N / 8 uniform points, each 8 times) and lattice (integer grid points). Rows:
-//! build; box queries with about 100 results; radius queries with about 100 results; k-nearest for
-//! k = 1, 10, 100. Query centres follow the data's distribution; the box side and radius are
-//! calibrated so that the average answer holds about 100 points. Every query's answer is
-//! consumed (item ids summed), and the sums are checked equal across the crates. Each timing is
-//! the median of `--reps` runs after one untimed warm-up run.
+//! Workloads: D = 2 and 3 (or 4, 6 or 8 with `--dim`), f64; uniform in the unit cube, 64 Gaussian
+//! clusters (sigma 0.01), duplicate-heavy (N / 8 uniform points, each 8 times), lattice (integer
+//! grid points), a sphere's surface (points on the sphere of radius 1/2 in the unit cube, queries
+//! uniform in the cube) and off-data queries (the clustered points, queries uniform in the cube).
+//! Rows: build; box queries with about 100 results; radius queries with about 100 results;
+//! k-nearest for k = 1, 10, 100. Query centres follow the data's distribution (but in the last
+//! two); the box side and radius are calibrated so that the average answer holds about 100 points.
+//! Every query's answer is consumed (item ids summed), and the sums are checked equal across the
+//! crates. Each timing is the median of `--reps` runs after one untimed warm-up run.
 
 use clap::Parser;
 use orthtree::prelude::*;
@@ -35,6 +37,7 @@ use orthtree::{Aabb, Ball, DynamicPointTree, PointTree};
 use orthtree_compare::limits;
 use orthtree_compare::points::{self as common, Distribution};
 use orthtree_compare::rivals::{Answers, Kiddo, Orthtree, Rival, Rstar, KIDDO_BUCKET};
+use orthtree_compare::say;
 use orthtree_compare::timing::time;
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
@@ -95,11 +98,18 @@ macro_rules! each_dimension {
 
 /// A `--workload` that starts at least one workload's name.
 fn workload(raw: &str) -> Result<String, String> {
-    let known = ["uniform", "clustered", "duplicates x8", "lattice"];
+    let known = [
+        "uniform",
+        "clustered",
+        "duplicates x8",
+        "lattice",
+        "sphere",
+        "off-data",
+    ];
     if known.iter().any(|k| k.starts_with(raw)) {
         Ok(raw.to_string())
     } else {
-        Err("no workload starts with it (uniform, clustered, duplicates, lattice)".into())
+        Err(format!("no workload starts with it ({})", known.join(", ")))
     }
 }
 
@@ -290,7 +300,7 @@ fn run<const D: usize>(
             tree.node_count(),
             extra(kiddo)
         );
-        println!(
+        say!(
             "<!-- memory {D}D: orthtree {:.2} B/point, kiddo {:.2} B/point -->",
             extra(ours),
             extra(kiddo)
@@ -331,21 +341,28 @@ where
         .map(|_| core::array::from_fn(|_| rng.r#gen::<f64>() * side as f64))
         .collect();
     run("lattice", &lattice, &queries, a, rows);
+    // A surface in the space (a scan), queries anywhere in the cube around it.
+    let sphere = common::sphere_surface::<D>(a.n, 5);
+    let queries = common::uniform::<D>(a.queries, 6);
+    run("sphere surface", &sphere, &queries, a, rows);
+    // Clustered points, queries uniform in the cube: most queries far from every point.
+    let clustered = Distribution::Clustered.points::<D>(a.n, 1);
+    run("off-data queries", &clustered, &queries, a, rows);
 }
 
 fn main() {
     let a = parse();
     let mut rows = Vec::new();
     each_dimension!(a, workloads(&a, &mut rows));
-    println!(
+    say!(
         "\nN = {}, {} queries per row, median of {} runs, ms (total over all queries; build: one build)\n",
         a.n, a.queries, a.reps
     );
-    println!("| workload | operation | orthtree | kiddo | rstar | orthtree / best rival |");
-    println!("| --- | --- | ---: | ---: | ---: | ---: |");
+    say!("| workload | operation | orthtree | kiddo | rstar | orthtree / best rival |");
+    say!("| --- | --- | ---: | ---: | ---: | ---: |");
     let show = |t: Option<f64>| t.map_or("-".to_string(), |t| format!("{t:.1}"));
     for r in &rows {
-        println!(
+        say!(
             "| {} | {} | {:.1} | {} | {} | {:.2} |",
             r.workload,
             r.op,
@@ -355,22 +372,22 @@ fn main() {
             ratio(r)
         );
     }
-    println!(
+    say!(
         "\nsingle updates, uniform points: {} inserts into a tree of {} then their removals, median of {} runs, microseconds per insert + remove (PointTree: 1000 of each)\n",
         a.queries, a.n, a.reps
     );
-    println!("| dimension | PointTree | DynamicPointTree | kiddo KdTree | rstar RTree | DynamicPointTree / best rival |");
-    println!("| --- | ---: | ---: | ---: | ---: | ---: |");
+    say!("| dimension | PointTree | DynamicPointTree | kiddo KdTree | rstar RTree | DynamicPointTree / best rival |");
+    say!("| --- | ---: | ---: | ---: | ---: | ---: |");
     each_dimension!(a, updates(&a));
     #[cfg(feature = "rayon")]
     if a.parallel {
-        println!(
+        say!(
             "\nrayon, {} threads: median ms of {} runs\n",
             rayon::current_num_threads(),
             a.reps
         );
-        println!("| workload | operation | serial | rayon | speed-up |");
-        println!("| --- | --- | ---: | ---: | ---: |");
+        say!("| workload | operation | serial | rayon | speed-up |");
+        say!("| --- | --- | ---: | ---: | ---: |");
         each_dimension!(a, parallel(&a));
     }
 }
@@ -389,7 +406,7 @@ fn parallel<const D: usize>(a: &Args) {
     let (serial, n) = time(a.reps, || b.build(&entries).unwrap().len());
     let (par, m) = time(a.reps, || b.par_build(&entries).unwrap().len());
     assert_eq!(n, m);
-    println!(
+    say!(
         "| uniform {D}D | build | {serial:.1} | {par:.1} | {:.2} |",
         serial / par
     );
@@ -405,7 +422,7 @@ fn parallel<const D: usize>(a: &Args) {
     });
     let (par, s2) = time(a.reps, || sum(tree.par_k_nearest(&queries, 10).unwrap()));
     assert_eq!(s1, s2);
-    println!(
+    say!(
         "| uniform {D}D | 10-nearest | {serial:.1} | {par:.1} | {:.2} |",
         serial / par
     );
@@ -495,7 +512,7 @@ fn updates<const D: usize>(a: &Args) {
         per_op(t_kiddo, new.len()),
         per_op(t_rstar, new.len()),
     );
-    println!(
+    say!(
         "| {D}D | {:.2} | {ours:.2} | {k:.2} | {r:.2} | {:.2} |",
         per_op(t_dense, few),
         ours / k.min(r)
@@ -548,7 +565,7 @@ fn updates<const D: usize>(a: &Args) {
         t_dk / t_pk,
         t_db / t_pb
     );
-    println!(
+    say!(
         "<!-- {D}D queries: 10-nearest dynamic/point {:.2}, box dynamic/point {:.2} -->",
         t_dk / t_pk,
         t_db / t_pb

@@ -30,6 +30,7 @@ use clap::{Parser, ValueEnum};
 use orthtree_compare::joins::{self, Run};
 use orthtree_compare::limits;
 use orthtree_compare::points::uniform;
+use orthtree_compare::say;
 use orthtree_compare::scipy::{self, Scipy};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -137,7 +138,7 @@ fn run(a: &Args) -> Result<(), String> {
     let sp = Scipy::find(&python);
     match &sp {
         Some(s) => eprintln!("scipy {} ({})", s.version, python.display()),
-        None => println!("{}", scipy::NOT_SET_UP),
+        None => say!("{}", scipy::NOT_SET_UP),
     }
     let sp = sp.as_ref();
     let wanted = |w: Workload| a.workload.is_none_or(|x| x == w);
@@ -264,14 +265,12 @@ fn run(a: &Args) -> Result<(), String> {
 
 /// The markdown table: query and build times per crate, and each rival's time over orthtree's.
 fn print_table(a: &Args, rows: &[Row]) {
-    println!(
+    say!(
         "\nN = {}, 3-D f64, median of {} runs, ms (build: the crate's tree; x: rival time / orthtree time)\n",
         a.n, a.reps
     );
-    println!(
-        "| workload | threads | orthtree | kiddo | scipy | kiddo / orthtree | scipy / orthtree |"
-    );
-    println!("| --- | ---: | ---: | ---: | ---: | ---: | ---: |");
+    say!("| workload | threads | orthtree | kiddo | scipy | kiddo / orthtree | scipy / orthtree |");
+    say!("| --- | ---: | ---: | ---: | ---: | ---: | ---: |");
     let ms = |r: &Option<Run>, f: fn(&Run) -> f64| {
         r.as_ref().map_or("-".into(), |r| format!("{:.1}", f(r)))
     };
@@ -285,7 +284,7 @@ fn print_table(a: &Args, rows: &[Row]) {
             ("", (|r: &Run| r.query_ms) as fn(&Run) -> f64),
             (" (build)", |r: &Run| r.build_ms),
         ] {
-            println!(
+            say!(
                 "| {}{label} | {} | {} | {} | {} | {} | {} |",
                 row.name,
                 row.threads,

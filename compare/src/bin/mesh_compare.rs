@@ -13,6 +13,7 @@
 //! spade gets the same input: the board's square and every component outline as constraint edges.
 
 use orthtree::mesh::{random_board, sample_board, Board, Component, MeshOptions, Mode};
+use orthtree_compare::say;
 use spade::{
     AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation,
 };
@@ -138,7 +139,7 @@ fn target(runs: usize) {
             v.sort_unstable();
             v[v.len() / 2]
         });
-        println!(
+        say!(
             "{mode:?}: {triangles} triangles; median of {runs}: build {}, balance {}, \
              triangulate {}, total {}",
             ms(build),
@@ -154,7 +155,7 @@ fn row(name: &str, board: &Board, runs: usize) {
     let (book, book_time) = ours(board, Mode::Book, runs);
     let (coarse, coarse_time) = ours(board, Mode::Coarsest, runs);
     let (sp, [lo, hi], sp_time, complete) = spade(board, runs);
-    println!(
+    say!(
         "| {name} | {book} | {coarse} | {:.2} | {sp}{} | {lo:.1}-{hi:.1}° | {} | {} | {} |",
         book as f64 / coarse as f64,
         if complete { "" } else { " (incomplete)" },
@@ -184,11 +185,11 @@ fn main() {
         ])],
     )
     .expect("Figure 14.2's input is valid");
-    println!(
+    say!(
         "| board | book | coarsest | book / coarsest | spade 30° | spade angles | book time | \
          coarsest time | spade time |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|");
+    say!("|---|---|---|---|---|---|---|---|---|");
     row("Figure 14.2 (U = 16)", &figure, runs);
     row("sample_board (U = 1024)", &sample_board(), runs);
     // One random board at a time, so memory does not grow with --seeds.
@@ -203,5 +204,5 @@ fn main() {
         &random_board(7, 1 << 16, 640),
         runs,
     );
-    println!("book and coarsest: every angle 45 or 90 degrees (validated); times are medians.");
+    say!("book and coarsest: every angle 45 or 90 degrees (validated); times are medians.");
 }
