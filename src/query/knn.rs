@@ -86,29 +86,74 @@ impl<'a, S, T, const D: usize> Neighbor<'a, S, T, D> {
 /// The answer of [`k_nearest`]: held inline for k = 1, so that a nearest query allocates nothing.
 pub(crate) type Found = SmallVec<[(f64, usize); 1]>;
 
-/// The best `k` candidates so far, sorted by `(distance, index)`, each index at most once
-/// (the image search may offer a point again, with the same distance).
+/// The best `k` candidates so far, each index at most once (the image search may offer a point
+/// again, with the same distance).
+///
+/// Up to [`SORTED_MAX`] candidates the list stays sorted by `(distance, index)` and a new one
+/// is put in place by a backward scan. For more, candidates within the bound are appended, and
+/// when `2k` are held the `k` nearest are selected (quickselect, `select_nth_unstable`)
+/// and the bound becomes the `k`-th distance: O(1) per candidate on average, where keeping the
+/// list sorted costs a search and a move of half the list each. The bound between two
+/// selections is the previous `k`-th distance, never below the true one, so nothing within the
+/// final `k`-th distance is pruned. On a curve (10^6 points on a circle, queries anywhere in
+/// the square around it), where most points scanned are nearer than the bound so far, 20 000
+/// 100-nearest queries took 4.2 s with the sorted list, 2.4 s with a binary search in it and
+/// 0.95 s this way; on 10^6 uniform points 100-NN 1.35-1.46x kiddo's time became 0.99-1.03x. At
+/// k = 20 on uniform points the sorted list is 7% faster; at 32 the two are even.
 pub(super) struct Best {
     k: usize,
     max: f64,
     list: Found,
+    /// Above [`SORTED_MAX`]: the candidates held before a selection, `2k`.
+    held: usize,
+    /// Above [`SORTED_MAX`]: the `k`-th distance at the last selection (`max` before any).
+    limit: f64,
+    /// Above [`SORTED_MAX`]: `k` candidates were known at the last selection.
+    full: bool,
+    /// A point may be offered twice (the image search): selections sort and drop repeats.
+    repeats: bool,
+}
+
+/// Up to this `k` [`Best`] keeps its candidates sorted.
+const SORTED_MAX: usize = 16;
+
+/// The order of candidates: by distance, then index.
+#[inline(always)]
+fn by_distance(a: &(f64, usize), b: &(f64, usize)) -> core::cmp::Ordering {
+    a.partial_cmp(b).unwrap_or(core::cmp::Ordering::Equal)
 }
 
 impl Best {
     /// No candidate yet, for the `k` nearest within `max` among `n` points.
     #[inline(always)]
     fn new(k: usize, max: f64, n: usize) -> Self {
+        let held = if k > SORTED_MAX {
+            k.saturating_mul(2)
+        } else {
+            k
+        };
         Best {
             k,
             max,
-            list: SmallVec::with_capacity(k.min(n)),
+            list: SmallVec::with_capacity(held.min(n)),
+            held,
+            limit: max,
+            full: false,
+            repeats: false,
         }
+    }
+
+    /// Lets the same point be offered again (the image search): it is kept once.
+    pub(super) fn allow_repeats(&mut self) {
+        self.repeats = true;
     }
 
     /// The distance a candidate must not exceed.
     #[inline(always)]
     pub(super) fn bound(&self) -> f64 {
-        if self.list.len() == self.k {
+        if self.k > SORTED_MAX {
+            self.limit
+        } else if self.list.len() == self.k {
             self.list[self.k - 1].0
         } else {
             self.max
@@ -119,7 +164,13 @@ impl Best {
     /// known, the maximum distance before.
     #[inline(always)]
     pub(super) fn prune(&self, cut: impl Fn(f64) -> f64) -> f64 {
-        if self.list.len() == self.k {
+        if self.k > SORTED_MAX {
+            if self.full {
+                cut(self.limit)
+            } else {
+                self.max
+            }
+        } else if self.list.len() == self.k {
             cut(self.list[self.k - 1].0)
         } else {
             self.max
@@ -128,6 +179,15 @@ impl Best {
 
     #[inline(always)]
     fn offer(&mut self, d: f64, i: usize) {
+        if self.k > SORTED_MAX {
+            if d <= self.limit {
+                self.list.push((d, i));
+                if self.list.len() == self.held {
+                    self.select();
+                }
+            }
+            return;
+        }
         let full = self.list.len() == self.k;
         if full {
             let (wd, wi) = self.list[self.k - 1];
@@ -149,6 +209,34 @@ impl Best {
             self.list.pop();
         }
         self.list.insert(at, (d, i));
+    }
+
+    /// Keeps the `k` nearest candidates (without repeats) and bounds the next by the `k`-th.
+    #[cold]
+    fn select(&mut self) {
+        if self.repeats {
+            self.list.sort_unstable_by(by_distance);
+            self.list.dedup();
+        } else if self.list.len() > self.k {
+            self.list.select_nth_unstable_by(self.k - 1, by_distance);
+        }
+        if self.list.len() >= self.k {
+            self.list.truncate(self.k);
+            self.limit = self.list[self.k - 1].0;
+            self.full = true;
+        }
+    }
+
+    /// The answer: the `k` nearest, sorted by `(distance, index)`.
+    fn finish(mut self) -> Found {
+        if self.k > SORTED_MAX {
+            self.list.sort_unstable_by(by_distance);
+            if self.repeats {
+                self.list.dedup();
+            }
+            self.list.truncate(self.k);
+        }
+        self.list
     }
 }
 
@@ -220,19 +308,20 @@ fn search<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
 ) -> Found {
     let mut best = Best::new(k, max, index.points().len());
     if k == 0 {
-        return best.list;
+        return best.finish();
     }
     let Some((root, b)) = index.root() else {
-        return best.list;
+        return best.finish();
     };
     if let Some(torus) = metric.torus()
         && let Some(images) = Images::new(torus, metric, q, &b)
     {
+        best.allow_repeats();
         images.search(index, q, metric, &mut best, (root, b), &cut);
-        return best.list;
+        return best.finish();
     }
     seeded(index, (q, metric), (q, metric), &mut best, (root, b), &cut);
-    best.list
+    best.finish()
 }
 
 /// One search of `index` into `best`, seeded by a walk down to the node around the query:

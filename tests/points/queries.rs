@@ -274,6 +274,38 @@ fn k_larger_than_n_and_zero() {
     assert!(t.k_nearest(&[0.0; 3], 0).unwrap().is_empty());
 }
 
+/// Points on a circle and queries at and near its centre: every point is about equally near, so
+/// most points scanned beat the bound so far and the candidate list turns over again and again
+/// (selections of the `k` nearest among `2k` for large `k`), with exact ties between mirrored
+/// points. Every `k` from the sorted list's range to beyond `n`, under the three metrics.
+#[test]
+fn k_nearest_of_points_on_a_circle_equal_a_scan() {
+    let n = 3000;
+    let mut points: Vec<[f64; 2]> = (0..n)
+        .map(|i| {
+            let a = i as f64 * std::f64::consts::TAU / n as f64;
+            [0.5 + 0.5 * a.cos(), 0.5 + 0.5 * a.sin()]
+        })
+        .collect();
+    // copies of some points: equal distances with different indices
+    points.extend_from_within(..40);
+    let entries: Vec<([f64; 2], usize)> = points.iter().copied().zip(0..).collect();
+    for bucket in [4, 64] {
+        let t = PointTree::builder()
+            .bucket_size(bucket)
+            .build(&entries)
+            .unwrap();
+        for q in [[0.5, 0.5], [0.5 + 1e-3, 0.5], [0.47, 0.52], [1.2, 0.5]] {
+            for k in [15, 16, 17, 33, 100, 257, n + 100] {
+                check_nearest(&t, &q, k, f64::INFINITY, SquaredEuclidean);
+                check_nearest(&t, &q, k, 0.2501, SquaredEuclidean);
+                check_nearest(&t, &q, k, f64::INFINITY, Manhattan);
+                check_nearest(&t, &q, k, f64::INFINITY, Chebyshev);
+            }
+        }
+    }
+}
+
 #[test]
 fn bad_input_is_a_typed_error() {
     let t = Quadtree::new(&[([0.0, 0.0], ()), ([1.0, 1.0], ())]).unwrap();
