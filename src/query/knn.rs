@@ -623,7 +623,7 @@ fn order_pushed<N: Copy, const D: usize>(stack: &mut Pending<N, D>, before: usiz
 
 /// `true` when no point outside the closed box `b` can be within `bound` of `q` under `metric`:
 /// every such point lies in one of the 2D closed slabs beyond a face of `b` (a point on a face
-/// may belong to the neighbouring cell), and `box_distance` bounds each slab from below.
+/// may belong to the neighbouring cell), and `slab_distance` bounds each from below.
 #[inline(always)]
 fn ball_inside<M: Metric<D>, const D: usize>(
     metric: &M,
@@ -631,15 +631,8 @@ fn ball_inside<M: Metric<D>, const D: usize>(
     bound: f64,
     b: &Aabb<f64, D>,
 ) -> bool {
-    // Each slab is built whole rather than written into one coordinate at a time: a vector load
-    // of a coordinate just stored one at a time stalls (store forwarding), 5% of a 3-D 10-NN
-    // query.
-    let slab = |a: usize, lo: f64, hi: f64| Aabb {
-        min: core::array::from_fn(|i| if i == a { lo } else { f64::NEG_INFINITY }),
-        max: core::array::from_fn(|i| if i == a { hi } else { f64::INFINITY }),
-    };
     (0..D).all(|a| {
-        metric.box_distance(q, &slab(a, f64::NEG_INFINITY, b.min[a])) > bound
-            && metric.box_distance(q, &slab(a, b.max[a], f64::INFINITY)) > bound
+        metric.slab_distance(q, a, f64::NEG_INFINITY, b.min[a]) > bound
+            && metric.slab_distance(q, a, b.max[a], f64::INFINITY) > bound
     })
 }

@@ -127,6 +127,26 @@ pub trait Metric<const D: usize> {
     fn kept_within(&self, q: &[f64; D], cell: &Aabb<f64, D>, mid: &[f64; D], bound: f64) -> Kept {
         (|h: &Aabb<f64, D>| self.box_distance(q, h) > bound).kept(cell, mid)
     }
+
+    /// [`Metric::box_distance`] of the slab of points whose coordinate along `axis` lies in
+    /// `[lo, hi]`, every other coordinate free (an infinite end allowed). The k-nearest search
+    /// asks it of the 2 D slabs beyond a box's faces to know that its bound's ball lies inside
+    /// the box. The default bounds the slab as a box; [`SquaredEuclidean`], [`Manhattan`] and
+    /// [`Chebyshev`] answer from the one offset along `axis`, with the same value.
+    ///
+    /// ```
+    /// use orthtree::query::{Metric, SquaredEuclidean};
+    /// // from (3, 7), the slab x <= 1: 2 away along x, so 4 squared
+    /// assert_eq!(SquaredEuclidean.slab_distance(&[3.0, 7.0], 0, f64::NEG_INFINITY, 1.0), 4.0);
+    /// ```
+    #[inline(always)]
+    fn slab_distance(&self, q: &[f64; D], axis: usize, lo: f64, hi: f64) -> f64 {
+        let slab = Aabb {
+            min: core::array::from_fn(|i| if i == axis { lo } else { f64::NEG_INFINITY }),
+            max: core::array::from_fn(|i| if i == axis { hi } else { f64::INFINITY }),
+        };
+        self.box_distance(q, &slab)
+    }
 }
 
 /// The offset from `q` to the nearest point of `[lo, hi]`, as `p - q` would round for that point
@@ -168,6 +188,12 @@ impl<const D: usize> Metric<D> for SquaredEuclidean {
         s
     }
     #[inline(always)]
+    fn slab_distance(&self, q: &[f64; D], axis: usize, lo: f64, hi: f64) -> f64 {
+        // The box's sum with every other term 0: `0 + g^2 + 0` is `g^2` exactly.
+        let g = axis_gap(q[axis], lo, hi);
+        g * g
+    }
+    #[inline(always)]
     fn scale_distance(&self, d: f64, factor: f64) -> f64 {
         d * (factor * factor)
     }
@@ -204,6 +230,10 @@ impl<const D: usize> Metric<D> for Manhattan {
         s
     }
     #[inline(always)]
+    fn slab_distance(&self, q: &[f64; D], axis: usize, lo: f64, hi: f64) -> f64 {
+        axis_gap(q[axis], lo, hi)
+    }
+    #[inline(always)]
     fn kept_within(&self, q: &[f64; D], cell: &Aabb<f64, D>, mid: &[f64; D], bound: f64) -> Kept {
         halves_by_terms(cell, mid, |a, lo, hi| axis_gap(q[a], lo, hi), bound)
     }
@@ -230,5 +260,9 @@ impl<const D: usize> Metric<D> for Chebyshev {
             s = s.max(axis_gap(q[i], b.min[i], b.max[i]));
         }
         s
+    }
+    #[inline(always)]
+    fn slab_distance(&self, q: &[f64; D], axis: usize, lo: f64, hi: f64) -> f64 {
+        axis_gap(q[axis], lo, hi)
     }
 }

@@ -626,5 +626,17 @@ proptest! {
         prop_assert_eq!(ball.excludes(&cell), ball.classify(&cell) == Relation::Outside);
         // through a reference, as the engines take a region
         prop_assert_eq!(Region::excludes(&&ball, &cell), ball.excludes(&cell));
+        // a slab's distance from its one offset equals the slab bounded as a box
+        for axis in 0..3 {
+            let (lo, hi) = (cell.min[axis], cell.max[axis]);
+            let slab = Aabb {
+                min: core::array::from_fn(|a| if a == axis { lo } else { f64::NEG_INFINITY }),
+                max: core::array::from_fn(|a| if a == axis { hi } else { f64::INFINITY }),
+            };
+            let metrics: [&dyn Metric<3>; 3] = [&SquaredEuclidean, &Manhattan, &Chebyshev];
+            for m in metrics {
+                prop_assert_eq!(m.slab_distance(&q, axis, lo, hi).to_bits(), m.box_distance(&q, &slab).to_bits());
+            }
+        }
     }
 }
