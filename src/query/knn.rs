@@ -89,17 +89,17 @@ pub(crate) type Found = SmallVec<[(f64, usize); 1]>;
 /// The best `k` candidates so far, each index at most once (the image search may offer a point
 /// again, with the same distance).
 ///
-/// Up to [`SORTED_MAX`] candidates stay sorted by `(distance, index)` in an array on the stack,
-/// a new one put in place by one step of insertion sort. For more, candidates within the bound are appended, and
-/// when `2k` are held the `k` nearest are selected (quickselect, `select_nth_unstable`)
-/// and the bound becomes the `k`-th distance: O(1) per candidate on average, where keeping the
-/// list sorted costs a search and a move of half the list each. The bound between two
-/// selections is the previous `k`-th distance, never below the true one, so nothing within the
-/// final `k`-th distance is pruned. On a curve (10^6 points on a circle, queries anywhere in
-/// the square around it), where most points scanned are nearer than the bound so far, 20 000
-/// 100-nearest queries took 4.2 s with the sorted list, 2.4 s with a binary search in it and
-/// 0.95 s this way; on 10^6 uniform points 100-NN 1.35-1.46x kiddo's time became 0.99-1.03x. At
-/// k = 20 on uniform points the sorted list is 7% faster; at 32 the two are even.
+/// Up to [`SORTED_MAX`] candidates stay sorted by `(distance, index)` in an array on the stack, a
+/// new one put in place by one step of insertion sort. For more, candidates within the bound are
+/// appended, and when `2k` are held the `k` nearest are selected (quickselect,
+/// `select_nth_unstable`) and the bound becomes the `k`-th distance: O(1) per candidate on average,
+/// where keeping the list sorted costs a search and a move of half the list each. The bound between
+/// two selections is the previous `k`-th distance, never below the true one, so nothing within the
+/// final `k`-th distance is pruned. On a curve (10^6 points on a circle, queries anywhere in the
+/// square around it), where most points scanned are nearer than the bound so far, 20 000
+/// 100-nearest queries took 4.2 s with the sorted list, 2.4 s with a binary search in it and 0.95 s
+/// this way; on 10^6 uniform points 100-NN 1.35-1.46x kiddo's time became 0.99-1.03x. At k = 20 on
+/// uniform points the sorted list is 7% faster; at 32 the two are even.
 pub(super) struct Best {
     k: usize,
     max: f64,
