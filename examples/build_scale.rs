@@ -163,6 +163,6 @@ fn main() {
             peak as f64 * 1024.0 / args.n as f64,
             input as f64 * 1024.0 / args.n as f64
         ),
-        _ => say!(),
+        _ => say!(""),
     }
 }

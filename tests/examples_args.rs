@@ -256,6 +256,13 @@ fn a_closed_standard_output_is_not_a_panic() {
         let (code, stderr) = programs::run_into_closed_pipe(&exe, name, &args);
         assert_eq!(code, 0, "{name} {args:?}: {stderr}");
         assert!(!stderr.contains("panicked"), "{name} {args:?}: {stderr}");
+        if let Some((code, stderr)) = programs::run_into_full_disk(&exe, name, &args) {
+            assert_eq!(code, 1, "{name} {args:?}: {stderr}");
+            assert!(
+                stderr.contains("cannot write to standard output"),
+                "{stderr}"
+            );
+        }
     }
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -13,21 +13,8 @@
 //! error (an unknown option, a bad value, work the arguments make too large); an error is one
 //! `error:` line naming the argument or the file.
 
-/// `println!` that ignores a closed standard output (a pipe into `head`) instead of panicking.
-macro_rules! say {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = writeln!(std::io::stdout(), $($arg)*);
-    }};
-}
-
-/// `print!` that ignores a closed standard output, as [`say!`] does.
-macro_rules! say_raw {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = write!(std::io::stdout(), $($arg)*);
-    }};
-}
+#[macro_use]
+mod print;
 
 mod balance;
 mod cloud;

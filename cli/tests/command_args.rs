@@ -254,6 +254,18 @@ fn a_closed_standard_output_is_not_a_panic() {
         let (code, stderr) = programs::run_into_closed_pipe(exe, args[0], args);
         assert_eq!(code, 0, "{args:?}: {stderr}");
         assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+        // Any other failure to write is an error, not output lost in silence (clap prints
+        // `--help` itself).
+        if args.contains(&"--help") {
+            continue;
+        }
+        if let Some((code, stderr)) = programs::run_into_full_disk(exe, args[0], args) {
+            assert_eq!(code, 1, "{args:?}: {stderr}");
+            assert!(
+                stderr.starts_with("error: cannot write to standard output"),
+                "{args:?}: {stderr}"
+            );
+        }
     }
 }
 

@@ -7,24 +7,9 @@
 //! the same workload on the same seeded points ([`points`]), and the answers are checked equal
 //! across the crates where they hand back the same thing.
 
-/// `println!` that ignores a closed standard output (a pipe into `head`) instead of panicking;
-/// the comparison programs print their tables through it.
-#[macro_export]
-macro_rules! say {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = writeln!(std::io::stdout(), $($arg)*);
-    }};
-}
-
-/// `print!` that ignores a closed standard output, as [`say!`] does.
-#[macro_export]
-macro_rules! say_raw {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = write!(std::io::stdout(), $($arg)*);
-    }};
-}
+#[macro_use]
+#[path = "../../cli/src/print.rs"]
+pub mod print;
 
 pub mod joins;
 #[path = "../../benches/common/mod.rs"]

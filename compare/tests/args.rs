@@ -187,4 +187,11 @@ fn a_closed_standard_output_is_not_a_panic() {
     let (code, stderr) = programs::run_into_closed_pipe(exe, "compare", &args);
     assert_eq!(code, 0, "{stderr}");
     assert!(!stderr.contains("panicked"), "{stderr}");
+    if let Some((code, stderr)) = programs::run_into_full_disk(exe, "compare", &args) {
+        assert_eq!(code, 1, "{stderr}");
+        assert!(
+            stderr.contains("cannot write to standard output"),
+            "{stderr}"
+        );
+    }
 }

@@ -8,23 +8,9 @@
 //! 1 for a failure while running (a file that cannot be written, a check that fails).
 #![allow(dead_code)] // not every example uses every helper
 
-/// `println!` that ignores a closed standard output (a pipe into `head`) instead of panicking.
-#[allow(unused_macros)] // not every example prints both ways
-macro_rules! say {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = writeln!(std::io::stdout(), $($arg)*);
-    }};
-}
-
-/// `print!` that ignores a closed standard output, as `say!` does.
-#[allow(unused_macros)]
-macro_rules! say_raw {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = write!(std::io::stdout(), $($arg)*);
-    }};
-}
+#[macro_use]
+#[path = "../../cli/src/print.rs"]
+mod print;
 
 use std::collections::VecDeque;
 use std::fmt::Display;

@@ -76,14 +76,37 @@ pub fn run(exe: &Path, name: &str, args: &[&str], cwd: Option<&Path>, limit: Dur
 /// When the program cannot start or ends by a signal.
 #[allow(dead_code)] // the tests of the distributed commands do not use it
 pub fn run_into_closed_pipe(exe: &Path, name: &str, args: &[&str]) -> (i32, String) {
-    let scratch = scratch_dir(name);
     let (reader, writer) = std::io::pipe().expect("a pipe");
     drop(reader);
+    run_into(exe, name, args, writer.into())
+}
+
+/// Runs `exe` with `args` in a fresh folder with its standard output `/dev/full` (every write
+/// fails, as on a full disk), and returns its exit code and standard error; `None` where the
+/// system has no `/dev/full`.
+///
+/// # Panics
+///
+/// When the program cannot start or ends by a signal.
+#[allow(dead_code)] // the tests of the distributed commands do not use it
+pub fn run_into_full_disk(exe: &Path, name: &str, args: &[&str]) -> Option<(i32, String)> {
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .ok()?;
+    Some(run_into(exe, name, args, full.into()))
+}
+
+/// Runs `exe` with `args` in a fresh folder, standard output to `stdout`; its exit code and
+/// standard error.
+#[allow(dead_code)]
+fn run_into(exe: &Path, name: &str, args: &[&str], stdout: Stdio) -> (i32, String) {
+    let scratch = scratch_dir(name);
     let out = Command::new(exe)
         .args(args)
         .current_dir(&scratch)
         .stdin(Stdio::null())
-        .stdout(writer)
+        .stdout(stdout)
         .stderr(Stdio::piped())
         .output()
         .unwrap_or_else(|e| panic!("start {}: {e}", exe.display()));
