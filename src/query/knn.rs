@@ -89,24 +89,23 @@ pub(crate) type Found = SmallVec<[(f64, usize); 1]>;
 /// The best `k` candidates so far, each index at most once (the image search may offer a point
 /// again, with the same distance).
 ///
-/// Up to [`SORTED_MAX`] candidates stay sorted by `(distance, index)` in an array on the stack, a
-/// new one put in place by one step of insertion sort. For more, candidates within the bound are
-/// appended, and when `2k` are held the `k` nearest are selected (quickselect,
-/// `select_nth_unstable`) and the bound becomes the `k`-th distance: O(1) per candidate on average,
-/// where keeping the list sorted costs a search and a move of half the list each. The bound between
-/// two selections is the previous `k`-th distance, never below the true one, so nothing within the
-/// final `k`-th distance is pruned. On a curve (10^6 points on a circle, queries anywhere in the
-/// square around it), where most points scanned are nearer than the bound so far, 20 000
-/// 100-nearest queries took 4.2 s with the sorted list, 2.4 s with a binary search in it and 0.95 s
-/// this way; on 10^6 uniform points 100-NN 1.35-1.46x kiddo's time became 0.99-1.03x. At k = 20 on
-/// uniform points the sorted list is 7% faster; at 32 the two are even.
+/// Up to [`SORTED_MAX`] candidates stay sorted by `(distance, index)`, a new one put in place by
+/// one step of insertion sort. For more, candidates within the bound are appended, and when `2k`
+/// are held the `k` nearest are selected (quickselect, `select_nth_unstable`) and the bound
+/// becomes the `k`-th distance: O(1) per candidate on average, where keeping the list sorted
+/// costs a search and a move of half the list each. The bound between two selections is the
+/// previous `k`-th distance, never below the true one, so nothing within the final `k`-th
+/// distance is pruned. On a curve (10^6 points on a circle, queries anywhere in the square around
+/// it), where most points scanned are nearer than the bound so far, 20 000 100-nearest queries
+/// took 4.2 s with the sorted list, 2.4 s with a binary search in it and 0.95 s this way; on 10^6
+/// uniform points 100-NN 1.35-1.46x kiddo's time became 0.99-1.03x. At k = 20 on uniform points
+/// the sorted list is 7% faster; at 32 the two are even. The list is the answer's own `SmallVec`
+/// (inline for k = 1): a larger `Best`, with 16 places inline, made 1-NN on 10^4 2-D points 9%
+/// slower (15.8 -> 17.3-17.5 ms for 10^5 queries; probably no longer kept in registers).
 pub(super) struct Best {
     k: usize,
     max: f64,
-    /// Up to [`SORTED_MAX`]: the candidates, sorted, in `top[..len]`.
-    top: [(f64, usize); SORTED_MAX],
-    len: usize,
-    /// Above [`SORTED_MAX`]: the candidates, unsorted, up to `held` (`2k`).
+    /// The candidates: up to [`SORTED_MAX`] sorted, above it unsorted, up to `held` (`2k`).
     list: Found,
     held: usize,
     /// The distance a candidate must not exceed: the `k`-th distance (at the last selection,
@@ -131,18 +130,15 @@ impl Best {
     /// No candidate yet, for the `k` nearest within `max` among `n` points.
     #[inline(always)]
     fn new(k: usize, max: f64, n: usize) -> Self {
-        let (held, list) = if k > SORTED_MAX {
-            let held = k.saturating_mul(2);
-            (held, SmallVec::with_capacity(held.min(n)))
+        let held = if k > SORTED_MAX {
+            k.saturating_mul(2)
         } else {
-            (0, SmallVec::new())
+            k
         };
         Best {
             k,
             max,
-            top: [(0.0, 0); SORTED_MAX],
-            len: 0,
-            list,
+            list: SmallVec::with_capacity(held.min(n)),
             held,
             limit: max,
             full: false,
@@ -184,30 +180,29 @@ impl Best {
             }
             return;
         }
-        let k = self.k;
+        if self.repeats && self.list.contains(&(d, i)) {
+            return;
+        }
         if self.full {
-            let (wd, wi) = self.top[k - 1];
+            let (wd, wi) = self.list[self.k - 1];
             // `i == wi` at `d == wd`: the last candidate offered again.
             if d == wd && i >= wi {
                 return;
             }
-        }
-        if self.repeats && self.top[..self.len].contains(&(d, i)) {
-            return;
+        } else {
+            self.list.push((d, i));
         }
         // Insertion: the worse candidates move up one place (the `k`-th drops out when full).
-        let mut at = if self.full { k - 1 } else { self.len };
-        while at > 0 && (d, i) < self.top[at - 1] {
-            self.top[at] = self.top[at - 1];
+        let list = self.list.as_mut_slice();
+        let mut at = list.len() - 1;
+        while at > 0 && (d, i) < list[at - 1] {
+            list[at] = list[at - 1];
             at -= 1;
         }
-        self.top[at] = (d, i);
-        if !self.full {
-            self.len += 1;
-            self.full = self.len == k;
-        }
-        if self.full {
-            self.limit = self.top[k - 1].0;
+        list[at] = (d, i);
+        if list.len() == self.k {
+            self.full = true;
+            self.limit = list[self.k - 1].0;
         }
     }
 
@@ -230,7 +225,7 @@ impl Best {
     /// The answer: the `k` nearest, sorted by `(distance, index)`.
     fn finish(mut self) -> Found {
         if self.k <= SORTED_MAX {
-            return SmallVec::from_slice(&self.top[..self.len]);
+            return self.list;
         }
         self.list.sort_unstable_by(by_distance);
         if self.repeats {
