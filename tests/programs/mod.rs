@@ -67,34 +67,34 @@ pub fn run(exe: &Path, name: &str, args: &[&str], cwd: Option<&Path>, limit: Dur
     run
 }
 
-/// Runs `exe` with `args` in a fresh folder with its standard output a pipe whose reading end
-/// is already closed (as in `program | head` once `head` has quit), and returns its exit code
-/// and standard error: printing must then neither panic nor fail the run.
+/// Checks `exe args` against a standard output it cannot write. Into a pipe whose reading end
+/// is already closed (as in `program | head` once `head` has quit) it stops printing and exits
+/// 0, never with a panic. Into `/dev/full` (every write fails, as on a full disk; skipped where
+/// the system has none), when `full_disk` is set, it exits 1 and its last line on standard
+/// error says it cannot write to standard output.
 ///
 /// # Panics
 ///
-/// When the program cannot start or ends by a signal.
+/// When either does not hold, or the program cannot start or ends by a signal.
 #[allow(dead_code)] // the tests of the distributed commands do not use it
-pub fn run_into_closed_pipe(exe: &Path, name: &str, args: &[&str]) -> (i32, String) {
+pub fn check_unwritable_output(exe: &Path, name: &str, args: &[&str], full_disk: bool) {
     let (reader, writer) = std::io::pipe().expect("a pipe");
     drop(reader);
-    run_into(exe, name, args, writer.into())
-}
-
-/// Runs `exe` with `args` in a fresh folder with its standard output `/dev/full` (every write
-/// fails, as on a full disk), and returns its exit code and standard error; `None` where the
-/// system has no `/dev/full`.
-///
-/// # Panics
-///
-/// When the program cannot start or ends by a signal.
-#[allow(dead_code)] // the tests of the distributed commands do not use it
-pub fn run_into_full_disk(exe: &Path, name: &str, args: &[&str]) -> Option<(i32, String)> {
-    let full = std::fs::OpenOptions::new()
-        .write(true)
-        .open("/dev/full")
-        .ok()?;
-    Some(run_into(exe, name, args, full.into()))
+    let (code, stderr) = run_into(exe, name, args, writer.into());
+    assert_eq!(code, 0, "{name} {args:?} into a closed pipe: {stderr}");
+    assert!(!stderr.contains("panicked"), "{name} {args:?}: {stderr}");
+    let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") else {
+        return;
+    };
+    if full_disk {
+        let (code, stderr) = run_into(exe, name, args, full.into());
+        assert_eq!(code, 1, "{name} {args:?} into /dev/full: {stderr}");
+        let last = stderr.lines().last().unwrap_or_default();
+        assert!(
+            last.starts_with("error: cannot write to standard output"),
+            "{name} {args:?}: {stderr}"
+        );
+    }
 }
 
 /// Runs `exe` with `args` in a fresh folder, standard output to `stdout`; its exit code and
