@@ -50,26 +50,26 @@ impl<F: Fn(&Aabb<f64, D>) -> bool, const D: usize> Halves<D> for F {
     }
 }
 
-/// [`Kept`] from whether the lower and upper half along each axis is out.
+/// [`Kept`] from whether the lower and upper half along each axis is out: every child when
+/// both halves along an axis are, else those in no half that is (the upper along an axis whose
+/// lower half is out, the lower along one whose upper half is). Bit operations only: which
+/// halves a search rules out follows the query's place, so a branch per axis is mispredicted
+/// often.
 #[inline(always)]
 fn kept_of<const D: usize>(out: &[(bool, bool); D]) -> Kept {
-    let (mut mask, mut want) = (0usize, 0usize);
-    for (a, &halves) in out.iter().enumerate() {
-        match halves {
-            (true, true) => return None,
-            (false, true) => mask |= 1 << a,
-            (true, false) => (mask, want) = (mask | 1 << a, want | 1 << a),
-            (false, false) => {}
-        }
+    let (mut lower, mut upper) = (0usize, 0usize);
+    for (a, &(lo, up)) in out.iter().enumerate() {
+        lower |= usize::from(lo) << a;
+        upper |= usize::from(up) << a;
     }
-    Some((mask, want))
+    (lower & upper == 0).then_some((lower | upper, lower))
 }
 
 /// [`Halves::kept`] for a test "the sum over the axes `a`, in order from 0, of
 /// `term(a, min_a, max_a)` exceeds `bound`": 3 D terms (the box's, each lower half's and each
-/// upper half's) instead of the 2 D^2 of asking each half box, and one sum per half whose term
-/// differs from the box's. Each sum adds the same terms in the same order as the test of that
-/// half box would, so each answer is the same.
+/// upper half's) instead of the 2 D^2 of asking each half box, and one sum per half. Each sum
+/// adds the same terms in the same order as the test of that half box would, so each answer is
+/// the same.
 #[inline(always)]
 pub(crate) fn halves_by_terms<const D: usize>(
     bbox: &Aabb<f64, D>,
@@ -85,14 +85,9 @@ pub(crate) fn halves_by_terms<const D: usize>(
         }
         s
     };
-    let whole_out = sum(D, 0.0) > bound;
-    let half_out = |a: usize, t: f64| {
-        if t == whole[a] {
-            whole_out
-        } else {
-            sum(a, t) > bound
-        }
-    };
+    // Every half's sum taken, even where its term equals the box's (the sum is then the
+    // box's): a branch on it costs more in mispredictions than the few additions it saves.
+    let half_out = |a: usize, t: f64| sum(a, t) > bound;
     let out: [(bool, bool); D] = core::array::from_fn(|a| {
         (
             half_out(a, term(a, bbox.min[a], mid[a])),

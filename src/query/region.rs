@@ -216,12 +216,13 @@ impl<const D: usize> Ball<D> {
 /// given the offsets to its low (`dl`) and high (`dh`) sides: 0 when the centre lies in it.
 #[inline(always)]
 fn nearest_offset(dl: f64, dh: f64) -> f64 {
+    // Selected without a branch on where the centre lies (see `metric::axis_gap`): the same
+    // value as `if dl < 0 { -dl } else if dh < 0 { -dh } else { 0 }` for every input.
+    let above = if dh < 0.0 { -dh } else { 0.0 };
     if dl < 0.0 {
         -dl
-    } else if dh < 0.0 {
-        -dh
     } else {
-        0.0
+        above
     }
 }
 
@@ -407,5 +408,35 @@ pub(crate) fn ball_relation(near: f64, far: f64, r2: f64) -> Relation {
         Relation::Inside
     } else {
         Relation::Crossing
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::metric::tests::SPECIAL;
+    use super::nearest_offset;
+
+    /// `nearest_offset` selects what the three-way branch it replaced returned, bit for bit,
+    /// on every pair of special values.
+    #[test]
+    fn nearest_offset_equals_the_branching_form() {
+        let branching = |dl: f64, dh: f64| {
+            if dl < 0.0 {
+                -dl
+            } else if dh < 0.0 {
+                -dh
+            } else {
+                0.0
+            }
+        };
+        for dl in SPECIAL {
+            for dh in SPECIAL {
+                let (got, want) = (nearest_offset(dl, dh), branching(dl, dh));
+                assert!(
+                    got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan()),
+                    "nearest_offset({dl}, {dh}) = {got}, the branching form {want}"
+                );
+            }
+        }
     }
 }
