@@ -27,6 +27,7 @@ pub mod fem;
 mod picture;
 
 use crate::limits;
+use crate::random_board::RandomBoard;
 use crate::Failure;
 #[cfg(feature = "heat")]
 use orthtree::mesh::Board;
@@ -59,15 +60,6 @@ pub struct HeatArgs {
     /// Write no files
     #[arg(long)]
     no_files: bool,
-}
-
-/// The arguments of `try_random_board`.
-#[derive(Clone, Copy, Debug)]
-#[cfg_attr(not(feature = "heat"), allow(dead_code))]
-pub struct RandomBoard {
-    seed: u64,
-    size: i64,
-    count: usize,
 }
 
 /// The default mesh limit: about 10^6 unknowns, whose Cholesky factor fits in a few GiB.
@@ -112,25 +104,10 @@ fn check_board_work(board: &Board, name: &str) -> Result<(), Failure> {
     .map_err(Failure::Usage)
 }
 
-/// `SEED,U,COUNT` of `--random`, each checked; the count against the board's capacity.
+/// `SEED,U,COUNT` of `--random` ([`RandomBoard::parse`]), refused when even the least board of
+/// COUNT components is estimated not to fit in memory.
 fn parse_random(raw: &str) -> Result<RandomBoard, String> {
-    let parts: Vec<&str> = raw.split(',').collect();
-    let [seed, size, count] = parts[..] else {
-        return Err("expected SEED,U,COUNT (three numbers separated by commas)".into());
-    };
-    let seed = limits::parse_number(seed, 0, u64::MAX).map_err(|e| format!("SEED: {e}"))?;
-    let size: i64 = limits::parse_number(size, 8, 1 << 30).map_err(|e| format!("U: {e}"))?;
-    if size & (size - 1) != 0 {
-        return Err(format!("U {size}: expected a power of two from 8 to 2^30"));
-    }
-    let count: usize =
-        limits::parse_number(count, 0, usize::MAX).map_err(|e| format!("COUNT: {e}"))?;
-    let capacity = orthtree::mesh::random_board_capacity(size);
-    if count as u64 > capacity {
-        return Err(format!(
-            "COUNT {count}: at most {capacity} components fit a board of side {size}"
-        ));
-    }
+    let RandomBoard { seed, size, count } = RandomBoard::parse(raw)?;
     // A lower bound before the board is drawn (each component at least a unit square); the
     // board's real perimeter is checked once it is drawn.
     let least = count as f64;
@@ -143,10 +120,8 @@ fn parse_random(raw: &str) -> Result<RandomBoard, String> {
 
 #[cfg(feature = "heat")]
 fn read_board(args: &HeatArgs) -> Result<(Board, String), Failure> {
-    if let Some(RandomBoard { seed, size, count }) = args.random {
-        return orthtree::mesh::try_random_board(seed, size, count)
-            .map(|b| (b, format!("random_board({seed}, {size}, {count})")))
-            .map_err(|e| Failure::Input(e.to_string()));
+    if let Some(random) = args.random {
+        return random.draw();
     }
     let Some(path) = &args.board else {
         return Ok((

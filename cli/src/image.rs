@@ -50,8 +50,23 @@ pub struct ImageArgs {
     #[arg(long, value_enum)]
     op: Option<OpArg>,
     /// The result: .pbm, .png (with the `png` feature) or .svg (a picture of the tree)
-    #[arg(long, value_name = "C")]
+    #[arg(long, value_name = "C", value_parser = check_output)]
     out: Option<String>,
+}
+
+/// An output path whose folder exists and whose extension names a format this build writes,
+/// checked before any work.
+fn check_output(raw: &str) -> Result<String, String> {
+    crate::limits::output_path(raw)?;
+    match extension(raw).as_str() {
+        "pbm" | "svg" => Ok(raw.to_string()),
+        #[cfg(feature = "png")]
+        "png" => Ok(raw.to_string()),
+        other => Err(format!(
+            "unsupported extension {other:?} (pbm, svg{})",
+            png_hint()
+        )),
+    }
 }
 
 /// The operations on the command line.

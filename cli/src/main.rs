@@ -25,6 +25,7 @@ mod image;
 mod limits;
 mod mesh;
 mod progress;
+mod random_board;
 
 use clap::error::ErrorKind;
 use clap::{CommandFactory, Parser, Subcommand};

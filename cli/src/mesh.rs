@@ -4,9 +4,10 @@
 
 use crate::limits::{self, shown};
 use crate::progress::Phase;
+use crate::random_board::RandomBoard;
 use crate::Failure;
 use orthtree::io::{gmsh, svg, triangle, vtk};
-use orthtree::mesh::{random_board, sample_board, Board, MeshOptions, Mode};
+use orthtree::mesh::{sample_board, Board, MeshOptions, Mode};
 use std::path::Path;
 use std::time::{Duration, Instant};
 
@@ -26,7 +27,7 @@ pub struct MeshArgs {
     #[arg(long, value_name = "U")]
     size: Option<i64>,
     /// random_board(SEED, U, COUNT) instead of a file: U a power of two from 8 to 2^30, COUNT at
-    /// most 100000
+    /// most 100000 and at most (U / 2)^2
     #[arg(long, value_name = "SEED,U,COUNT", value_parser = parse_random,
           conflicts_with_all = ["board", "size"])]
     random: Option<RandomBoard>,
@@ -64,32 +65,20 @@ enum ModeArg {
     Coarsest,
 }
 
-/// The arguments of `random_board`.
-#[derive(Clone, Copy, Debug)]
-pub struct RandomBoard {
-    seed: u64,
-    size: i64,
-    count: usize,
-}
-
 /// The most components `--random` asks for: `random_board` places them in O(COUNT^2) time.
 const MAX_RANDOM_COUNT: usize = 100_000;
 
-/// `SEED,U,COUNT` of `--random`, checked so that `random_board` cannot panic.
+/// `SEED,U,COUNT` of `--random` ([`RandomBoard::parse`]), COUNT at most [`MAX_RANDOM_COUNT`].
 fn parse_random(raw: &str) -> Result<RandomBoard, String> {
-    let parts: Vec<&str> = raw.split(',').collect();
-    let [seed, size, count] = parts[..] else {
-        return Err("expected SEED,U,COUNT (three numbers separated by commas)".into());
-    };
-    let seed = limits::parse_number(seed, 0, u64::MAX).map_err(|e| format!("SEED: {e}"))?;
-    let size: i64 = limits::parse_number(size, 8, 1 << 30).map_err(|e| format!("U: {e}"))?;
-    if size & (size - 1) != 0 {
-        return Err(format!("U = {size} is not a power of two from 8 to 2^30"));
+    let random = RandomBoard::parse(raw)?;
+    if random.count > MAX_RANDOM_COUNT {
+        return Err(format!(
+            "COUNT {}: at most {MAX_RANDOM_COUNT} (placing components takes time quadratic in \
+             the count)",
+            random.count
+        ));
     }
-    let count = limits::parse_number(count, 0, MAX_RANDOM_COUNT).map_err(|e| {
-        format!("COUNT: {e} (placing components takes time quadratic in the count)")
-    })?;
-    Ok(RandomBoard { seed, size, count })
+    Ok(random)
 }
 
 /// An output prefix whose folder exists, checked before any work.
@@ -126,9 +115,8 @@ impl MeshArgs {
 }
 
 fn read_board(args: &MeshArgs) -> Result<(Board, String), Failure> {
-    if let Some(RandomBoard { seed, size, count }) = args.random {
-        let name = format!("random_board({seed}, {size}, {count})");
-        return Ok((random_board(seed, size, count), name));
+    if let Some(random) = args.random {
+        return random.draw();
     }
     let Some(path) = &args.board else {
         return Ok((sample_board(), "built-in sample board".into()));

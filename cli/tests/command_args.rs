@@ -189,7 +189,7 @@ fn missing_and_bad_values_are_named() {
     }
     refused(
         "mesh",
-        &["--random", "1,64,100001"],
+        &["--random", "1,1024,100001"],
         &["--random", "100000"],
     );
     refused("image", &["a.pbm"], &["--op", "--out"]);
@@ -233,12 +233,29 @@ fn work_too_large_for_memory_is_estimated_and_refused() {
     ] {
         refused("heat", &["--random", random], &["--random", named]);
     }
+    // mesh's random boards: counts above the capacity, before any work (a panic before).
+    for (random, named) in [
+        ("1,8,17", "at most 16"),
+        ("1,16,65", "at most 64"),
+        ("1,1024,262145", "at most 262144"),
+    ] {
+        refused("mesh", &["--random", random], &["--random", named]);
+    }
 }
 
 #[test]
 fn outputs_in_missing_folders_are_refused_before_any_work() {
     for prefix in ["no-such-folder/board", "a/b/c/board", ""] {
         refused("mesh", &["--out", prefix], &["--out"]);
+    }
+    // image: the input need not exist, the output is refused first; so is a format it cannot
+    // write.
+    for out in ["no-such-folder/c.pbm", "", "c.gif", "c"] {
+        refused(
+            "image",
+            &["no-such-input.pbm", "--op", "not", "--out", out],
+            &["--out"],
+        );
     }
 }
 
