@@ -1,5 +1,5 @@
-//! Point clouds as XYZ / CSV text: one point a line, fields separated by commas, spaces or
-//! tabs, `#` starting a comment. A first line of names (`x,y,z,intensity,...`) says what each
+//! Point clouds as XYZ / CSV text: one point a line (lines end in LF, CRLF or CR), fields
+//! separated by commas, spaces or tabs, `#` starting a comment. A first line of names (`x,y,z,intensity,...`) says what each
 //! column is, with the names of the PLY reader ([`crate::io::ply`]); without one, the first
 //! three columns are `x y z` and the others extra columns `column4`, `column5`, ...
 //!
@@ -136,6 +136,37 @@ impl From<std::io::Error> for XyzError {
     }
 }
 
+/// Reads the next line into `buf` (emptied first), without its end: LF, CRLF or a CR alone;
+/// `false` at the end of the input. Stops reading once the line is longer than
+/// [`MAX_LINE_BYTES`] (the caller refuses it), so a file without line ends is not held whole.
+fn next_line(reader: &mut impl BufRead, buf: &mut Vec<u8>) -> std::io::Result<bool> {
+    buf.clear();
+    let mut any = false;
+    loop {
+        let chunk = reader.fill_buf()?;
+        if chunk.is_empty() {
+            return Ok(any);
+        }
+        any = true;
+        let Some(end) = chunk.iter().position(|&b| b == b'\n' || b == b'\r') else {
+            let len = chunk.len();
+            buf.extend_from_slice(chunk);
+            reader.consume(len);
+            if buf.len() > MAX_LINE_BYTES {
+                return Ok(true);
+            }
+            continue;
+        };
+        let cr = chunk[end] == b'\r';
+        buf.extend_from_slice(&chunk[..end]);
+        reader.consume(end + 1);
+        if cr && reader.fill_buf()?.first() == Some(&b'\n') {
+            reader.consume(1);
+        }
+        return Ok(true);
+    }
+}
+
 fn fields(line: &str) -> impl Iterator<Item = &str> {
     line.split(|c: char| c == ',' || c.is_ascii_whitespace())
         .filter(|f| !f.is_empty())
@@ -157,17 +188,9 @@ pub fn read<S: Scalar>(input: impl Read) -> Result<Cloud<S>, XyzError> {
     let mut layout: Option<Columns> = None;
     let mut cloud = Cloud::from_points(Vec::new());
     let mut values: Vec<f64> = Vec::new();
-    loop {
-        buf.clear();
-        let n = reader
-            .by_ref()
-            .take(MAX_LINE_BYTES as u64)
-            .read_until(b'\n', &mut buf)?;
-        if n == 0 {
-            break;
-        }
+    while next_line(&mut reader, &mut buf)? {
         line_no += 1;
-        if n == MAX_LINE_BYTES && buf.last() != Some(&b'\n') {
+        if buf.len() > MAX_LINE_BYTES {
             return Err(XyzError::BadLine { line: line_no });
         }
         let text = core::str::from_utf8(&buf).map_err(|_| XyzError::BadLine { line: line_no })?;

@@ -152,6 +152,30 @@ fn xyz_without_names_reads_three_coordinates_and_extra_columns() {
 }
 
 #[test]
+fn xyz_lines_end_in_lf_crlf_or_cr_alike() {
+    let lines = ["x,y,z,intensity", "1,2,3,7", "# a comment", "", "4,5,6,8"];
+    let want: Cloud<f64> = xyz::read(lines.join("\n").as_bytes()).unwrap();
+    assert_eq!(want.points, [[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]]);
+    for end in ["\r\n", "\r", "\n\r"] {
+        for last in ["", end] {
+            let text = lines.join(end) + last;
+            let got: Cloud<f64> = xyz::read(text.as_bytes()).unwrap();
+            assert_eq!(got, want, "{text:?}");
+        }
+    }
+    // Without names, CR alone: three points of three coordinates, no extra column.
+    let cloud: Cloud<f64> = xyz::read("1 2 3\r4 5 6\r7 8 9\r".as_bytes()).unwrap();
+    assert_eq!(cloud.points.len(), 3);
+    assert!(cloud.attributes.names().is_empty());
+    // A CR counts as a line end in the line numbers of errors.
+    let err = xyz::read::<f64>("1 2 3\r4 five 6\r".as_bytes()).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "XYZ line 2, field 2: \"five\" is not a number"
+    );
+}
+
+#[test]
 fn a_cloud_read_from_ply_builds_a_tree_that_finds_every_point() {
     use orthtree::prelude::*;
     let cloud = ply_round_trip(&integer_cloud(8, 200), Encoding::BinaryLittleEndian);

@@ -158,6 +158,19 @@ fn xyz_refuses_a_first_line_of_separators_alone() {
 }
 
 #[test]
+fn xyz_refuses_a_line_longer_than_the_limit_without_holding_the_file() {
+    // A line of exactly the limit (its end not counted) is read, one byte more is refused.
+    let line = |len: usize| format!("1 2 3{}", " ".repeat(len - 5));
+    let cloud = xyz::read::<f64>(format!("4 5 6\r{}\r", line(xyz::MAX_LINE_BYTES)).as_bytes());
+    assert_eq!(cloud.unwrap().points.len(), 2);
+    let err = xyz::read::<f64>(format!("4 5 6\r{}\r", line(xyz::MAX_LINE_BYTES + 1)).as_bytes());
+    assert!(matches!(err, Err(XyzError::BadLine { line: 2 })), "{err:?}");
+    // 16 MiB without a line end: refused at the first line.
+    let err = xyz::read::<f64>("9".repeat(1 << 24).as_bytes());
+    assert!(matches!(err, Err(XyzError::BadLine { line: 1 })), "{err:?}");
+}
+
+#[test]
 fn xyz_refuses_a_column_named_twice() {
     // the second x would have replaced the first without a word: x = 4 for the point
     let err = xyz::read::<f64>("x,y,z,x\n1,2,3,4\n".as_bytes()).unwrap_err();
