@@ -285,7 +285,8 @@ impl<S: Scalar, T, const D: usize> PointSet<D> for CompressedTree<S, T, D> {
         &self.items
     }
 
-    /// The closed box every point lies in (given to the builder, or the root cube).
+    /// The closed box every point lies in (given to the builder, or the root cube up to
+    /// `f64::MAX`).
     fn domain(&self) -> &Aabb<f64, D> {
         &self.index.domain
     }

@@ -393,6 +393,13 @@ pub(super) fn key_pair<S: Scalar, const D: usize>(
 /// The root geometry and the domain points must lie in: the root box given, or the smallest
 /// enclosing cube of the points' `bounds` (the unit box when there are no points: the chapter's
 /// linear scan of the extreme points gives `bounds`).
+///
+/// The cube's far side rounds to infinity on the axes where its side exceeds `f64::MAX`
+/// minus the lower corner (points spanning more than `f64::MAX` on some axis, or near it on
+/// one axis and far apart on another); its lower side never does. There the domain stops at
+/// `f64::MAX`: it holds every finite point the cube holds, so insertions, locations and checks
+/// answer as the cube's box would, and it stays a box of finite corners ([`Aabb::new`]'s),
+/// which the saved format, serde (JSON has no infinities) and every tree read back require.
 pub(crate) fn settle<const D: usize>(
     root: Option<Aabb<f64, D>>,
     bounds: Aabb<f64, D>,
@@ -410,7 +417,11 @@ pub(crate) fn settle<const D: usize>(
                 bounds
             };
             let geometry = RootGeometry::enclosing(&bounds);
-            (geometry, geometry.root_box())
+            let mut domain = geometry.root_box();
+            for x in &mut domain.max {
+                *x = x.min(f64::MAX);
+            }
+            (geometry, domain)
         }
     }
 }

@@ -68,9 +68,9 @@ pub(crate) fn cell_bounds<const D: usize>(
 const BLOCK: usize = 24;
 
 /// Whether the conversion to `f64` of coordinates of `S` must be checked apart from the bounds
-/// of `domain`: for 64-bit integers, and for floats when the domain is not finite (a built
-/// root cube's far side can round to infinity; a float that is not finite fails finite bounds,
-/// and `f32` and the smaller integers always convert exactly).
+/// of `domain`: for 64-bit integers, and for floats when the domain is not finite (every tree's
+/// domain is finite, built or read back, so this is a guard only; a float that is not finite
+/// fails finite bounds, and `f32` and the smaller integers always convert exactly).
 #[inline(always)]
 fn needs_exactness<S: Scalar, const D: usize>(domain: &Aabb<f64, D>) -> bool {
     let finite = (0..D).all(|a| domain.min[a].is_finite() && domain.max[a].is_finite());

@@ -107,7 +107,8 @@ pub trait PointSet<const D: usize> {
     /// # Panics
     /// When `slot >= self.len()`.
     fn point(&self, slot: usize) -> &[Self::Scalar; D];
-    /// The closed box every point lies in: the given root box, or the computed root cube.
+    /// The closed box every point lies in: the given root box, or the computed root cube (up
+    /// to `f64::MAX` where the cube's far side rounds beyond it: its corners are finite).
     fn domain(&self) -> &Aabb<f64, D>;
     /// Checks every invariant of the tree and names the first one broken.
     ///

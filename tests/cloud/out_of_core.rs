@@ -1,7 +1,8 @@
 //! The out-of-core build (`io::saved::external`) against the in-memory build: the same saved
 //! bytes for random clouds with duplicates, clusters, points on cell faces and a maximum depth,
-//! under budgets from one point per run (many merge passes) to one run for all; and the mapped
-//! tree's box queries against a scan of the points.
+//! under budgets from one point per run (many merge passes) to one run for all, also over points
+//! whose root cube reaches beyond `f64::MAX`; and the mapped tree's box queries against a scan of
+//! the points.
 
 use orthtree::io::saved::external::ExternalBuild;
 use orthtree::io::saved::write_point_tree;
@@ -144,6 +145,46 @@ fn external_build_refuses_bad_points_and_a_changed_source() {
         .unwrap_err();
     assert!(err.to_string().contains("10 points, then 11"), "{err}");
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0, "no file left");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The out-of-core build over points whose root cube's far side rounds beyond `f64::MAX`
+/// writes the in-memory build's bytes (the domain stopping at `f64::MAX`), which read back,
+/// open as a view and, with feature `mmap`, through a map.
+#[test]
+fn external_build_over_points_beyond_f64_max_reads_back() {
+    use crate::common::points::{beyond_f64_max, beyond_f64_max_queries, same_answers};
+    use orthtree::io::saved::{read_point_tree, PointTreeView};
+    use orthtree::PointSet;
+    let dir = folder("beyond");
+    let file = dir.join("t.tree");
+    for pts in beyond_f64_max(35) {
+        let want = in_memory_bytes(&pts, 4, None);
+        let tree: PointTree<f64, u32, 3> =
+            PointTreeBuilder::new().bucket_size(4).build(&pts).unwrap();
+        for budget in [100u64, 1 << 20] {
+            ExternalBuild::new(budget)
+                .bucket_size(4)
+                .write(|| pts.iter().copied(), &file)
+                .unwrap();
+            let got = std::fs::read(&file).unwrap();
+            assert!(got == want, "budget {budget}: bytes differ");
+            let back = read_point_tree::<f64, u32, 3>(&got).unwrap();
+            assert_eq!(back.domain(), tree.domain());
+            assert!(back.domain().max.iter().all(|x| x.is_finite()));
+            same_answers(&tree, &back, &beyond_f64_max_queries(&pts));
+            let view = PointTreeView::<f64, u32, 3>::open(&got).unwrap();
+            assert_eq!(view.domain(), tree.domain());
+            #[cfg(feature = "mmap")]
+            {
+                use orthtree::io::saved::mapped::MappedTree;
+                let mapped = MappedTree::<f64, u32, 3>::open(&file).unwrap();
+                assert_eq!(&mapped.domain(), tree.domain());
+                assert_eq!(mapped.view().unwrap().domain(), tree.domain());
+                assert_eq!(mapped.to_tree().unwrap().points(), tree.points());
+            }
+        }
+    }
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

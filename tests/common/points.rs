@@ -253,3 +253,90 @@ where
         );
     }
 }
+
+/// Point sets whose root cube's far side rounds beyond `f64::MAX` on some axis (points spanning
+/// more than `f64::MAX` there, or near it on one axis and apart on another), numbered: the three
+/// smallest such sets, then a cloud over every magnitude up to ±`f64::MAX` with duplicates (its
+/// third coordinates not negative, so that the cube spans `2 f64::MAX` from about 0 there).
+/// Every writer must write a tree over them and its reader read it back equal (the domain stops
+/// at `f64::MAX` where the cube goes beyond it).
+pub fn beyond_f64_max(seed: u64) -> Vec<Vec<([f64; 3], u32)>> {
+    use rand::Rng;
+    const M: f64 = f64::MAX;
+    let numbered =
+        |ps: &[[f64; 3]]| -> Vec<([f64; 3], u32)> { ps.iter().copied().zip(0..).collect() };
+    let mut r = super::rng(seed);
+    let mut pick = || -> f64 {
+        let m = match r.gen_range(0..5) {
+            0 => M,
+            1 => M * r.r#gen::<f64>(),
+            2 => 10f64.powi(r.gen_range(-300..308)),
+            3 => 0.0,
+            _ => f64::from(r.gen_range(1..4u8)),
+        };
+        if r.r#gen() {
+            -m
+        } else {
+            m
+        }
+    };
+    let mut cloud: Vec<[f64; 3]> = (0..300).map(|_| [pick(), pick(), pick().abs()]).collect();
+    cloud.extend_from_within(..40);
+    vec![
+        numbered(&[[1e308, 0.0, 0.0], [-1e308, 0.0, 0.0]]),
+        numbered(&[[M, M, M], [M, 1.0, 0.0]]),
+        numbered(&[[-M, 0.0, 0.0], [M, 0.0, 0.0]]),
+        numbered(&cloud),
+    ]
+}
+
+/// Query points for [`beyond_f64_max`]'s sets: some of the points, the origin and corners at
+/// `±f64::MAX`.
+pub fn beyond_f64_max_queries(pts: &[([f64; 3], u32)]) -> Vec<[f64; 3]> {
+    const M: f64 = f64::MAX;
+    let mut qs: Vec<[f64; 3]> = pts.iter().step_by(13).map(|p| p.0).collect();
+    qs.extend([[0.0; 3], [M; 3], [-M, M, 0.0], [1e308, 1.0, -1.0]]);
+    qs
+}
+
+/// The domain of a tree built over `pts` without a root box, checked: finite corners (a box
+/// `Aabb::new` takes), every point inside, and the root cube's box where that is finite,
+/// `f64::MAX` where its far side rounds beyond.
+pub fn check_domain_beyond_f64_max<P: PointSet<3, Scalar = f64>>(t: &P, pts: &[([f64; 3], u32)]) {
+    let d = *t.domain();
+    assert_eq!(Aabb::new(d.min, d.max), Ok(d), "finite corners");
+    assert!(pts.iter().all(|(p, _)| d.contains(p)), "every point inside");
+    if let Some(g) = pts.first().map(|_| RootGeometry::enclosing(&bounds(pts))) {
+        let root = g.root_box();
+        assert_eq!(d.min, root.min);
+        assert_eq!(d.max, root.max.map(|x| x.min(f64::MAX)));
+        assert!(root.max.contains(&f64::INFINITY), "a cube beyond f64::MAX");
+    }
+}
+
+/// The bounding box of `pts` (not empty).
+fn bounds<const D: usize>(pts: &[([f64; D], u32)]) -> Aabb<f64, D> {
+    let mut b = Aabb {
+        min: pts[0].0,
+        max: pts[0].0,
+    };
+    for (p, _) in pts {
+        for a in 0..D {
+            b.min[a] = b.min[a].min(p[a]);
+            b.max[a] = b.max[a].max(p[a]);
+        }
+    }
+    b
+}
+
+/// Asserts that the fields `keys` of the serde document `v` (sequences of `f64` or an `f64`:
+/// a root cube, a domain) hold numbers only: JSON has no infinities, and writes them as `null`.
+pub fn assert_numbers(v: &serde_json::Value, keys: &[&str]) {
+    for k in keys {
+        let ok = match &v[*k] {
+            serde_json::Value::Array(xs) => xs.iter().all(serde_json::Value::is_f64),
+            x => x.is_f64(),
+        };
+        assert!(ok, "`{k}` holds numbers only: {}", v[*k]);
+    }
+}

@@ -1,12 +1,16 @@
 //! Serde (feature `serde`) of the compressed trees through JSON: `CompressedTree` and
 //! `SkipQuadtree` fresh from a build and after updates (duplicates listed out of slot order,
-//! points closer than the finest `Cell`, points on split lines), empty, for D = 1, 2, 3 and 5,
+//! points closer than the finest `Cell`, points on split lines, points whose root cube reaches
+//! beyond `f64::MAX`), empty, for D = 1, 2, 3 and 5,
 //! read back valid and answering as before (against brute force, slots and ties included);
 //! `Subdivision` and `PointLocator` read back locating as before; corrupted documents refused
 //! with an error naming what is broken; mutated documents refused or valid.
 
 use crate::common::mutate::mutate;
-use crate::common::points::{config, same_answers};
+use crate::common::points::{
+    assert_numbers, beyond_f64_max, beyond_f64_max_queries, check_domain_beyond_f64_max, config,
+    same_answers,
+};
 use orthtree::compressed::{PointLocator, SkipQuadtree, Subdivision};
 use orthtree::prelude::*;
 use orthtree::{Aabb, CompressedTree};
@@ -126,6 +130,39 @@ fn compressed_trees_round_trip_in_every_dimension() {
     }
     assert!(t.is_empty());
     round_trip(&t, &[[0.5; 5]]);
+}
+
+/// Compressed and skip quadtrees over points whose root cube's far side rounds beyond
+/// `f64::MAX`, fresh and after updates at the domain's corners: the domain stops at
+/// `f64::MAX`, so the document holds no infinity and reads back the same tree.
+#[test]
+fn compressed_trees_over_points_beyond_f64_max_round_trip() {
+    for pts in beyond_f64_max(34) {
+        let qs = beyond_f64_max_queries(&pts);
+        let mut t = CompressedTree::new(&pts).unwrap();
+        check_domain_beyond_f64_max(&t, &pts);
+        assert_numbers(
+            &serde_json::to_value(&t).unwrap(),
+            &["half_lo", "half_side", "domain_min", "domain_max"],
+        );
+        let back: Comp<3> = serde_json::from_str(&serde_json::to_string(&t).unwrap()).unwrap();
+        assert_eq!(back.domain(), t.domain());
+        round_trip(&t, &qs);
+        let domain = *t.domain();
+        t.insert(domain.max, 1000).unwrap();
+        t.insert(domain.min, 1001).unwrap();
+        assert!(t.remove(&pts[0].0, &pts[0].1));
+        assert_eq!(*t.domain(), domain);
+        round_trip(&t, &qs);
+        let skip = SkipQuadtree::with_seed(t, 99);
+        assert_numbers(
+            &serde_json::to_value(&skip).unwrap()["base"],
+            &["half_lo", "half_side", "domain_min", "domain_max"],
+        );
+        let back: Skip<3> = serde_json::from_str(&serde_json::to_string(&skip).unwrap()).unwrap();
+        assert_eq!(back.domain(), skip.domain());
+        skip_round_trip(&skip, &qs);
+    }
 }
 
 #[test]

@@ -1,6 +1,7 @@
 //! The saved-tree format (`io::saved`, feature `saved`): round trips for D = 1, 2, 3, 8 over
 //! f64, f32 and integer coordinates, zero-sized and array items, empty trees, duplicates, balanced
-//! trees and trees with freed blocks (after removals); the loaded tree validates, equals the one
+//! trees, trees with freed blocks (after removals) and trees over points whose root cube reaches
+//! beyond `f64::MAX` (the domain stops there); the loaded tree validates, equals the one
 //! written array for array, answers every query as it did and as brute force does, and takes
 //! updates. Files read from disk equal slices. Wrong types are refused by name. The borrowed
 //! view of the same bytes (`PointTreeView`, also from a misaligned slice, which copies) answers
@@ -8,7 +9,9 @@
 //! owned tree and as brute force do; points moved off their leaf's cell, onto a split line or to
 //! an inexact 64-bit integer are refused by name.
 
-use crate::common::points::config;
+use crate::common::points::{
+    beyond_f64_max, beyond_f64_max_queries, check_domain_beyond_f64_max, config,
+};
 use orthtree::error::Invariant;
 use orthtree::io::saved::{
     read_point_tree, read_point_tree_file, saved_len, write_point_tree, PointTreeView, SavedError,
@@ -463,6 +466,58 @@ fn points_out_of_place_or_inexact_are_refused_by_name() {
     assert!(e.to_string().contains("not exact as f64"), "{e}");
     assert_eq!(refusal(e).2, Some(17));
     assert!(read_point_tree::<u64, u32, 2>(&b).is_err());
+}
+
+/// Trees over points whose root cube's far side rounds beyond `f64::MAX`: the domain stops at
+/// `f64::MAX` (its corners finite, every point inside, locatable), and the trees round-trip
+/// through bytes, a file and the view like any other, also after updates. The header's domain
+/// maximum set to infinity (not a finite box) or beyond the root cube is still refused as a
+/// setting, by the view and the owned reader.
+#[test]
+fn trees_over_points_beyond_f64_max_round_trip() {
+    for pts in beyond_f64_max(31) {
+        let qs = beyond_f64_max_queries(&pts);
+        for bucket in [1, 4, 64] {
+            let t = PointTreeBuilder::new()
+                .bucket_size(bucket)
+                .build(&pts)
+                .unwrap();
+            check_domain_beyond_f64_max(&t, &pts);
+            assert!(t.locate(&t.domain().max).unwrap().inside().is_some());
+            let mut back = round_trip(&t, &qs);
+            // Updates reach the domain's corners, and the updated tree saves and reads back too.
+            let corner = t.domain().max;
+            back.insert(corner, 1000).unwrap();
+            assert!(back.remove(&pts[0].0, &pts[0].1));
+            round_trip(&back, &qs);
+        }
+    }
+    let t = PointTree::new(&beyond_f64_max(31)[0]).unwrap();
+    assert_eq!(t.domain().max[1], f64::MAX);
+    let bytes = save(&t);
+    // 3D: half the side at 64, the halved lower corner at 72, the domain's minimum at 96 and
+    // its maximum at 120.
+    let max_at = |axis: usize| 120 + 8 * axis;
+    let read = |b: &[u8]| f64::from_le_bytes(b[..8].try_into().unwrap());
+    assert_eq!(read(&bytes[max_at(1)..]), f64::MAX);
+    let root_max_0 = t.geometry().root_box().max[0];
+    for (axis, bad) in [
+        (1, f64::INFINITY),
+        (2, f64::NAN),
+        (0, f64::INFINITY),
+        (0, root_max_0.next_up()),
+    ] {
+        let mut b = bytes.clone();
+        b[max_at(axis)..max_at(axis) + 8].copy_from_slice(&bad.to_le_bytes());
+        for e in [
+            PointTreeView::<f64, u32, 3>::open(&b).unwrap_err(),
+            read_point_tree::<f64, u32, 3>(&b).unwrap_err(),
+        ] {
+            let message = e.to_string();
+            assert_eq!(refusal(e), (Invariant::Settings, None, None), "{message}");
+            assert!(message.contains(&format!("axis {axis}")), "{message}");
+        }
+    }
 }
 
 proptest! {

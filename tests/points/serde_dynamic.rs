@@ -1,11 +1,15 @@
 //! Serde (feature `serde`) of `DynamicPointTree` through JSON: trees fresh from a build, after
 //! inserts and removes (chunks with slack, free space in the chunk array), with duplicates and
-//! points on split lines, empty, for D = 1, 2, 3 and 6, read back valid and answering as before
+//! points on split lines, over points whose root cube reaches beyond `f64::MAX`, empty, for D = 1,
+//! 2, 3 and 6, read back valid and answering as before
 //! (against brute force, slots and ties included), and updating alike afterwards; corrupted
 //! documents refused with an error naming what is broken; mutated documents refused or valid.
 
 use crate::common::mutate::mutate;
-use crate::common::points::{config, same_answers};
+use crate::common::points::{
+    assert_numbers, beyond_f64_max, beyond_f64_max_queries, check_domain_beyond_f64_max, config,
+    same_answers,
+};
 use orthtree::prelude::*;
 use orthtree::{points::PointTreeBuilder, Aabb, DynamicPointTree};
 use proptest::prelude::*;
@@ -127,6 +131,30 @@ fn dynamic_trees_round_trip_in_every_dimension() {
     }
     assert!(t.is_empty());
     round_trip(&t, &[[1.0; 6]]);
+}
+
+/// Dynamic trees over points whose root cube's far side rounds beyond `f64::MAX`, fresh and
+/// after updates at the domain's corners: the domain stops at `f64::MAX`, so the document holds
+/// no infinity and reads back the same tree.
+#[test]
+fn dynamic_trees_over_points_beyond_f64_max_round_trip() {
+    for pts in beyond_f64_max(33) {
+        let qs = beyond_f64_max_queries(&pts);
+        let b = PointTreeBuilder::new().bucket_size(2);
+        let mut t = DynamicPointTree::from(b.build(&pts).unwrap());
+        check_domain_beyond_f64_max(&t, &pts);
+        assert_numbers(
+            &serde_json::to_value(&t).unwrap(),
+            &["half_lo", "half_side", "domain_min", "domain_max"],
+        );
+        assert_eq!(round_trip(&t, &qs).domain(), t.domain());
+        let domain = *t.domain();
+        t.insert(domain.max, 1000).unwrap();
+        t.insert(domain.min, 1001).unwrap();
+        assert!(t.remove(&pts[0].0, &pts[0].1));
+        assert_eq!(*t.domain(), domain);
+        assert_eq!(round_trip(&t, &qs).domain(), &domain);
+    }
 }
 
 /// A live leaf of a tree holding at least two points: its node index, count and chunk start.

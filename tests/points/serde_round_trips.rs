@@ -1,10 +1,14 @@
-//! Serde (feature `serde`) through JSON: point trees (plain, balanced, with freed blocks; D = 1, 2,
-//! 3; f64 and i32), the arena, region trees, boxes and cells round-trip and answer as before;
+//! Serde (feature `serde`) through JSON: point trees (plain, balanced, with freed blocks, over
+//! points whose root cube reaches beyond `f64::MAX`; D = 1, 2, 3; f64 and i32), the arena, region
+//! trees, boxes and cells round-trip and answer as before;
 //! corrupted documents (a point moved out of its leaf, a broken link, a wrong dimension, an
 //! inverted box, a cell off its level, a collapsible region node) are refused with an error that
 //! names what is broken.
 
 use super::saved::check_against_brute;
+use crate::common::points::{
+    assert_numbers, beyond_f64_max, beyond_f64_max_queries, check_domain_beyond_f64_max,
+};
 use orthtree::image::ImageTree;
 use orthtree::prelude::*;
 use orthtree::tree::NodeId;
@@ -62,6 +66,54 @@ fn point_trees_round_trip_through_json() {
     let back: PointTree<i32, u8, 3> =
         serde_json::from_str(&serde_json::to_string(&t).unwrap()).unwrap();
     assert_eq!((back.points(), back.items()), (t.points(), t.items()));
+}
+
+/// Point trees over points whose root cube's far side rounds beyond `f64::MAX`: the domain
+/// stops at `f64::MAX`, so the document holds no infinity (JSON has none: it would write `null`)
+/// and reads back the same tree; a domain maximum of `null`, beyond `f64::MAX` or beyond the
+/// root cube is refused.
+#[test]
+fn point_trees_over_points_beyond_f64_max_round_trip_through_json() {
+    for pts in beyond_f64_max(32) {
+        let qs = beyond_f64_max_queries(&pts);
+        for bucket in [1, 64] {
+            let t = PointTreeBuilder::new()
+                .bucket_size(bucket)
+                .build(&pts)
+                .unwrap();
+            check_domain_beyond_f64_max(&t, &pts);
+            assert_numbers(
+                &serde_json::to_value(&t).unwrap(),
+                &["half_lo", "half_side", "domain_min", "domain_max"],
+            );
+            let json = serde_json::to_string(&t).unwrap();
+            let back: PointTree<f64, u32, 3> = serde_json::from_str(&json).unwrap();
+            assert_eq!(back.domain(), t.domain());
+            round_trip(&t, &qs);
+        }
+    }
+    let t = PointTree::new(&beyond_f64_max(32)[0]).unwrap();
+    let root_max_0 = t.geometry().root_box().max[0];
+    let refused = |edit: &dyn Fn(&mut Value)| -> String {
+        let mut v = serde_json::to_value(&t).unwrap();
+        edit(&mut v);
+        match serde_json::from_value::<PointTree<f64, u32, 3>>(v) {
+            Ok(_) => panic!("a corrupted document was accepted"),
+            Err(e) => e.to_string(),
+        }
+    };
+    let e = refused(&|v| v["domain_max"][1] = Value::Null);
+    assert!(e.contains("null"), "{e}");
+    let e = refused(&|v| v["domain_max"][0] = json!(root_max_0.next_up()));
+    assert!(e.contains("axis 0") && e.contains("root cube"), "{e}");
+    let json = serde_json::to_string(&t).unwrap();
+    let at = json.find("\"domain_max\":[").unwrap() + "\"domain_max\":[".len();
+    let beyond = format!(
+        "{}1e309{}",
+        &json[..at],
+        &json[json[at..].find(',').unwrap() + at..]
+    );
+    assert!(serde_json::from_str::<PointTree<f64, u32, 3>>(&beyond).is_err());
 }
 
 /// `t` as a JSON value, changed by `edit`, read back: the error's message.

@@ -26,6 +26,13 @@
 //! Coordinates of every dimension are written as sequences (serde has no impls for arrays of a
 //! generic length), points as one flat sequence of `n D` coordinates.
 //!
+//! Every float a tree writes is finite (its domain stops at `f64::MAX` where its root cube goes
+//! beyond), so formats without infinities, such as JSON, hold every tree. A round trip is exact
+//! only if the format reads back every `f64` it wrote: serde_json does with its feature
+//! `float_roundtrip`; its default parser can come back a unit in the last place off (for example
+//! for `f64::MAX / 2`, the halved corner of a root cube at `f64::MAX`), and the tree read is then
+//! refused by the checks above, or holds the points so moved where they stay in their cells.
+//!
 //! ```
 //! use orthtree::prelude::*;
 //! use orthtree::{Aabb, Quadtree};
