@@ -1,8 +1,8 @@
 //! The out-of-core build (`io::saved::external`) against the in-memory build: the same saved
 //! bytes for random clouds with duplicates, clusters, points on cell faces and a maximum depth,
 //! under budgets from one point per run (many merge passes) to one run for all, also over points
-//! whose root cube reaches beyond `f64::MAX`; and the mapped tree's box queries against a scan of
-//! the points.
+//! whose root cube reaches beyond `f64::MAX`; sources that change between the passes refused
+//! before anything is written; and the mapped tree's box queries against a scan of the points.
 
 use orthtree::io::saved::external::ExternalBuild;
 use orthtree::io::saved::write_point_tree;
@@ -145,6 +145,113 @@ fn external_build_refuses_bad_points_and_a_changed_source() {
         .unwrap_err();
     assert!(err.to_string().contains("10 points, then 11"), "{err}");
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0, "no file left");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A source whose second pass yields as many points as the first but not the same: a point
+/// moved outside the first pass's bounds (also inside the root cube chosen from them) is refused
+/// naming its index and axis, a coordinate that is no longer finite as the in-memory build
+/// refuses it, each before anything is written: a file already at the output is left as it was
+/// and no temporary run is left, whatever runs were spilled. The same points in another order
+/// (all within the bounds) still give a file that reads back valid.
+#[test]
+fn external_build_refuses_points_moved_between_passes() {
+    use orthtree::io::saved::external::ExternalError;
+    use orthtree::io::saved::read_point_tree;
+    use orthtree::PointSet;
+    let dir = folder("moved");
+    let file = dir.join("t.tree");
+    std::fs::write(&file, b"an older file").unwrap();
+    let base: Vec<([f64; 3], u32)> = (0..40u32)
+        .map(|i| ([f64::from(i % 8), f64::from(i / 8), 0.5], i))
+        .collect();
+    // The bounds are [0, 7] x [0, 4] x [0.5, 0.5], the root cube [0, 7]^3 from (0, 0, 0.5).
+    for (index, axis, moved) in [
+        (17, 1, [1.0, 9.0, 0.5]),
+        (3, 2, [3.0, 0.0, 6.0]),
+        (39, 0, [-1.0, 4.0, 0.5]),
+    ] {
+        for budget in [100u64, 1 << 20] {
+            let mut calls = 0;
+            let err = ExternalBuild::new(budget)
+                .bucket_size(2)
+                .write(
+                    || {
+                        calls += 1;
+                        let mut pts = base.clone();
+                        if calls == 2 {
+                            pts[index].0 = moved;
+                        }
+                        pts
+                    },
+                    &file,
+                )
+                .unwrap_err();
+            match err {
+                ExternalError::PointChanged {
+                    index: i,
+                    axis: a,
+                    value,
+                    ..
+                } => assert_eq!((i, a, value.get()), (index, axis, moved[axis])),
+                e => panic!("{e}"),
+            }
+            let message = err.to_string();
+            assert!(
+                message.contains(&format!("point {index}"))
+                    && message.contains(&format!("axis {axis}"))
+                    && message.contains("changed between passes"),
+                "{message}"
+            );
+            assert_eq!(std::fs::read(&file).unwrap(), b"an older file");
+            assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1, "a run left");
+        }
+    }
+    let mut calls = 0;
+    let err = ExternalBuild::new(100)
+        .write(
+            || {
+                calls += 1;
+                let mut pts = base.clone();
+                if calls == 2 {
+                    pts[30].0[1] = f64::NAN;
+                }
+                pts
+            },
+            &file,
+        )
+        .unwrap_err();
+    assert!(
+        matches!(
+            err,
+            ExternalError::Build(orthtree::Error::NonFiniteCoordinate {
+                index: 30,
+                axis: 1,
+                ..
+            })
+        ),
+        "{err}"
+    );
+    assert_eq!(std::fs::read(&file).unwrap(), b"an older file");
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1, "a run left");
+    let mut calls = 0;
+    ExternalBuild::new(100)
+        .bucket_size(2)
+        .write(
+            || {
+                calls += 1;
+                let mut pts = base.clone();
+                if calls == 2 {
+                    pts.reverse();
+                }
+                pts
+            },
+            &file,
+        )
+        .unwrap();
+    let back = read_point_tree::<f64, u32, 3>(&std::fs::read(&file).unwrap()).unwrap();
+    back.validate().unwrap();
+    assert_eq!(back.len(), base.len());
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

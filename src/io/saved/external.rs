@@ -3,8 +3,10 @@
 //!
 //! 1. A first pass over the points checks them and takes their bounds: the root cube, as the
 //!    in-memory build chooses it.
-//! 2. A second pass cuts the points into runs of as many as fit the budget, sorts each run by
-//!    (Morton key, input index) and spills it to a temporary file.
+//! 2. A second pass checks each point again against the first's count and bounds (a source
+//!    that changed between passes is refused, never written), cuts the points into runs of as
+//!    many as fit the budget, sorts each run by (Morton key, input index) and spills it to a
+//!    temporary file.
 //! 3. Runs are merged, at most [`FAN_IN`] at a time (the earlier run first among equal keys, so
 //!    the order is the in-memory build's), until one pass can merge all of them into the saved
 //!    file: the points and items stream into their sections while the node arrays are built
@@ -22,7 +24,7 @@
 use super::header::{header_len, padded, Header};
 use super::runs::{io, merge, Layout, Spill};
 use super::{SavedScalar, ALIGN};
-use crate::geom::{Aabb, Cell, RootGeometry};
+use crate::geom::{Aabb, Cell, FloatBits, RootGeometry};
 use crate::points::DEFAULT_BUCKET_SIZE;
 use crate::Error;
 use bytemuck::Pod;
@@ -82,6 +84,19 @@ pub enum ExternalError {
         /// Points in the second.
         second: u64,
     },
+    /// The second pass over the points gave point `index` outside the bounds the first pass
+    /// found (the points' bounding box, from which the root cube and the domain written in the
+    /// header were chosen): the points changed between passes.
+    PointChanged {
+        /// Position of the point in the sequence.
+        index: usize,
+        /// The first axis on which it lies outside the first pass's bounds.
+        axis: usize,
+        /// Its coordinate there, in `f64`.
+        value: FloatBits,
+        /// The first pass's bounds on that axis.
+        bounds: (FloatBits, FloatBits),
+    },
     /// Reading or writing `path` failed.
     Io {
         /// The file.
@@ -99,6 +114,16 @@ impl fmt::Display for ExternalError {
                 f,
                 "the points changed between passes: {first} points, then {second}"
             ),
+            ExternalError::PointChanged {
+                index,
+                axis,
+                value,
+                bounds: (lo, hi),
+            } => write!(
+                f,
+                "the points changed between passes: point {index} has coordinate {value} on \
+                 axis {axis}, outside the first pass's bounds [{lo}, {hi}]"
+            ),
             ExternalError::Io { path, source } => write!(f, "{}: {source}", path.display()),
         }
     }
@@ -109,7 +134,7 @@ impl std::error::Error for ExternalError {
         match self {
             ExternalError::Build(e) => Some(e),
             ExternalError::Io { source, .. } => Some(source),
-            ExternalError::SourceChanged { .. } => None,
+            ExternalError::SourceChanged { .. } | ExternalError::PointChanged { .. } => None,
         }
     }
 }
@@ -160,10 +185,21 @@ impl ExternalBuild {
     /// bounds, once for the runs; both passes must yield the same points) to `out`, with each
     /// point's position in the sequence as input index.
     ///
+    /// The second pass checks each point again against what the first found (the count, the
+    /// bounds the root cube and domain were chosen from, finite and exact coordinates), so a
+    /// source that changes between passes in a way the file would not survive gives an error,
+    /// never a file [`read_point_tree`](super::read_point_tree) refuses. (A change that keeps
+    /// every point within those bounds still gives a valid saved tree, of the second pass's
+    /// points.) Every error but [`ExternalError::Io`] in the last merge comes before `out` is
+    /// created: `out` is then left as it was (absent, or its old contents); the temporary runs
+    /// are removed on every path.
+    ///
     /// # Errors
-    /// [`ExternalError::Build`] for a point the in-memory build refuses (naming its index) or
-    /// settings it refuses (bucket size 0, maximum depth too large, `u32::MAX` points or more);
-    /// [`ExternalError::SourceChanged`]; [`ExternalError::Io`] naming the file.
+    /// [`ExternalError::Build`] for a point the in-memory build refuses, in either pass (naming
+    /// its index), or settings it refuses (bucket size 0, maximum depth too large, `u32::MAX`
+    /// points or more); [`ExternalError::SourceChanged`] for another count in the second pass;
+    /// [`ExternalError::PointChanged`] for a point of the second pass outside the first pass's
+    /// bounds, naming its index and axis; [`ExternalError::Io`] naming the file.
     ///
     /// # Complexity
     /// O(n log n) time; two passes over the source, the runs written and read once per merge
@@ -239,7 +275,7 @@ impl ExternalBuild {
             peak: 0,
         };
         // Pass 2: sorted runs.
-        let runs = self.spill_runs::<S, T, I, D>(&mut source, &geometry, n, &mut spill)?;
+        let runs = self.spill_runs::<S, T, I, D>(&mut source, &geometry, &bounds, n, &mut spill)?;
         let mut report = ExternalReport {
             points: n,
             runs: runs.len() as u64,
@@ -291,10 +327,12 @@ impl ExternalBuild {
 
     /// Pass 2: the points in runs of [`ExternalBuild::run_points`], each sorted by (key,
     /// index) and spilled; returns the run files and their point counts, in input order.
+    /// Each point is checked against pass 1's count and `bounds` (see [`ExternalBuild::write`]).
     fn spill_runs<S, T, I, const D: usize>(
         &self,
         source: &mut impl FnMut() -> I,
         geometry: &RootGeometry<D>,
+        bounds: &Aabb<f64, D>,
         n: u64,
         spill: &mut Spill,
     ) -> Result<Vec<(PathBuf, u64)>, ExternalError>
@@ -336,6 +374,7 @@ impl ExternalBuild {
                     second: seen,
                 });
             }
+            check_again(&p, bounds, (seen - 1) as usize)?;
             order.push((geometry.scalar_key(&p), entries.len() as u32));
             entries.push((p, item));
             if entries.len() == cap {
@@ -432,5 +471,35 @@ impl ExternalBuild {
         items.write_all(&header.encode::<S>()).map_err(&fail)?;
         items.flush().map_err(&fail)?;
         Ok((at, topology.slots()))
+    }
+}
+
+/// Point `index` of pass 2 checked against pass 1's `bounds`: the root cube and the domain
+/// written in the header were chosen from them, and the key is taken in that cube, so a point
+/// outside them (or not finite, or not exact in `f64`) would give a file whose reader refuses
+/// it ("a point lies outside the domain").
+///
+/// # Errors
+/// [`ExternalError::PointChanged`] naming the point, axis, value and bounds;
+/// [`ExternalError::Build`] for a coordinate that is not finite or has no exact `f64`.
+fn check_again<S: SavedScalar, const D: usize>(
+    p: &[S; D],
+    bounds: &Aabb<f64, D>,
+    index: usize,
+) -> Result<(), ExternalError> {
+    match Error::check_input(p, Some(bounds), index) {
+        Ok(_) => Ok(()),
+        Err(Error::OutsideRootBox {
+            index,
+            axis,
+            value,
+            interval,
+        }) => Err(ExternalError::PointChanged {
+            index,
+            axis,
+            value,
+            bounds: interval,
+        }),
+        Err(e) => Err(ExternalError::Build(e)),
     }
 }
