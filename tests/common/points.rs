@@ -321,10 +321,8 @@ fn bounds<const D: usize>(pts: &[([f64; D], u32)]) -> Aabb<f64, D> {
         max: pts[0].0,
     };
     for (p, _) in pts {
-        for a in 0..D {
-            b.min[a] = b.min[a].min(p[a]);
-            b.max[a] = b.max[a].max(p[a]);
-        }
+        b.min = core::array::from_fn(|a| b.min[a].min(p[a]));
+        b.max = core::array::from_fn(|a| b.max[a].max(p[a]));
     }
     b
 }
