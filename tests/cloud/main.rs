@@ -1,7 +1,8 @@
 //! Point clouds: the PLY, XYZ/CSV and LAS readers and writers (round trips, hostile files), and
 //! the voxel operations against brute force (downsampling and occupancy against a sort by voxel
-//! key, outlier removal and normals against a k-nearest scan); the out-of-core build against
-//! the in-memory one (feature `saved`).
+//! key, outlier removal and normals against a k-nearest scan, outlier removal on clouds whose
+//! distances leave `f64`'s range); the out-of-core build against the in-memory one (feature
+//! `saved`).
 
 #[path = "../common/mod.rs"]
 mod common;
@@ -15,4 +16,5 @@ mod las_files;
 mod neighbours;
 #[cfg(feature = "saved")]
 mod out_of_core;
+mod outlier_extremes;
 mod voxels;
