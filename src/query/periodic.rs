@@ -7,6 +7,11 @@
 //! *Computer Simulation of Liquids*, section 1.5): `d = |a - b|` reduced modulo `L`, then
 //! `min(d, L - d)`, never more than `L / 2`. The distance combines these offsets as the plain
 //! metric does (a sum of squares, a sum, a maximum), so it is the minimum over all `3^k` images.
+//! Points less than a period apart (every pair of the period box) take their plain difference;
+//! points farther apart are reduced from their remainders modulo `L`, which are exact, so that
+//! the offset is within a rounding of `L` of the exact one for any finite coordinates (the
+//! rounded difference itself is off by up to half a unit of `|a - b|`, which exceeds the
+//! period far out, and overflows between the extremes of `f64`).
 //!
 //! The box bound of a cell `[lo, hi]` along a wrapping axis is the gap from the query to the
 //! nearest image of the cell, lowered by a few units of rounding of the coordinates involved
@@ -278,7 +283,8 @@ impl<const D: usize> Torus<D> {
             .collect()
     }
 
-    /// The minimum-image offset `|a - b|` along `axis` (the plain one on an ordinary axis).
+    /// The minimum-image offset `|a - b|` along `axis` (the plain one on an ordinary axis), for
+    /// any finite `a` and `b`.
     #[inline(always)]
     pub(crate) fn offset(&self, axis: usize, a: f64, b: f64) -> f64 {
         let d = (a - b).abs();
@@ -286,7 +292,17 @@ impl<const D: usize> Torus<D> {
             return d;
         }
         let l = self.period[axis];
-        let d = if d >= l { d % l } else { d };
+        // Points within a period of each other (every pair of the period box) keep their
+        // plain offset; those farther apart are reduced from their remainders, not from `d`,
+        // which has rounded by up to half a unit of `|a - b|` (many periods far out) or
+        // overflowed. A `d` of exactly `l` is an offset of 0 either way (as `l % l`).
+        let d = if d < l {
+            d
+        } else if d == l {
+            0.0
+        } else {
+            far_offset(a, b, l)
+        };
         // For d >= l / 2, l - d is exact (Sterbenz), so the result never exceeds l / 2.
         d.min(l - d)
     }
@@ -327,6 +343,22 @@ impl<const D: usize> Torus<D> {
             image(u).max(image(u + w))
         };
         ((near - slack).max(0.0), far + slack)
+    }
+}
+
+/// `|a - b|` modulo `l`, in `[0, l]`, for finite `a` and `b` more than `l` apart: the
+/// remainders `a % l` and `b % l` are exact and lie within a period of 0, so their difference
+/// rounds once, by at most half a unit of `2 l`, and bringing it below `l` is exact (Sterbenz):
+/// within `l * f64::EPSILON` of the exact offset, however far out the points lie.
+#[inline(always)]
+fn far_offset(a: f64, b: f64, l: f64) -> f64 {
+    // (`x % l` is `x` below a period: the call is saved for a point in or near the box)
+    let rem = |x: f64| if x.abs() < l { x } else { x % l };
+    let d = (rem(a) - rem(b)).abs();
+    if d >= l {
+        d - l
+    } else {
+        d
     }
 }
 

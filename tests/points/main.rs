@@ -18,6 +18,7 @@ mod every_dimension_points;
 mod joins;
 mod parallel;
 mod periodic;
+mod periodic_far;
 mod periodic_images;
 mod periodic_joins;
 mod point_bounds;

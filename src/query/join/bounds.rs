@@ -17,9 +17,11 @@
 //!
 //! On a torus, the offsets `p - q` of `p` in `[a.min, a.max]` and `q` in `[b.min, b.max]` along
 //! an axis lie in `[a.min - b.max, a.max - b.min]` as computed (rounding is monotone), and a
-//! point pair's minimum-image offset is the one of its computed difference: the bounds of the
-//! offset from 0 to that interval ([`Torus`](crate::query::Torus)'s own, with their rounding
-//! margin) bound every pair's offset, and combine as the distance does.
+//! point pair's minimum-image offset is the one of its computed difference when that is within
+//! a period, and within a rounding of the period of the exact one when it is not: the bounds of
+//! the offset from 0 to that interval ([`Torus`](crate::query::Torus)'s own, whose rounding
+//! margin covers a few roundings of the interval's ends and of the period) bound every pair's
+//! offset, and combine as the distance does.
 
 // Loops over axes index both boxes together, in the fixed order the exactness argument needs.
 #![allow(clippy::needless_range_loop)]
