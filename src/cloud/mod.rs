@@ -28,6 +28,7 @@ mod downsample;
 pub mod normals;
 pub mod outliers;
 pub mod voxel;
+mod wide;
 
 pub use attributes::{Attributes, Column};
 

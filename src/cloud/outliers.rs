@@ -24,6 +24,7 @@
 //! `f64::MAX`. On clouds whose squared distances all lie in range, the common case, the scores
 //! are the square roots of the join's squared distances, with no second search.
 
+use super::wide::{distance, exponent, scale_by, Wide};
 use super::{Cloud, CloudError};
 use crate::geom::{Aabb, Scalar};
 use crate::points::PointTree;
@@ -145,95 +146,10 @@ fn in_range(d2: f64) -> bool {
     (IN_RANGE..f64::INFINITY).contains(&d2)
 }
 
-/// A non-negative number `m * 2^e` whose power of two is kept apart, so that sums of
-/// distances beyond `f64::MAX`, and the smallest distances, keep their value.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Wide {
-    m: f64,
-    e: i32,
-}
-
-impl Wide {
-    const ZERO: Wide = Wide { m: 0.0, e: 0 };
-
-    /// The power of two of the value's leading bit (`None` for 0).
-    fn exponent(self) -> Option<i32> {
-        (self.m > 0.0).then(|| self.e + exponent(self.m))
-    }
-
-    /// The value as an `f64`, exactly, when it is 0 or normal (`None` otherwise).
-    fn plain(self) -> Option<f64> {
-        match self.exponent() {
-            None => Some(0.0),
-            Some(x) if (-1022..=1023).contains(&x) => Some(scale_by(self.m, self.e)),
-            Some(_) => None,
-        }
-    }
-}
-
-/// The power of two of the leading bit of a positive finite `x` (`floor(log2(x))`).
-fn exponent(x: f64) -> i32 {
-    let bits = x.to_bits();
-    let biased = ((bits >> 52) & 0x7ff) as i32;
-    if biased == 0 {
-        // subnormal: the leading bit of the mantissa field, in units of 2^-1074
-        63 - (bits & ((1 << 52) - 1)).leading_zeros() as i32 - 1074
-    } else {
-        biased - 1023
-    }
-}
-
-/// `x * 2^n`, rounded once (C's `scalbn`, after musl's): exact unless the result overflows or
-/// is subnormal.
-fn scale_by(mut x: f64, mut n: i32) -> f64 {
-    const UP: f64 = f64::from_bits(0x7fe << 52); // 2^1023
-    const DOWN: f64 = f64::from_bits(0x036 << 52); // 2^-969: 2^-1022 with 53 bits to spare
-    if n > 1023 {
-        x *= UP;
-        n -= 1023;
-        if n > 1023 {
-            x *= UP;
-            n = (n - 1023).min(1023);
-        }
-    } else if n < -1022 {
-        // in two steps whose first keeps every bit, so that the result rounds once
-        x *= DOWN;
-        n += 969;
-        if n < -1022 {
-            x *= DOWN;
-            n = (n + 969).max(-1022);
-        }
-    }
-    x * f64::from_bits(((0x3ff + n) as u64) << 52)
-}
-
 /// The coordinates of slot `s` as `f64`.
 #[inline]
 fn coordinates<P: PointSet<D>, const D: usize>(set: &P, s: usize) -> [f64; D] {
     set.point(s).map(Scalar::to_f64)
-}
-
-/// The Euclidean distance of `p` and `q`, without overflow or underflow: the offsets scaled by
-/// the power of two of the largest before they are squared (as `hypot` does), and halved first
-/// when one of them is beyond `f64::MAX`.
-fn distance<const D: usize>(p: &[f64; D], q: &[f64; D]) -> Wide {
-    let mut offsets: [f64; D] = core::array::from_fn(|a| p[a] - q[a]);
-    let halved = offsets.iter().any(|d| d.is_infinite());
-    if halved {
-        // an offset beyond f64::MAX has a coordinate of at least 2^1022 in magnitude: halving
-        // loses at most the last bit of a subnormal coordinate, nothing beside that
-        offsets = core::array::from_fn(|a| p[a] * 0.5 - q[a] * 0.5);
-    }
-    let largest = offsets.iter().fold(0.0f64, |m, d| m.max(d.abs()));
-    if largest == 0.0 {
-        return Wide::ZERO;
-    }
-    let e = exponent(largest);
-    let sum: f64 = offsets.iter().map(|&d| scale_by(d, -e).powi(2)).sum();
-    Wide {
-        m: sum.sqrt(),
-        e: e + i32::from(halved),
-    }
 }
 
 /// The mean distance from `p` to the points of `near` (slots of `set`), measured from their
