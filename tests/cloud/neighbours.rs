@@ -31,6 +31,14 @@ fn brute_outliers(points: &[[f64; 3]], k: usize, ratio: f64) -> (Vec<f64>, Vec<b
             }
         })
         .collect();
+    let t = threshold(&scores, ratio);
+    let keep = scores.iter().map(|&s| s <= t).collect();
+    (scores, keep)
+}
+
+/// The rule's threshold for `scores`: their mean plus `ratio` times their sample deviation
+/// (`n - 1`), or the mean alone when they are all equal (whatever the ratio, infinite too).
+pub(crate) fn threshold(scores: &[f64], ratio: f64) -> f64 {
     let n = scores.len() as f64;
     let mean = scores.iter().sum::<f64>() / n;
     let std = if scores.len() > 1 {
@@ -38,9 +46,11 @@ fn brute_outliers(points: &[[f64; 3]], k: usize, ratio: f64) -> (Vec<f64>, Vec<b
     } else {
         0.0
     };
-    let t = mean + ratio * std;
-    let keep = scores.iter().map(|&s| s <= t).collect();
-    (scores, keep)
+    if std > 0.0 {
+        mean + ratio * std
+    } else {
+        mean
+    }
 }
 
 fn clustered(seed: u64, n: usize, copies: usize) -> Vec<[f64; 3]> {

@@ -7,6 +7,7 @@
 //! overflows. A cloud scaled by a power of two has the verdict of the unscaled one.
 
 use crate::common::rng;
+use crate::neighbours::threshold;
 use orthtree::cloud::{outliers, Cloud};
 use orthtree::{CompressedTree, PointSet, PointTree};
 use rand::Rng;
@@ -35,14 +36,7 @@ fn reference(points: &[[f64; 3]], k: usize, ratio: f64) -> (Vec<f64>, f64, f64) 
     let top = quarters.iter().fold(0.0f64, |m, &s| m.max(s));
     let unit = if top > 0.0 { top } else { 1.0 };
     let scores: Vec<f64> = quarters.iter().map(|s| s / unit).collect();
-    let n = scores.len() as f64;
-    let mean = scores.iter().sum::<f64>() / n;
-    let std = if scores.len() > 1 {
-        (scores.iter().map(|s| (s - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt()
-    } else {
-        0.0
-    };
-    let threshold = if std > 0.0 { mean + ratio * std } else { mean };
+    let threshold = threshold(&scores, ratio);
     (scores, threshold, top)
 }
 
