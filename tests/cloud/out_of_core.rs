@@ -148,6 +148,19 @@ fn external_build_refuses_bad_points_and_a_changed_source() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// A source giving `base` on its first pass and `base` changed by `change` on every later one.
+fn second_pass<P: Clone>(base: &[P], change: impl Fn(&mut Vec<P>)) -> impl FnMut() -> Vec<P> {
+    let mut calls = 0;
+    move || {
+        calls += 1;
+        let mut pts = base.to_vec();
+        if calls > 1 {
+            change(&mut pts);
+        }
+        pts
+    }
+}
+
 /// A source whose second pass yields as many points as the first but not the same: a point
 /// moved outside the first pass's bounds (also inside the root cube chosen from them) is refused
 /// naming its index and axis, a coordinate that is no longer finite as the in-memory build
@@ -172,20 +185,9 @@ fn external_build_refuses_points_moved_between_passes() {
         (39, 0, [-1.0, 4.0, 0.5]),
     ] {
         for budget in [100u64, 1 << 20] {
-            let mut calls = 0;
             let err = ExternalBuild::new(budget)
                 .bucket_size(2)
-                .write(
-                    || {
-                        calls += 1;
-                        let mut pts = base.clone();
-                        if calls == 2 {
-                            pts[index].0 = moved;
-                        }
-                        pts
-                    },
-                    &file,
-                )
+                .write(second_pass(&base, |pts| pts[index].0 = moved), &file)
                 .unwrap_err();
             match err {
                 ExternalError::PointChanged {
@@ -207,19 +209,8 @@ fn external_build_refuses_points_moved_between_passes() {
             assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1, "a run left");
         }
     }
-    let mut calls = 0;
     let err = ExternalBuild::new(100)
-        .write(
-            || {
-                calls += 1;
-                let mut pts = base.clone();
-                if calls == 2 {
-                    pts[30].0[1] = f64::NAN;
-                }
-                pts
-            },
-            &file,
-        )
+        .write(second_pass(&base, |pts| pts[30].0[1] = f64::NAN), &file)
         .unwrap_err();
     assert!(
         matches!(
@@ -234,20 +225,9 @@ fn external_build_refuses_points_moved_between_passes() {
     );
     assert_eq!(std::fs::read(&file).unwrap(), b"an older file");
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1, "a run left");
-    let mut calls = 0;
     ExternalBuild::new(100)
         .bucket_size(2)
-        .write(
-            || {
-                calls += 1;
-                let mut pts = base.clone();
-                if calls == 2 {
-                    pts.reverse();
-                }
-                pts
-            },
-            &file,
-        )
+        .write(second_pass(&base, |pts| pts.reverse()), &file)
         .unwrap();
     let back = read_point_tree::<f64, u32, 3>(&std::fs::read(&file).unwrap()).unwrap();
     back.validate().unwrap();
