@@ -29,6 +29,7 @@
 //! ```
 
 use super::limits::{LimitError, Limits};
+use super::pbm::nonempty_extent;
 use crate::image::{ImageError, ImageTree, RowBuilder};
 use core::fmt;
 use std::io::{BufRead, BufReader, BufWriter, Cursor, Seek, Write};
@@ -219,13 +220,7 @@ fn read_from<R: BufRead + Seek>(input: R, limits: Limits) -> Result<ImageTree, P
 /// # Complexity
 /// O(pixels + n k) time, O(width + k) memory beyond the tree and the encoder's buffers.
 pub fn write_to(tree: &ImageTree, depth: PngDepth, out: impl Write) -> Result<(), PngError> {
-    let [w, h] = tree.extent();
-    if w == 0 || h == 0 {
-        return Err(PngError::EmptyImage {
-            width: w,
-            height: h,
-        });
-    }
+    let [w, h] = nonempty_extent(tree, |width, height| PngError::EmptyImage { width, height })?;
     let mut encoder = ::png::Encoder::new(BufWriter::new(out), w, h);
     encoder.set_color(::png::ColorType::Grayscale);
     encoder.set_depth(match depth {
@@ -289,13 +284,7 @@ pub fn read_with_limits(path: impl AsRef<Path>, limits: Limits) -> Result<ImageT
 /// # Errors
 /// [`PngError::EmptyImage`] for a zero side; [`PngError::Io`], [`PngError::Encode`].
 pub fn write(tree: &ImageTree, path: impl AsRef<Path>, depth: PngDepth) -> Result<(), PngError> {
-    let [w, h] = tree.extent();
-    if w == 0 || h == 0 {
-        return Err(PngError::EmptyImage {
-            width: w,
-            height: h,
-        });
-    }
+    nonempty_extent(tree, |width, height| PngError::EmptyImage { width, height })?;
     write_to(
         tree,
         depth,

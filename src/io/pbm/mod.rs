@@ -332,13 +332,7 @@ fn read_plain(c: &mut Cursor<'_>, [w, h]: [u32; 2], budget: u64) -> Result<Image
 /// O(pixels / 64 + n k) time, O(width + k) memory beyond the tree (see
 /// [`ImageTree::for_each_row`]).
 pub fn write_to(tree: &ImageTree, format: PbmFormat, out: impl Write) -> Result<(), PbmError> {
-    let [w, h] = tree.extent();
-    if w == 0 || h == 0 {
-        return Err(PbmError::EmptyImage {
-            width: w,
-            height: h,
-        });
-    }
+    let [w, h] = nonempty_extent(tree, |width, height| PbmError::EmptyImage { width, height })?;
     let mut out = BufWriter::new(out);
     let magic = if format == PbmFormat::Raw { "P4" } else { "P1" };
     write!(out, "{magic}\n{w} {h}\n")?;
@@ -367,6 +361,18 @@ pub fn write_to(tree: &ImageTree, format: PbmFormat, out: impl Write) -> Result<
     })?;
     out.flush()?;
     Ok(())
+}
+
+/// The extent of an image to write, or `empty(width, height)` for a zero side, which neither a
+/// PBM nor a PNG file can hold.
+pub(super) fn nonempty_extent<E>(
+    tree: &ImageTree,
+    empty: impl FnOnce(u32, u32) -> E,
+) -> Result<[u32; 2], E> {
+    match tree.extent() {
+        [w, h] if w == 0 || h == 0 => Err(empty(w, h)),
+        extent => Ok(extent),
+    }
 }
 
 /// The PBM file of a region tree (cropped to its extent), in memory: [`write_to`] into a `Vec`.
@@ -405,12 +411,6 @@ pub fn read_with_limits(path: impl AsRef<Path>, limits: Limits) -> Result<ImageT
 /// # Errors
 /// [`PbmError::EmptyImage`] for a zero side; [`PbmError::Io`].
 pub fn write(tree: &ImageTree, path: impl AsRef<Path>, format: PbmFormat) -> Result<(), PbmError> {
-    let [w, h] = tree.extent();
-    if w == 0 || h == 0 {
-        return Err(PbmError::EmptyImage {
-            width: w,
-            height: h,
-        });
-    }
+    nonempty_extent(tree, |width, height| PbmError::EmptyImage { width, height })?;
     write_to(tree, format, std::fs::File::create(path)?)
 }
