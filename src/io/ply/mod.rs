@@ -70,44 +70,36 @@ pub enum Kind {
     F64,
 }
 
+/// Each kind with its classic and its sized PLY name and its bytes per value, in the order of
+/// [`Kind`].
+const KINDS: [(Kind, &str, &str, usize); 8] = [
+    (Kind::I8, "char", "int8", 1),
+    (Kind::U8, "uchar", "uint8", 1),
+    (Kind::I16, "short", "int16", 2),
+    (Kind::U16, "ushort", "uint16", 2),
+    (Kind::I32, "int", "int32", 4),
+    (Kind::U32, "uint", "uint32", 4),
+    (Kind::F32, "float", "float32", 4),
+    (Kind::F64, "double", "float64", 8),
+];
+
 impl Kind {
     /// The type of a PLY name (both spellings).
     pub fn from_name(name: &str) -> Option<Kind> {
-        Some(match name {
-            "char" | "int8" => Kind::I8,
-            "uchar" | "uint8" => Kind::U8,
-            "short" | "int16" => Kind::I16,
-            "ushort" | "uint16" => Kind::U16,
-            "int" | "int32" => Kind::I32,
-            "uint" | "uint32" => Kind::U32,
-            "float" | "float32" => Kind::F32,
-            "double" | "float64" => Kind::F64,
-            _ => return None,
-        })
+        KINDS
+            .iter()
+            .find(|k| k.1 == name || k.2 == name)
+            .map(|k| k.0)
     }
 
     /// The classic PLY name.
     pub fn name(self) -> &'static str {
-        match self {
-            Kind::I8 => "char",
-            Kind::U8 => "uchar",
-            Kind::I16 => "short",
-            Kind::U16 => "ushort",
-            Kind::I32 => "int",
-            Kind::U32 => "uint",
-            Kind::F32 => "float",
-            Kind::F64 => "double",
-        }
+        KINDS[self as usize].1
     }
 
     /// Bytes per value in a binary body.
     pub fn size(self) -> usize {
-        match self {
-            Kind::I8 | Kind::U8 => 1,
-            Kind::I16 | Kind::U16 => 2,
-            Kind::I32 | Kind::U32 | Kind::F32 => 4,
-            Kind::F64 => 8,
-        }
+        KINDS[self as usize].3
     }
 
     /// `true` for `float` and `double`.
