@@ -39,26 +39,17 @@ pub(super) fn read_header(reader: &mut impl BufRead) -> Result<Header, PlyError>
     let mut next_line = |reader: &mut dyn BufRead| -> Result<Option<String>, PlyError> {
         buf.clear();
         let left = (MAX_HEADER_BYTES as u64).saturating_sub(bytes);
-        let n = reader.take(left).read_until(b'\n', &mut buf)?;
-        if n == 0 {
-            return if left == 0 {
-                Err(PlyError::HeaderTooLong {
-                    limit: MAX_HEADER_BYTES,
-                })
-            } else {
-                Ok(None)
-            };
-        }
-        bytes += n as u64;
-        line_no += 1;
+        bytes += reader.take(left).read_until(b'\n', &mut buf)? as u64;
+        // A line cut short: by the end of the input, or by the limit.
         if buf.last() != Some(&b'\n') {
-            if bytes >= MAX_HEADER_BYTES as u64 {
-                return Err(PlyError::HeaderTooLong {
-                    limit: MAX_HEADER_BYTES,
-                });
+            if bytes < MAX_HEADER_BYTES as u64 {
+                return Ok(None);
             }
-            return Ok(None);
+            return Err(PlyError::HeaderTooLong {
+                limit: MAX_HEADER_BYTES,
+            });
         }
+        line_no += 1;
         buf.pop();
         if buf.last() == Some(&b'\r') {
             buf.pop();
