@@ -119,32 +119,20 @@ fn read_bounded(mut reader: impl Read, max_bytes: u64) -> std::io::Result<Option
     // On a 32-bit target a limit past the address space is no limit.
     let limit = usize::try_from(max_bytes).unwrap_or(usize::MAX);
     let mut bytes = Vec::new();
-    let mut len = 0;
-    while len < limit {
-        if len == bytes.len() {
-            let grown = bytes.len().saturating_mul(2).max(1 << 13).min(limit);
-            // Exactly: `resize` alone may round the capacity up past the limit.
-            bytes.reserve_exact(grown - bytes.len());
-            bytes.resize(grown, 0);
-        }
-        match reader.read(&mut bytes[len..]) {
-            Ok(0) => {
-                bytes.truncate(len);
-                return Ok(Some(bytes));
-            }
-            Ok(n) => len += n,
-            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
-            Err(e) => return Err(e),
-        }
-    }
-    bytes.truncate(len);
-    let mut probe = [0u8; 1];
     loop {
-        match reader.read(&mut probe) {
-            Ok(0) => return Ok(Some(bytes)),
-            Ok(_) => return Ok(None),
-            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
-            Err(e) => return Err(e),
+        let len = bytes.len();
+        let grown = len.saturating_mul(2).max(1 << 13).min(limit);
+        // Exactly: `resize` alone may round the capacity up past the limit.
+        bytes.reserve_exact(grown - len);
+        bytes.resize(grown, 0);
+        let got = super::read_full(&mut reader, &mut bytes[len..])?;
+        if len + got < grown {
+            bytes.truncate(len + got);
+            return Ok(Some(bytes));
+        }
+        if grown == limit {
+            let more = super::read_full(&mut reader, &mut [0u8; 1])?;
+            return Ok((more == 0).then_some(bytes));
         }
     }
 }

@@ -44,6 +44,21 @@ pub mod triangle;
 pub mod vtk;
 pub mod xyz;
 
+/// Reads into `buf` until it is full or the input ends (retrying an interrupted read); the bytes
+/// read.
+fn read_full(reader: &mut impl std::io::Read, buf: &mut [u8]) -> std::io::Result<usize> {
+    let mut got = 0;
+    while got < buf.len() {
+        match reader.read(&mut buf[got..]) {
+            Ok(0) => break,
+            Ok(n) => got += n,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(got)
+}
+
 pub use board_file::{
     read_board_file, read_board_file_with_limit, BoardFileError, BoardFormat, BoardReadError,
     MAX_BOARD_FILE_BYTES,

@@ -6,6 +6,7 @@ use super::{Encoding, Kind, PlyError};
 use crate::cloud::{Cloud, Frame};
 use crate::geom::Scalar;
 use crate::io::columns::Columns;
+use crate::io::read_full;
 use std::io::{BufRead, BufReader, Read};
 
 /// The longest ASCII vertex line read.
@@ -156,7 +157,7 @@ fn read_binary<S: Scalar>(
     let mut record = vec![0u8; stride];
     let mut offset = header.bytes;
     for vertex in 0..header.count {
-        let got = fill(reader, &mut record)?;
+        let got = read_full(reader, &mut record)?;
         if got < stride {
             return Err(PlyError::Truncated {
                 vertex,
@@ -180,20 +181,6 @@ fn read_binary<S: Scalar>(
         return Err(PlyError::TrailingData { offset });
     }
     Ok(())
-}
-
-/// Reads into `buf` until it is full or the input ends; the bytes read.
-fn fill(reader: &mut impl Read, buf: &mut [u8]) -> std::io::Result<usize> {
-    let mut got = 0;
-    while got < buf.len() {
-        match reader.read(&mut buf[got..]) {
-            Ok(0) => break,
-            Ok(n) => got += n,
-            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
-            Err(e) => return Err(e),
-        }
-    }
-    Ok(got)
 }
 
 /// A binary value of type `kind` from its bytes.
