@@ -298,24 +298,13 @@ fn read_sections<S: SavedScalar, T: Pod, const D: usize>(
     let n = header.points as usize;
     let slots = header.slots as usize;
     let mut at = padded(header::header_len::<D>()).expect("a short header");
-    let mut points: Vec<[S; D]> = bytemuck::zeroed_vec(n);
-    section(src, &mut at, bytemuck::cast_slice_mut(&mut points))?;
-    let mut items: Vec<T> = bytemuck::zeroed_vec(n);
-    if core::mem::size_of::<T>() != 0 {
-        section(src, &mut at, bytemuck::cast_slice_mut(&mut items))?;
-    } else {
-        section(src, &mut at, &mut [])?;
-    }
-    let mut run_ends: Vec<u32> = bytemuck::zeroed_vec(slots);
-    section(src, &mut at, bytemuck::cast_slice_mut(&mut run_ends))?;
-    let mut first_child: Vec<u32> = bytemuck::zeroed_vec(slots);
-    section(src, &mut at, bytemuck::cast_slice_mut(&mut first_child))?;
-    let mut level: Vec<u8> = vec![0; slots];
-    section(src, &mut at, &mut level)?;
-    let mut block_parent: Vec<u32> = bytemuck::zeroed_vec(header.blocks() as usize);
-    section(src, &mut at, bytemuck::cast_slice_mut(&mut block_parent))?;
-    let mut free_blocks: Vec<u32> = bytemuck::zeroed_vec(header.free_blocks as usize);
-    section(src, &mut at, bytemuck::cast_slice_mut(&mut free_blocks))?;
+    let points = section(src, &mut at, n)?;
+    let items = section(src, &mut at, n)?;
+    let run_ends = section(src, &mut at, slots)?;
+    let first_child = section(src, &mut at, slots)?;
+    let level = section(src, &mut at, slots)?;
+    let block_parent = section(src, &mut at, header.blocks() as usize)?;
+    let free_blocks = section(src, &mut at, header.free_blocks as usize)?;
     let parts = PointTreeParts {
         tree: OwnedRawTree {
             first_child,
@@ -338,8 +327,15 @@ fn read_sections<S: SavedScalar, T: Pod, const D: usize>(
     Ok(PointTree::from_parts(parts)?)
 }
 
-/// Reads one section into `dst` and its padding, which must be zero; `at` is its offset.
-fn section(src: &mut impl Source, at: &mut u64, dst: &mut [u8]) -> Result<(), SavedError> {
+/// Reads one section, `len` values of `V`, and its padding, which must be zero; `at` is its
+/// offset.
+fn section<V: Pod>(src: &mut impl Source, at: &mut u64, len: usize) -> Result<Vec<V>, SavedError> {
+    let mut values: Vec<V> = bytemuck::zeroed_vec(len);
+    // None for a zero-sized type, which `bytemuck` does not cast.
+    let dst: &mut [u8] = match core::mem::size_of::<V>() {
+        0 => &mut [],
+        _ => bytemuck::cast_slice_mut(&mut values),
+    };
     src.fill(dst)?;
     *at += dst.len() as u64;
     let pad = (padded(*at).expect("checked") - *at) as usize;
@@ -351,5 +347,5 @@ fn section(src: &mut impl Source, at: &mut u64, dst: &mut [u8]) -> Result<(), Sa
         });
     }
     *at += pad as u64;
-    Ok(())
+    Ok(values)
 }

@@ -66,15 +66,7 @@ impl<S: Pod, T: Pod, const D: usize> Layout<S, T, D> {
     pub fn put(out: &mut impl Write, key: u64, p: &[S; D], item: &T) -> std::io::Result<()> {
         out.write_all(&key.to_le_bytes())?;
         out.write_all(bytemuck::bytes_of(p))?;
-        out.write_all(item_bytes(item))
-    }
-}
-
-fn item_bytes<T: Pod>(item: &T) -> &[u8] {
-    if core::mem::size_of::<T>() == 0 {
-        &[]
-    } else {
-        bytemuck::bytes_of(item)
+        out.write_all(super::bytes_of_items(core::slice::from_ref(item)))
     }
 }
 
