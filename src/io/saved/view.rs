@@ -252,15 +252,10 @@ impl<'a, S: SavedScalar, T: Pod, const D: usize> PointTreeView<'a, S, T, D> {
 
     /// Heap bytes the view owns: none when every section is borrowed, else the copied ones.
     pub fn heap_bytes(&self) -> usize {
-        macro_rules! owned {
-            ($c:expr) => {
-                match &$c {
-                    Cow::Borrowed(_) => 0,
-                    Cow::Owned(v) => v.capacity() * element_size(v),
-                }
-            };
-        }
-        owned!(self.points) + owned!(self.items) + owned!(self.run_ends) + owned!(self.first_child)
+        owned_bytes(&self.points)
+            + owned_bytes(&self.items)
+            + owned_bytes(&self.run_ends)
+            + owned_bytes(&self.first_child)
     }
 
     /// The tree copied into an owned [`PointTree`] with every check of
@@ -283,9 +278,13 @@ point_index!(
     check
 );
 
-/// The size of one element of `slice`.
-fn element_size<V>(_: &[V]) -> usize {
-    core::mem::size_of::<V>()
+/// The heap bytes of a section: none when borrowed (the variant tells, hence the `Cow`).
+#[allow(clippy::ptr_arg)]
+fn owned_bytes<V: Clone>(section: &Cow<'_, [V]>) -> usize {
+    match section {
+        Cow::Borrowed(_) => 0,
+        Cow::Owned(v) => v.capacity() * core::mem::size_of::<V>(),
+    }
 }
 
 /// The seven sections of `bytes` (lengths checked by `read_header`), their padding checked.
