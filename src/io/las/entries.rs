@@ -10,7 +10,7 @@
 //! feature a block is converted on all threads while the next one is read. Reading every field
 //! ([`read`](super::read)) costs about ten times more per point.
 
-use super::header::checked_header;
+use super::header::{checked_header, frame_of};
 use super::{las_error, LasError, BATCH_BYTES};
 use crate::cloud::Frame;
 use ::las::raw;
@@ -20,14 +20,7 @@ use std::path::Path;
 /// Record `index`'s world coordinates, from the record's first 12 bytes.
 #[inline]
 fn entry(record: &[u8], frame: &Frame, index: usize) -> ([f64; 3], u32) {
-    let axis = |a: usize| {
-        i32::from_le_bytes([
-            record[4 * a],
-            record[4 * a + 1],
-            record[4 * a + 2],
-            record[4 * a + 3],
-        ])
-    };
+    let axis = |a: usize| i32::from_le_bytes(record[4 * a..4 * a + 4].try_into().expect("4 bytes"));
     (frame.to_world(&[axis(0), axis(1), axis(2)]), index as u32)
 }
 
@@ -116,20 +109,12 @@ impl Records {
                 length,
             });
         }
-        let frame = Frame {
-            scale: [
-                header.x_scale_factor,
-                header.y_scale_factor,
-                header.z_scale_factor,
-            ],
-            offset: [header.x_offset, header.y_offset, header.z_offset],
-        };
         file.seek(SeekFrom::Start(start))?;
         Ok(Records {
             file,
             record,
             count: count as usize,
-            frame,
+            frame: frame_of(&header),
         })
     }
 }

@@ -9,6 +9,7 @@
 //! so a lying header costs neither a panic nor memory beyond the file's bytes.
 
 use super::{las_error, LasError};
+use crate::cloud::Frame;
 use ::las::raw;
 use std::io::{Read, Seek, SeekFrom};
 
@@ -98,14 +99,7 @@ pub(super) fn checked_header<R: Read + Seek>(
             ),
         ));
     }
-    check_frame(
-        [
-            header.x_scale_factor,
-            header.y_scale_factor,
-            header.z_scale_factor,
-        ],
-        [header.x_offset, header.y_offset, header.z_offset],
-    )?;
+    check_frame(&frame_of(&header))?;
     if let Some(evlr) = header.evlr {
         let at = evlr.start_of_first_evlr;
         let Some(len) = bytes_at::<8, R>(input, at.saturating_add(20), length)?
@@ -144,9 +138,9 @@ const SCALE_AT: u64 = 131;
 /// and not zero (a zero collapses an axis, a NaN or an infinity gives no coordinate at all),
 /// each offset finite. The writer checks a cloud's frame by the same rule, so that no file it
 /// writes is one the readers refuse.
-pub(super) fn check_frame(scales: [f64; 3], offsets: [f64; 3]) -> Result<(), LasError> {
+pub(super) fn check_frame(frame: &Frame) -> Result<(), LasError> {
     for (a, name) in ["x", "y", "z"].into_iter().enumerate() {
-        let scale = scales[a];
+        let scale = frame.scale[a];
         if !scale.is_finite() || scale == 0.0 {
             return Err(field(
                 ["x scale factor", "y scale factor", "z scale factor"][a],
@@ -155,16 +149,24 @@ pub(super) fn check_frame(scales: [f64; 3], offsets: [f64; 3]) -> Result<(), Las
                 format!("a finite {name} scale other than 0"),
             ));
         }
-        if !offsets[a].is_finite() {
+        if !frame.offset[a].is_finite() {
             return Err(field(
                 ["x offset", "y offset", "z offset"][a],
                 SCALE_AT + 24 + 8 * a as u64,
-                offsets[a],
+                frame.offset[a],
                 format!("a finite {name} offset"),
             ));
         }
     }
     Ok(())
+}
+
+/// The frame of a header's scale factors and offsets.
+pub(super) fn frame_of(h: &raw::Header) -> Frame {
+    Frame {
+        scale: [h.x_scale_factor, h.y_scale_factor, h.z_scale_factor],
+        offset: [h.x_offset, h.y_offset, h.z_offset],
+    }
 }
 
 /// The fields of a LASzip VLR this reader checks (see [`check_laz`]).

@@ -119,8 +119,8 @@ fn point_format(a: &Attributes, len: usize) -> Result<(Format, Fields), LasError
 fn header(cloud: &Cloud<i32>, format: Format) -> Result<Header, LasError> {
     let mut builder = Builder::from((1, 4));
     builder.point_format = format;
+    super::header::check_frame(&cloud.frame)?;
     let (s, o) = (cloud.frame.scale, cloud.frame.offset);
-    super::header::check_frame(s, o)?;
     let axis = |k: usize| Transform {
         scale: s[k],
         offset: o[k],
