@@ -155,7 +155,7 @@ pub(crate) fn f3_string(x: f64) -> String {
 
 /// [`f3_string`] through `format!`, for the values [`put_f3`] does not take.
 #[cold]
-fn f3_slow(x: f64) -> String {
+pub(crate) fn f3_slow(x: f64) -> String {
     let s = format!("{x:.3}");
     let trimmed = if s.contains('.') {
         s.trim_end_matches('0').trim_end_matches('.')
@@ -337,4 +337,4 @@ impl<'a, W: Write + ?Sized> TextOut<'a, W> {
 
 #[cfg(test)]
 #[path = "text_out_tests.rs"]
-pub(crate) mod tests;
+mod tests;
