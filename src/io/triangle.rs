@@ -54,13 +54,11 @@ pub fn edges_with_markers(mesh: &Mesh) -> Vec<([u32; 2], u64)> {
     let first = FirstAppearances::new(mesh);
     let markers = SegmentMarkers::new(mesh);
     let mut edges = Vec::with_capacity(first.count);
-    let pushed: Result<(), std::convert::Infallible> = first.try_for_each(mesh, |a, b| {
+    let Ok(()) = first.try_for_each::<std::convert::Infallible>(mesh, |a, b| {
         edges.push(([a, b], markers.get(a, b)));
         Ok(())
     });
-    match pushed {
-        Ok(()) => edges,
-    }
+    edges
 }
 
 /// Which half-edges (edge `i` of triangle `t` is bit `3t + i`) are the first appearance of their

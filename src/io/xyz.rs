@@ -206,13 +206,9 @@ pub fn read<S: Scalar>(input: impl Read) -> Result<Cloud<S>, XyzError> {
             };
             let numeric = head.parse::<f64>().is_ok();
             let names: Vec<String> = if numeric {
+                let name = |i: usize| ["x", "y", "z"].get(i).map(|n| n.to_string());
                 (0..first.len())
-                    .map(|i| match i {
-                        0 => "x".to_string(),
-                        1 => "y".to_string(),
-                        2 => "z".to_string(),
-                        _ => format!("column{}", i + 1),
-                    })
+                    .map(|i| name(i).unwrap_or_else(|| format!("column{}", i + 1)))
                     .collect()
             } else {
                 first.iter().map(|s| s.to_string()).collect()

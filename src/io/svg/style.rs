@@ -51,10 +51,8 @@ impl Style {
     pub fn dotted() -> Self {
         Style {
             stroke: "#555".into(),
-            stroke_width: 1.0,
             dash: vec![1.0, 2.0],
-            fill: "none".into(),
-            point_radius: 0.0,
+            ..Style::solid()
         }
     }
 
@@ -71,9 +69,9 @@ impl Style {
         Style {
             stroke: "none".into(),
             stroke_width: 0.0,
-            dash: Vec::new(),
             fill: "black".into(),
             point_radius: 1.6,
+            ..Style::solid()
         }
     }
 
