@@ -65,15 +65,14 @@ impl Svg {
         triangles: impl IntoIterator<Item = [[f64; 2]; 3]>,
         style: &Style,
     ) -> &mut Self {
-        self.open_group(style);
-        for t in triangles {
-            if t.iter().all(finite) {
-                let [a, b, c] = t.map(|p| format!("{},{}", num(self.x(p[0])), num(self.y(p[1]))));
-                let _ = writeln!(self.body, "<polygon points=\"{a} {b} {c}\"/>");
+        self.group(style, |svg| {
+            for t in triangles {
+                if t.iter().all(finite) {
+                    let [a, b, c] = t.map(|p| format!("{},{}", num(svg.x(p[0])), num(svg.y(p[1]))));
+                    let _ = writeln!(svg.body, "<polygon points=\"{a} {b} {c}\"/>");
+                }
             }
-        }
-        self.close_group();
-        self
+        })
     }
 
     /// Draws line segments (in plane coordinates, y up) as `<path>`s of up to 1024 segments
@@ -94,31 +93,30 @@ impl Svg {
         segments: impl IntoIterator<Item = [[f64; 2]; 2]>,
         style: &Style,
     ) -> &mut Self {
-        self.open_group(style);
-        let mut d = String::new();
-        let mut in_path = 0;
-        for [a, b] in segments {
-            if finite(&a) && finite(&b) {
-                let _ = write!(
-                    d,
-                    "M{} {}L{} {}",
-                    num(self.x(a[0])),
-                    num(self.y(a[1])),
-                    num(self.x(b[0])),
-                    num(self.y(b[1]))
-                );
-                in_path += 1;
-                if in_path == SEGMENTS_PER_PATH {
-                    let _ = writeln!(self.body, "<path d=\"{d}\"/>");
-                    (d, in_path) = (String::new(), 0);
+        self.group(style, |svg| {
+            let mut d = String::new();
+            let mut in_path = 0;
+            for [a, b] in segments {
+                if finite(&a) && finite(&b) {
+                    let _ = write!(
+                        d,
+                        "M{} {}L{} {}",
+                        num(svg.x(a[0])),
+                        num(svg.y(a[1])),
+                        num(svg.x(b[0])),
+                        num(svg.y(b[1]))
+                    );
+                    in_path += 1;
+                    if in_path == SEGMENTS_PER_PATH {
+                        let _ = writeln!(svg.body, "<path d=\"{d}\"/>");
+                        (d, in_path) = (String::new(), 0);
+                    }
                 }
             }
-        }
-        if !d.is_empty() {
-            let _ = writeln!(self.body, "<path d=\"{d}\"/>");
-        }
-        self.close_group();
-        self
+            if !d.is_empty() {
+                let _ = writeln!(svg.body, "<path d=\"{d}\"/>");
+            }
+        })
     }
 }
 

@@ -145,17 +145,14 @@ impl Svg {
         geometry: &RootGeometry<2>,
         style: &Style,
     ) -> &mut Self {
-        self.open_group(style);
-        let root = geometry.root_box();
-        self.rect(&root);
-        for (id, cell) in tree.pre_order() {
-            if tree.is_leaf(id) {
-                continue;
+        self.group(style, |svg| {
+            svg.rect(&geometry.root_box());
+            for (id, cell) in tree.pre_order() {
+                if !tree.is_leaf(id) {
+                    svg.cross(geometry, &cell);
+                }
             }
-            self.cross(geometry, &cell);
-        }
-        self.close_group();
-        self
+        })
     }
 
     /// Draws only the lines that `refined` adds to `base` (both over `geometry`): for every
@@ -169,19 +166,17 @@ impl Svg {
         geometry: &RootGeometry<2>,
         style: &Style,
     ) -> &mut Self {
-        self.open_group(style);
-        for (id, cell) in refined.pre_order() {
-            if refined.is_leaf(id) {
-                continue;
+        self.group(style, |svg| {
+            for (id, cell) in refined.pre_order() {
+                if refined.is_leaf(id) {
+                    continue;
+                }
+                let there = base.locate_cell(&cell);
+                if base.level(there) != cell.level() || base.is_leaf(there) {
+                    svg.cross(geometry, &cell);
+                }
             }
-            let there = base.locate_cell(&cell);
-            if base.level(there) == cell.level() && !base.is_leaf(there) {
-                continue;
-            }
-            self.cross(geometry, &cell);
-        }
-        self.close_group();
-        self
+        })
     }
 
     /// Draws one `<rect>` per box; boxes with a non-finite coordinate are skipped.
@@ -190,15 +185,14 @@ impl Svg {
         boxes: impl IntoIterator<Item = B>,
         style: &Style,
     ) -> &mut Self {
-        self.open_group(style);
-        for b in boxes {
-            let b = b.borrow();
-            if b.min.iter().chain(&b.max).all(|v| v.is_finite()) {
-                self.rect(b);
+        self.group(style, |svg| {
+            for b in boxes {
+                let b = b.borrow();
+                if b.min.iter().chain(&b.max).all(|v| v.is_finite()) {
+                    svg.rect(b);
+                }
             }
-        }
-        self.close_group();
-        self
+        })
     }
 
     /// Draws a dot of radius `style.point_radius` at every point (owned or borrowed, any
@@ -208,21 +202,20 @@ impl Svg {
         points: impl IntoIterator<Item = P>,
         style: &Style,
     ) -> &mut Self {
-        self.open_group(style);
         let r = num(length(style.point_radius));
-        for p in points {
-            let [x, y] = p.borrow().map(Scalar::to_f64);
-            if x.is_finite() && y.is_finite() {
-                let _ = writeln!(
-                    self.body,
-                    "<circle cx=\"{}\" cy=\"{}\" r=\"{r}\"/>",
-                    num(self.x(x)),
-                    num(self.y(y))
-                );
+        self.group(style, |svg| {
+            for p in points {
+                let [x, y] = p.borrow().map(Scalar::to_f64);
+                if x.is_finite() && y.is_finite() {
+                    let _ = writeln!(
+                        svg.body,
+                        "<circle cx=\"{}\" cy=\"{}\" r=\"{r}\"/>",
+                        num(svg.x(x)),
+                        num(svg.y(y))
+                    );
+                }
             }
-        }
-        self.close_group();
-        self
+        })
     }
 
     /// The SVG document.
@@ -314,24 +307,29 @@ impl Svg {
     }
 
     fn rect(&mut self, b: &Aabb<f64, 2>) {
+        let line = self.rect_line(b);
+        self.body.push_str(&line);
+    }
+
+    /// A box as one `<rect>` line, with its line break.
+    fn rect_line(&self, b: &Aabb<f64, 2>) -> String {
         let (x0, x1) = (self.x(b.min[0]), self.x(b.max[0]));
         let (top, bottom) = (self.y(b.max[1]), self.y(b.min[1]));
-        let _ = writeln!(
-            self.body,
-            "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/>",
+        format!(
+            "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/>\n",
             num(x0),
             num(top),
             num((x1 - x0).max(0.0)),
             num((bottom - top).max(0.0))
-        );
+        )
     }
 
-    fn open_group(&mut self, style: &Style) {
+    /// Draws a layer: what `draw` adds, in one `<g>` with `style`'s attributes.
+    fn group(&mut self, style: &Style, draw: impl FnOnce(&mut Self)) -> &mut Self {
         let _ = writeln!(self.body, "<g{}>", style.attributes());
-    }
-
-    fn close_group(&mut self) {
+        draw(self);
         self.body.push_str("</g>\n");
+        self
     }
 }
 
