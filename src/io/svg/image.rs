@@ -3,7 +3,6 @@
 //! viewers show it (the plane's y axis points up, so row `y` is the strip
 //! `side - y - 1 .. side - y`).
 
-use super::format::num;
 use super::{Style, Svg, DEFAULT_WIDTH_PX};
 use crate::geom::Aabb;
 use crate::image::{Block, ImageTree};
@@ -84,27 +83,9 @@ pub fn write_image_tree_svg(tree: &ImageTree, out: impl Write) -> std::io::Resul
     };
     let svg = Svg::new(cube, DEFAULT_WIDTH_PX);
     let mut out = BufWriter::new(out);
-    let (w, h) = svg.size_px();
-    let (w, h) = (num(w), num(h));
-    writeln!(
-        out,
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" \
-         viewBox=\"0 0 {w} {h}\">"
-    )?;
+    out.write_all(svg.header().as_bytes())?;
     writeln!(out, "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>")?;
     let width = (0.5f64).min(DEFAULT_WIDTH_PX / side / 4.0);
-    let rect = |out: &mut BufWriter<_>, b: &Aabb<f64, 2>| -> std::io::Result<()> {
-        let (x0, x1) = (svg.x(b.min[0]), svg.x(b.max[0]));
-        let (top, bottom) = (svg.y(b.max[1]), svg.y(b.min[1]));
-        writeln!(
-            out,
-            "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/>",
-            num(x0),
-            num(top),
-            num((x1 - x0).max(0.0)),
-            num((bottom - top).max(0.0))
-        )
-    };
     let layers = [
         (Style::solid().stroke("none").fill("black"), true),
         (Style::solid().stroke("#888").stroke_width(width), false),
@@ -112,7 +93,7 @@ pub fn write_image_tree_svg(tree: &ImageTree, out: impl Write) -> std::io::Resul
     for (style, only_black) in &layers {
         writeln!(out, "<g{}>", style.attributes())?;
         for b in tree.blocks().filter(|b| b.black || !only_black) {
-            rect(&mut out, &block_box(&b, side))?;
+            out.write_all(svg.rect_line(&block_box(&b, side)).as_bytes())?;
         }
         writeln!(out, "</g>")?;
     }
@@ -123,7 +104,7 @@ pub fn write_image_tree_svg(tree: &ImageTree, out: impl Write) -> std::io::Resul
             max: [w, side],
         };
         writeln!(out, "<g{}>", Style::dashed().stroke("red").attributes())?;
-        rect(&mut out, &extent)?;
+        out.write_all(svg.rect_line(&extent).as_bytes())?;
         writeln!(out, "</g>")?;
     }
     writeln!(out, "</svg>")?;

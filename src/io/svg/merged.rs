@@ -114,7 +114,7 @@ pub(super) fn write(mesh: &Mesh, board: &Board, out: &mut impl Write) -> io::Res
     }
     o.s("</g>").nl()?;
     open_group(&mut o, &Style::solid().stroke("#1a1a1a").stroke_width(1.5))?;
-    write_rect(&mut o, &svg, &view)?;
+    o.s(&svg.rect_line(&view)).spill()?;
     o.s("</g>").nl()?;
     o.s("</svg>").nl()?;
     o.finish()
@@ -129,7 +129,7 @@ fn write_regions<W: Write + ?Sized>(
 ) -> io::Result<()> {
     let board_style = Style::solid().stroke("none").fill(BOARD_FILL);
     open_group(o, &board_style)?;
-    write_rect(o, svg, view)?;
+    o.s(&svg.rect_line(view)).spill()?;
     o.s("</g>").nl()?;
     for (i, c) in board.components().iter().enumerate() {
         o.s("<path fill=\"")
@@ -273,23 +273,4 @@ fn write_ring<W: Write + ?Sized>(
     }
     o.s("Z");
     Ok(())
-}
-
-/// A box as one `<rect>` line, as [`Svg::boxes`] draws it.
-fn write_rect<W: Write + ?Sized>(
-    o: &mut TextOut<'_, W>,
-    svg: &Svg,
-    b: &Aabb<f64, 2>,
-) -> io::Result<()> {
-    let (x0, x1) = (svg.x(b.min[0]), svg.x(b.max[0]));
-    let (top, bottom) = (svg.y(b.max[1]), svg.y(b.min[1]));
-    o.s("<rect x=\"");
-    px(o, x0);
-    o.s("\" y=\"");
-    px(o, top);
-    o.s("\" width=\"");
-    px(o, (x1 - x0).max(0.0));
-    o.s("\" height=\"");
-    px(o, (bottom - top).max(0.0));
-    o.s("\"/>").nl()
 }
