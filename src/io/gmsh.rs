@@ -70,14 +70,12 @@ fn add_member(
     *last = Some((tag, at));
     let g = &mut groups[at];
     g.members.push(member);
-    for &[x, y] in points {
-        g.bbox = [
-            g.bbox[0].min(x),
-            g.bbox[1].min(y),
-            g.bbox[2].max(x),
-            g.bbox[3].max(y),
-        ];
-    }
+    g.bbox = points.iter().fold(g.bbox, |b, &p| grow(b, p));
+}
+
+/// The bounding box `b`, `[min x, min y, max x, max y]`, grown to hold the point `[x, y]`.
+fn grow(b: [i64; 4], [x, y]: [i64; 2]) -> [i64; 4] {
+    [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)]
 }
 
 /// The groups of a mesh whose indices are checked, in one pass over its triangles and one over
@@ -100,15 +98,8 @@ fn entities(mesh: &Mesh) -> Entities {
             SegmentKind::Boundary => (1, "board boundary".to_string()),
             SegmentKind::Component(i) => (1 + u64::from(i), format!("outline {i}")),
         };
-        let points = s.vertices.map(point);
-        add_member(
-            &mut curves,
-            &mut index,
-            &mut last,
-            (tag, k),
-            &points,
-            || name,
-        );
+        let (key, points) = ((tag, k), s.vertices.map(point));
+        add_member(&mut curves, &mut index, &mut last, key, &points, || name);
     }
     surfaces.sort_unstable_by_key(|g| g.tag);
     curves.sort_unstable_by_key(|g| g.tag);
@@ -117,13 +108,10 @@ fn entities(mesh: &Mesh) -> Entities {
 
 /// The bounding box of all vertices (zeros if none).
 fn all_vertices_box(mesh: &Mesh) -> [i64; 4] {
-    let mut it = mesh.vertices.iter();
-    let Some(&[x, y]) = it.next() else {
+    let Some(&[x, y]) = mesh.vertices.first() else {
         return [0; 4];
     };
-    it.fold([x, y, x, y], |[a, b, c, d], &[x, y]| {
-        [a.min(x), b.min(y), c.max(x), d.max(y)]
-    })
+    mesh.vertices.iter().fold([x, y, x, y], |b, &p| grow(b, p))
 }
 
 /// Writes the mesh as MSH 4.1 ASCII (see the module doc).
