@@ -346,6 +346,7 @@ impl ExternalBuild {
         let mut order: Vec<(u64, u32)> = Vec::with_capacity(cap);
         let mut runs = Vec::new();
         let mut seen = 0u64;
+        let changed = |second| ExternalError::SourceChanged { first: n, second };
         let mut flush = |entries: &mut Vec<([S; D], T)>,
                          order: &mut Vec<(u64, u32)>,
                          spill: &mut Spill|
@@ -369,10 +370,7 @@ impl ExternalBuild {
         for (p, item) in source() {
             seen += 1;
             if seen > n {
-                return Err(ExternalError::SourceChanged {
-                    first: n,
-                    second: seen,
-                });
+                return Err(changed(seen));
             }
             check_again(&p, bounds, (seen - 1) as usize)?;
             order.push((geometry.scalar_key(&p), entries.len() as u32));
@@ -382,10 +380,7 @@ impl ExternalBuild {
             }
         }
         if seen != n {
-            return Err(ExternalError::SourceChanged {
-                first: n,
-                second: seen,
-            });
+            return Err(changed(seen));
         }
         if !entries.is_empty() {
             flush(&mut entries, &mut order, spill)?;
