@@ -1,5 +1,6 @@
 //! What the two board readers ([`super::poly`] and [`super::board_text`]) share: splitting bytes
-//! into lines, quoting a field in a message, integer coordinates and the board's side U.
+//! into lines, quoting a field in a message, integer coordinates and the board's side U; and the
+//! first line of their writers.
 //!
 //! Lines: a UTF-8 byte-order mark at the very start is skipped; a line ends at `\n`, `\r\n` or a
 //! lone `\r` (so Unix, Windows and classic Mac files all read the same); every line must be valid
@@ -8,8 +9,14 @@
 //! to a field, and a field quoted in a message shows invisible characters escaped (`\0`, `\u{a0}`)
 //! and is cut after [`SHOWN_CHARS`] characters, so no message grows with the input.
 
-use crate::mesh::{BoardError, Component};
+use crate::mesh::{Board, BoardError, Component};
 use core::num::IntErrorKind;
+
+/// The first line of both board writers: a comment naming the side and the component count.
+pub(crate) fn board_comment(board: &Board) -> String {
+    let (size, components) = (board.size(), board.components().len());
+    format!("# orthtree board: side {size}, {components} components\n")
+}
 
 /// The largest board side, 2^30 (the limit of [`crate::mesh::Board::new`]).
 pub(crate) const MAX_SIZE: i64 = 1 << 30;

@@ -48,7 +48,9 @@
 //! );
 //! ```
 
-use super::board_syntax::{parse_coordinate, parse_error, resolve_size, Lines, Quoted};
+use super::board_syntax::{
+    board_comment, parse_coordinate, parse_error, resolve_size, Lines, Quoted,
+};
 use crate::mesh::{Board, BoardError, Component, Point};
 use core::fmt::Write;
 
@@ -153,13 +155,7 @@ pub fn read_board_text_bytes(bytes: &[u8], size: Option<i64>) -> Result<Board, B
 /// Writes a board in the text format of the module doc (a `size` line, then one line per
 /// component); [`read_board_text`] reads it back to the same board.
 pub fn write_board_text(board: &Board) -> String {
-    let mut out = String::new();
-    let _ = writeln!(
-        out,
-        "# orthtree board: side {}, {} components",
-        board.size(),
-        board.components().len()
-    );
+    let mut out = board_comment(board);
     let _ = writeln!(out, "size {}", board.size());
     for c in board.components() {
         for (i, p) in c.outline.iter().enumerate() {

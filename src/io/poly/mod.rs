@@ -84,7 +84,7 @@
 mod records;
 mod sections;
 
-use super::board_syntax::resolve_size;
+use super::board_syntax::{board_comment, resolve_size};
 use crate::mesh::{Board, BoardError, Component, Point};
 use core::fmt::Write;
 use records::Records;
@@ -226,13 +226,8 @@ pub fn write_poly(board: &Board) -> Result<String, PolyWriteError> {
     if vertex_count == 0 {
         return Err(PolyWriteError::NoVertices { size: board.size() });
     }
-    let mut out = String::with_capacity(24 * vertex_count + 64);
-    let _ = writeln!(
-        out,
-        "# orthtree board: side {}, {} components",
-        board.size(),
-        components.len()
-    );
+    let mut out = board_comment(board);
+    out.reserve(24 * vertex_count + 24);
     let _ = writeln!(out, "# size {}", board.size());
     let _ = writeln!(out, "{vertex_count} 2 0 0");
     let mut id = 1;
