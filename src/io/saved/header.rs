@@ -128,45 +128,25 @@ impl<const D: usize> Header<D> {
             available,
         };
         let magic = r.take::<8>("magic")?;
-        if magic != MAGIC {
-            return Err(field(
-                "magic",
-                0,
-                format!("{magic:?}"),
-                format!("{MAGIC:?}"),
-            ));
-        }
+        let (found, want) = (format!("{magic:?}"), format!("{MAGIC:?}"));
+        ensure(magic == MAGIC, "magic", 0, found, want)?;
         let version = u16::from_le_bytes(r.take("version")?);
-        if version != VERSION {
-            return Err(field("version", 8, version, VERSION));
-        }
+        ensure(version == VERSION, "version", 8, version, VERSION)?;
         let kind = r.byte("tree kind")?;
         if kind != KIND_POINT_TREE {
             return Err(field("tree kind", 10, kind, "1 (a point tree)"));
         }
         let dimension = r.byte("dimension")?;
-        if dimension as usize != D {
-            return Err(field("dimension", 11, dimension, D));
-        }
+        ensure(dimension as usize == D, "dimension", 11, dimension, D)?;
         let scalar = r.byte("scalar")?;
-        if scalar != S::KIND {
-            return Err(field(
-                "scalar",
-                12,
-                scalar,
-                format!("{} ({})", S::KIND, S::NAME),
-            ));
-        }
+        let name = format!("{} ({})", S::KIND, S::NAME);
+        ensure(scalar == S::KIND, "scalar", 12, scalar, name)?;
+        let deepest = Cell::<D>::MAX_LEVEL;
+        let limit = format!("at most {deepest}");
         let max_depth = r.byte("max depth")?;
-        if max_depth > Cell::<D>::MAX_LEVEL {
-            let limit = format!("at most {}", Cell::<D>::MAX_LEVEL);
-            return Err(field("max depth", 13, max_depth, limit));
-        }
+        ensure(max_depth <= deepest, "max depth", 13, max_depth, &limit)?;
         let depth = r.byte("depth")?;
-        if depth > Cell::<D>::MAX_LEVEL {
-            let limit = format!("at most {}", Cell::<D>::MAX_LEVEL);
-            return Err(field("depth", 14, depth, limit));
-        }
+        ensure(depth <= deepest, "depth", 14, depth, &limit)?;
         let code = r.byte("balance")?;
         let difference = r.byte("level difference")?;
         let balanced = decode_balance(code, difference)?;
@@ -174,9 +154,7 @@ impl<const D: usize> Header<D> {
             r.zero("reserved")?;
         }
         let size = u32::from_le_bytes(r.take("item size")?);
-        if size as usize != item_size {
-            return Err(field("item size", 20, size, item_size));
-        }
+        ensure(size as usize == item_size, "item size", 20, size, item_size)?;
         let align = u32::from_le_bytes(r.take("item alignment")?);
         if align as usize != item_align {
             return Err(field("item alignment", 24, align, item_align));
@@ -303,6 +281,21 @@ fn decode_balance(code: u8, difference: u8) -> Result<Option<BalanceOptions>, Sa
             let limit = format!("1 to {}", BalanceOptions::MAX_LEVEL_DIFFERENCE);
             field("level difference", 16, difference, limit)
         })
+}
+
+/// `Ok` when `ok`, else the [`SavedError::Field`] of the field `name` at byte `offset`.
+fn ensure(
+    ok: bool,
+    name: &'static str,
+    offset: u64,
+    found: impl ToString,
+    expected: impl ToString,
+) -> Result<(), SavedError> {
+    if ok {
+        Ok(())
+    } else {
+        Err(field(name, offset, found, expected))
+    }
 }
 
 fn field(
