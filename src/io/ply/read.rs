@@ -67,20 +67,19 @@ fn read_ascii<S: Scalar>(
             });
         }
         offset += n as u64;
-        if n == MAX_LINE_BYTES && line.last() != Some(&b'\n') {
-            return Err(PlyError::BadValue {
-                line: line_no,
-                field: 1,
-                property: header.properties[0].0.clone(),
-                text: format!("(a line longer than {MAX_LINE_BYTES} bytes)"),
-            });
-        }
-        let text = core::str::from_utf8(&line).map_err(|_| PlyError::BadValue {
+        // A line that cannot be split into fields, blamed on its first.
+        let whole_line = |text: &str| PlyError::BadValue {
             line: line_no,
             field: 1,
             property: header.properties[0].0.clone(),
-            text: "(not ASCII)".into(),
-        })?;
+            text: text.into(),
+        };
+        if n == MAX_LINE_BYTES && line.last() != Some(&b'\n') {
+            return Err(whole_line(&format!(
+                "(a line longer than {MAX_LINE_BYTES} bytes)"
+            )));
+        }
+        let text = core::str::from_utf8(&line).map_err(|_| whole_line("(not ASCII)"))?;
         let mut found = 0;
         for (field, word) in text.split_ascii_whitespace().enumerate() {
             found = field + 1;
