@@ -116,14 +116,19 @@ impl Cursor<'_> {
     /// Whitespace (at least one byte) after `after`.
     fn separator(&mut self, after: &'static str) -> Result<(), PbmError> {
         if self.skip_space() == 0 {
-            return Err(PbmError::MissingWhitespace {
-                after,
-                offset: self.pos,
-                line: self.line,
-                found: self.token(),
-            });
+            return Err(self.no_space(after));
         }
         Ok(())
+    }
+
+    /// The error for a byte here that is neither whitespace nor a comment, after `after`.
+    fn no_space(&self, after: &'static str) -> PbmError {
+        PbmError::MissingWhitespace {
+            after,
+            offset: self.pos,
+            line: self.line,
+            found: self.token(),
+        }
     }
 
     fn number(&mut self, field: &'static str) -> Result<u32, PbmError> {
@@ -223,26 +228,16 @@ pub fn from_bytes_with_limits(bytes: &[u8], limits: Limits) -> Result<ImageTree,
             Some(b'#') => c.comment(),
             Some(b) if is_space(b) => c.bump(),
             None => return Err(c.truncated(u64::from(w).div_ceil(8) * u64::from(h), 0, true)),
-            Some(_) => return Err(no_space_after_height(&c)),
+            Some(_) => return Err(c.no_space("height")),
         }
         read_raw(&mut c, [w, h], budget)
     } else {
         match c.peek() {
             Some(b) if b == b'#' || is_space(b) => {}
             None => return Err(c.truncated(u64::from(w) * u64::from(h), 0, false)),
-            Some(_) => return Err(no_space_after_height(&c)),
+            Some(_) => return Err(c.no_space("height")),
         }
         read_plain(&mut c, [w, h], budget)
-    }
-}
-
-/// The error for a byte after the height that is neither whitespace nor a comment.
-fn no_space_after_height(c: &Cursor<'_>) -> PbmError {
-    PbmError::MissingWhitespace {
-        after: "height",
-        offset: c.pos,
-        line: c.line,
-        found: c.token(),
     }
 }
 
