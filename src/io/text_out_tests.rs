@@ -140,17 +140,14 @@ fn long_output_arrives_whole() {
 
 #[test]
 fn a_line_longer_than_the_buffer_arrives_whole() {
-    let mut v = Vec::new();
-    let mut out = TextOut::new(&mut v);
     let long = "x".repeat(5 * BLOCK);
-    for k in 0..3u64 {
-        out.s(&long).u(k).sp().f3(k as f64 / 8.0).nl().unwrap();
-    }
-    out.finish().unwrap();
+    let text = written(&[0u64, 1, 2], |o, k| {
+        _ = o.s(&long).u(k).sp().f3(k as f64 / 8.0)
+    });
     let expected: String = (0..3)
         .map(|k| format!("{long}{k} {}\n", f3_slow(k as f64 / 8.0)))
         .collect();
-    assert_eq!(v, expected.into_bytes());
+    assert_eq!(text, expected);
 }
 
 #[test]
