@@ -293,6 +293,15 @@ impl<'a, W: Write + ?Sized> TextOut<'a, W> {
         self
     }
 
+    /// Appends each of `values` after a space.
+    #[inline(always)]
+    pub fn spaced(&mut self, values: &[u64]) -> &mut Self {
+        for &v in values {
+            self.sp().u(v);
+        }
+        self
+    }
+
     /// Appends a space.
     #[inline(always)]
     pub fn sp(&mut self) -> &mut Self {

@@ -245,16 +245,7 @@ fn ele_unchecked(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
     let mut line = Counter::new(1);
     for (t, &r) in mesh.triangles.iter().zip(&mesh.regions) {
         let [a, b, c] = t.map(|v| u64::from(v) + 1);
-        o.count(&mut line)
-            .sp()
-            .u(a)
-            .sp()
-            .u(b)
-            .sp()
-            .u(c)
-            .sp()
-            .u(u64::from(r));
-        o.nl()?;
+        o.count(&mut line).spaced(&[a, b, c, u64::from(r)]).nl()?;
     }
     o.finish()
 }

@@ -50,13 +50,7 @@ fn write_unchecked(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
     }
     o.s("CELLS ").u(t).sp().u(4 * t).nl()?;
     for &[a, b, c] in &mesh.triangles {
-        o.s("3 ")
-            .u(a.into())
-            .sp()
-            .u(b.into())
-            .sp()
-            .u(c.into())
-            .nl()?;
+        o.s("3").spaced(&[a, b, c].map(u64::from)).nl()?;
     }
     o.s("CELL_TYPES ").u(t).nl()?;
     for _ in 0..t {
