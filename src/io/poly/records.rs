@@ -137,29 +137,16 @@ pub(super) fn check_fields(
         ));
     }
     for (k, field) in line.fields().skip(3).enumerate() {
-        let ok = if k < numbers {
-            field.parse::<f64>().is_ok_and(f64::is_finite)
+        let (ok, what, kind) = if k < numbers {
+            let finite = field.parse::<f64>().is_ok_and(f64::is_finite);
+            (finite, "attribute", "a finite number")
         } else {
-            field.parse::<i64>().is_ok()
+            let integer = field.parse::<i64>().is_ok();
+            (integer, "boundary marker", "an integer")
         };
         if !ok {
-            let what = if k < numbers {
-                "attribute"
-            } else {
-                "boundary marker"
-            };
-            return Err(parse_error(
-                line.number,
-                format!(
-                    "{what} {} is not a{}",
-                    Quoted(field),
-                    if k < numbers {
-                        " finite number"
-                    } else {
-                        "n integer"
-                    }
-                ),
-            ));
+            let message = format!("{what} {} is not {kind}", Quoted(field));
+            return Err(parse_error(line.number, message));
         }
     }
     Ok(())
@@ -173,12 +160,22 @@ pub(super) fn first_field<'a>(line: &Line<'a>) -> &'a str {
 /// A line holding one count and nothing else.
 pub(super) fn single_count(line: &Line<'_>, what: &str, record: &str) -> Result<usize, BoardError> {
     let count = parse_count(first_field(line), line.number, what)?;
-    match line.fields().nth(1) {
+    extra_field(line.number, line.fields().nth(1), record)?;
+    Ok(count)
+}
+
+/// The error for a field after the last one a count line may hold.
+pub(super) fn extra_field(
+    line: usize,
+    extra: Option<&str>,
+    record: &str,
+) -> Result<(), BoardError> {
+    match extra {
+        None => Ok(()),
         Some(extra) => Err(parse_error(
-            line.number,
-            format!("unexpected field {} after {record}", Quoted(extra)),
+            line,
+            format!("unexpected field {} after `{record}`", Quoted(extra)),
         )),
-        None => Ok(count),
     }
 }
 

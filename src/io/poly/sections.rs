@@ -3,8 +3,8 @@
 
 use super::super::board_syntax::{parse_coordinate, parse_error, Line, Quoted};
 use super::records::{
-    check_fields, continues, count_error, ends_section, first_field, parse_count, parse_id,
-    parse_marker_count, single_count, Records,
+    check_fields, continues, count_error, ends_section, extra_field, first_field, parse_count,
+    parse_id, parse_marker_count, single_count, Records,
 };
 use crate::mesh::{BoardError, Point};
 
@@ -40,17 +40,6 @@ struct VertexHeader {
     count: usize,
     attributes: usize,
     markers: usize,
-}
-
-/// The error for a field after the last one a count line may hold.
-fn extra_field(line: usize, extra: Option<&str>, record: &str) -> Result<(), BoardError> {
-    match extra {
-        None => Ok(()),
-        Some(extra) => Err(parse_error(
-            line,
-            format!("unexpected field {} after `{record}`", Quoted(extra)),
-        )),
-    }
 }
 
 /// Reads the vertex count line.
@@ -279,7 +268,7 @@ pub(super) fn read_holes_and_regions(
             format!("line {} continues the segments", holes.number),
         ));
     }
-    let count = single_count(&holes, "hole count", "`<#holes>`")?;
+    let count = single_count(&holes, "hole count", "<#holes>")?;
     if count > 0 {
         return Err(BoardError::HolesNotSupported {
             line: holes.number,
@@ -292,7 +281,7 @@ pub(super) fn read_holes_and_regions(
     let count = single_count(
         &regions,
         "regional attribute count",
-        "`<#regional attributes>`",
+        "<#regional attributes>",
     )?;
     if count > 0 {
         return Err(BoardError::RegionsNotSupported {
