@@ -24,7 +24,7 @@
 use super::text_out::{Counter, TextOut};
 use crate::hash::FastMap;
 use crate::mesh::{Mesh, SegmentKind};
-use std::io::{self, BufWriter, Write};
+use std::io::{self, Write};
 use std::path::Path;
 
 /// The elements of one entity: its tag, name, element indices (triangles or segments) and the
@@ -257,7 +257,5 @@ fn write_elements<W: Write>(o: &mut TextOut<'_, W>, mesh: &Mesh, e: &Entities) -
 /// creating the file.
 pub fn write_msh_to(mesh: &Mesh, path: impl AsRef<Path>) -> io::Result<()> {
     super::triangle::checked(mesh)?;
-    let mut out = BufWriter::new(std::fs::File::create(path)?);
-    write_unchecked(mesh, &mut out)?;
-    out.flush()
+    super::write_file(path, |out| write_unchecked(mesh, out))
 }

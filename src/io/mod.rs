@@ -59,6 +59,16 @@ fn read_full(reader: &mut impl std::io::Read, buf: &mut [u8]) -> std::io::Result
     Ok(got)
 }
 
+/// Creates the file at `path` and writes it through a buffer with `write`, then flushes it.
+fn write_file(
+    path: impl AsRef<std::path::Path>,
+    write: impl FnOnce(&mut std::io::BufWriter<std::fs::File>) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
+    write(&mut out)?;
+    std::io::Write::flush(&mut out)
+}
+
 pub use board_file::{
     read_board_file, read_board_file_with_limit, BoardFileError, BoardFormat, BoardReadError,
     MAX_BOARD_FILE_BYTES,

@@ -301,11 +301,7 @@ pub fn write_triangle_files(mesh: &Mesh, stem: impl AsRef<Path>) -> io::Result<(
     ];
     std::thread::scope(|scope| {
         let jobs = files.map(|(path, write)| {
-            scope.spawn(move || {
-                let mut out = BufWriter::new(std::fs::File::create(path)?);
-                write(mesh, &mut out)?;
-                out.flush()
-            })
+            scope.spawn(move || super::write_file(path, |out| write(mesh, out)))
         });
         let results = jobs.map(|job| {
             job.join()

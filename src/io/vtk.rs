@@ -8,7 +8,7 @@
 
 use super::text_out::TextOut;
 use crate::mesh::Mesh;
-use std::io::{self, BufWriter, Write};
+use std::io::{self, Write};
 use std::path::Path;
 
 /// Writes the mesh as legacy VTK (see the module doc).
@@ -70,7 +70,5 @@ fn write_unchecked(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
 /// As [`write_vtk`], and the file's I/O error.
 pub fn write_vtk_to(mesh: &Mesh, path: impl AsRef<Path>) -> io::Result<()> {
     super::triangle::checked(mesh)?;
-    let mut out = BufWriter::new(std::fs::File::create(path)?);
-    write_unchecked(mesh, &mut out)?;
-    out.flush()
+    super::write_file(path, |out| write_unchecked(mesh, out))
 }

@@ -146,9 +146,7 @@ pub fn mesh_svg(mesh: &Mesh, board: &Board) -> String {
 /// # Errors
 /// The writer's (or the file's) I/O error.
 pub fn write_mesh_svg_to(mesh: &Mesh, board: &Board, path: impl AsRef<Path>) -> io::Result<()> {
-    let mut out = io::BufWriter::new(std::fs::File::create(path)?);
-    write_mesh_svg(mesh, board, &mut out)?;
-    out.flush()
+    crate::io::write_file(path, |out| write_mesh_svg(mesh, board, out))
 }
 
 /// Draws a mesh on its board to `out`, [`DEFAULT_WIDTH_PX`] wide on a white background.

@@ -238,9 +238,7 @@ impl Svg {
     /// # Errors
     /// The writer's (or the file's) I/O error.
     pub fn write_to(&self, path: impl AsRef<std::path::Path>) -> std::io::Result<()> {
-        let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
-        self.write(&mut out)?;
-        std::io::Write::flush(&mut out)
+        crate::io::write_file(path, |out| self.write(out))
     }
 
     /// The opening `<svg>` tag, with its line break.
