@@ -167,8 +167,9 @@ pub enum BoardError {
     TooManyTriangles(TooManyTriangles),
 }
 
-/// A coordinate given in half units, written as a decimal: 5 as `2.5`, -3 as `-1.5`, 4 as `2`.
-struct Half(i64);
+/// A value given in half units (a coordinate, or a doubled area), written as a decimal: 5 as
+/// `2.5`, -3 as `-1.5`, 4 as `2`.
+pub(super) struct Half(pub(super) i128);
 
 impl core::fmt::Display for Half {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
@@ -182,20 +183,17 @@ impl core::fmt::Display for Half {
     }
 }
 
-/// Where an error is: `component 3`, `component 3, edge 2`, then ` (line 17)` when known.
-struct Place {
-    component: usize,
-    edge: Option<usize>,
-    line: Option<usize>,
-}
+/// Where an error is: `component 3`, `component 3, edge 2`, then ` (line 17)` when known (the
+/// component, the edge if any, the line if known).
+struct Place(usize, Option<usize>, Option<usize>);
 
 impl core::fmt::Display for Place {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        write!(f, "component {}", self.component)?;
-        if let Some(edge) = self.edge {
+        write!(f, "component {}", self.0)?;
+        if let Some(edge) = self.1 {
             write!(f, ", edge {edge}")?;
         }
-        if let Some(line) = self.line {
+        if let Some(line) = self.2 {
             write!(f, " (line {line})")?;
         }
         Ok(())
@@ -204,11 +202,6 @@ impl core::fmt::Display for Place {
 
 impl core::fmt::Display for BoardError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        let place = |component: usize, edge: Option<usize>, line: Option<usize>| Place {
-            component,
-            edge,
-            line,
-        };
         match *self {
             BoardError::SizeNotPowerOfTwo { size } => write!(
                 f,
@@ -217,7 +210,7 @@ impl core::fmt::Display for BoardError {
             BoardError::TooFewVertices { component, line } => write!(
                 f,
                 "{}: a component needs at least 3 vertices",
-                place(component, None, line)
+                Place(component, None, line)
             ),
             BoardError::OutOfRange {
                 component,
@@ -227,7 +220,7 @@ impl core::fmt::Display for BoardError {
             } => write!(
                 f,
                 "{}: vertex ({x}, {y}) lies outside the board [0, U]^2",
-                place(component, Some(edge), line)
+                Place(component, Some(edge), line)
             ),
             BoardError::ZeroLengthEdge {
                 component,
@@ -236,7 +229,7 @@ impl core::fmt::Display for BoardError {
             } => write!(
                 f,
                 "{}: edge has length zero (its two ends are the same point)",
-                place(component, Some(edge), line)
+                Place(component, Some(edge), line)
             ),
             BoardError::BadAngle {
                 component,
@@ -247,7 +240,7 @@ impl core::fmt::Display for BoardError {
             } => write!(
                 f,
                 "{}: edge ({x0}, {y0})-({x1}, {y1}) is not at 0, 45, 90 or 135 degrees",
-                place(component, Some(edge), line)
+                Place(component, Some(edge), line)
             ),
             BoardError::SelfIntersection {
                 component,
@@ -259,9 +252,9 @@ impl core::fmt::Display for BoardError {
                 f,
                 "{}: edge meets edge {other_edge} of the same component at ({}, {}), so the \
                  outline is not a simple polygon",
-                place(component, Some(edge), line),
-                Half(x),
-                Half(y)
+                Place(component, Some(edge), line),
+                Half(x.into()),
+                Half(y.into())
             ),
             BoardError::ComponentsTouch {
                 component,
@@ -274,9 +267,9 @@ impl core::fmt::Display for BoardError {
                 f,
                 "{}: edge meets edge {other_edge} of component {other} at ({}, {}); components \
                  must not touch or overlap",
-                place(component, Some(edge), line),
-                Half(x),
-                Half(y)
+                Place(component, Some(edge), line),
+                Half(x.into()),
+                Half(y.into())
             ),
             BoardError::ComponentInside { component, other } => write!(
                 f,
@@ -288,7 +281,7 @@ impl core::fmt::Display for BoardError {
                 f,
                 "{}: its segments do not close into a loop (no segment continues from the last \
                  one)",
-                place(component, None, line)
+                Place(component, None, line)
             ),
             BoardError::SizeMismatch { file, line, caller } => write!(
                 f,

@@ -292,17 +292,6 @@ fn incircle(a: Point, b: Point, c: Point, d: Point) -> i128 {
         + lift(cx, cy) * (ax * by - bx * ay)
 }
 
-/// A doubled area as text (`7` or `7.5`).
-fn half(doubled: i128) -> String {
-    let sign = if doubled < 0 { "-" } else { "" };
-    let m = doubled.unsigned_abs();
-    if m.is_multiple_of(2) {
-        format!("{sign}{}", m / 2)
-    } else {
-        format!("{sign}{}.5", m / 2)
-    }
-}
-
 /// The side of the board a directed edge lies on, running counter-clockwise (as an index into
 /// [`BoardSide::ALL`]), with its extent measured along that side from the side's start.
 fn boundary_side(a: Point, b: Point, u: i64) -> Option<(usize, i64, i64)> {

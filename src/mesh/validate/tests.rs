@@ -1,6 +1,7 @@
 //! Unit tests of the exact predicates used by the validator.
 
 use super::*;
+use crate::mesh::error::Half;
 
 #[test]
 fn incircle_signs() {
@@ -20,9 +21,9 @@ fn boundary_sides() {
     assert_eq!(boundary_side([1, 0], [0, 0], 2), None);
     assert_eq!(boundary_side([2, 2], [1, 2], 2), Some((2, 0, 1)));
     assert_eq!(boundary_side([0, 1], [0, 0], 2), Some((3, 1, 2)));
-    assert_eq!(half(7), "3.5");
-    assert_eq!(half(8), "4");
-    assert_eq!(half(-1), "-0.5");
+    assert_eq!(Half(7).to_string(), "3.5");
+    assert_eq!(Half(8).to_string(), "4");
+    assert_eq!(Half(-1).to_string(), "-0.5");
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -3,178 +3,14 @@
 //! (an angle in degrees, a doubled area, the region's name).
 
 use super::violation::{MeshValidationError, RegionRule};
-use super::{half, SegmentKind};
+use super::SegmentKind;
+use crate::mesh::error::Half;
 use core::fmt;
 
 impl MeshValidationError {
     /// The angle of [`MeshValidationError::Angle`] in degrees (floating point, for reporting).
     fn degrees(dot: i128, cross: i128) -> f64 {
         (cross as f64).atan2(dot as f64).to_degrees()
-    }
-
-    fn fmt_input(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Self::NotLatticeDirection {
-                component,
-                edge,
-                from,
-                to,
-            } => write!(
-                f,
-                "component {component} edge {edge} {from:?} -> {to:?} is not a lattice direction"
-            ),
-            Self::OutlineVertexMissing { component, point } => {
-                write!(
-                    f,
-                    "component {component} vertex {point:?} is not a mesh vertex"
-                )
-            }
-            Self::OutlineEdgeBroken {
-                component,
-                edge,
-                from,
-                to,
-                at,
-            } => write!(
-                f,
-                "component {component} edge {edge} {from:?} -> {to:?}: no mesh edge leaves \
-                 {at:?} along it"
-            ),
-            _ => self.fmt_regions(f),
-        }
-    }
-
-    fn fmt_regions(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Self::RegionOutOfRange {
-                triangle,
-                vertices,
-                region,
-                components,
-            } => write!(
-                f,
-                "triangle {triangle} {vertices:?} has region {region}, but the board has \
-                 {components} components"
-            ),
-            Self::WrongRegion {
-                triangle,
-                region,
-                expected,
-                edge: [a, b],
-                rule,
-            } => {
-                write!(f, "triangle {triangle} has region {region}, but it lies ")?;
-                match rule {
-                    RegionRule::LeftOfOutline(c) => write!(f, "left of component {c}'s outline")?,
-                    RegionRule::RightOfOutline(c) => write!(f, "right of component {c}'s outline")?,
-                    RegionRule::AcrossFrom(t) => {
-                        write!(f, "across a non-input edge from triangle {t}")?
-                    }
-                }
-                write!(f, " (edge {a} -> {b}), so region {expected}")
-            }
-            Self::RegionArea {
-                region,
-                doubled_area,
-                expected_doubled_area,
-            } => write!(
-                f,
-                "the triangles of region {region} cover area {}, component {region} has area {}",
-                half(*doubled_area),
-                half(*expected_doubled_area)
-            ),
-            _ => self.fmt_segments(f),
-        }
-    }
-
-    fn fmt_segments(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Self::SegmentNotEdge {
-                segment,
-                vertices: [a, b],
-                kind,
-            } => write!(f, "segment {segment} {a}-{b} ({kind:?}) is not a mesh edge"),
-            Self::RepeatedSegment {
-                segments: [j, k],
-                vertices: [a, b],
-                kind,
-            } => write!(f, "segments {j} and {k} both mark {a}-{b} as {kind:?}"),
-            Self::MissingBoundarySegment { edge: [a, b] } => {
-                write!(f, "board boundary edge {a}-{b} has no Boundary segment")
-            }
-            Self::MissingOutlineSegment {
-                edge: [a, b],
-                component,
-            } => write!(
-                f,
-                "edge {a}-{b} of component {component}'s outline has no segment"
-            ),
-            Self::SegmentWrongKind {
-                segment,
-                vertices: [a, b],
-                kind,
-            } => {
-                write!(f, "segment {segment} {a}-{b} is marked as on ")?;
-                match kind {
-                    SegmentKind::Boundary => write!(f, "the board boundary")?,
-                    SegmentKind::Component(c) => write!(f, "component {c}'s outline")?,
-                }
-                write!(f, ", but is not")
-            }
-            _ => self.fmt_geometry(f),
-        }
-    }
-
-    fn fmt_geometry(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Self::Area { doubled_area, size } => write!(
-                f,
-                "the triangles cover area {}, not U^2 = {}",
-                half(*doubled_area),
-                i128::from(*size) * i128::from(*size)
-            ),
-            Self::Angle {
-                triangle,
-                vertices,
-                vertex,
-                point,
-                dot,
-                cross,
-            } => {
-                let what = if *dot < 0 { "above 90" } else { "below 45" };
-                write!(
-                    f,
-                    "triangle {triangle} {vertices:?}: the angle at vertex {vertex} {point:?} is \
-                     {:.2} degrees, {what}",
-                    Self::degrees(*dot, *cross)
-                )
-            }
-            Self::Euler {
-                vertices,
-                edges,
-                triangles,
-            } => {
-                let chi = *vertices as i64 - *edges as i64 + *triangles as i64;
-                write!(
-                    f,
-                    "V - E + F = {vertices} - {edges} + {triangles} = {chi}, not 1"
-                )
-            }
-            Self::NotDelaunay {
-                edge: [a, b],
-                vertex,
-                point,
-                triangle,
-                circumcircle_of,
-                opposite,
-            } => write!(
-                f,
-                "across edge {a}-{b}: vertex {vertex} {point:?} of triangle {triangle} lies \
-                 strictly inside the circumcircle of triangle {circumcircle_of} (opposite vertex \
-                 {opposite})"
-            ),
-            _ => Ok(()),
-        }
     }
 }
 
@@ -230,14 +66,6 @@ impl fmt::Display for MeshValidationError {
                      area {doubled_area})"
                 )
             }
-            _ => self.fmt_conforming(f),
-        }
-    }
-}
-
-impl MeshValidationError {
-    fn fmt_conforming(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
             Self::EdgeInMoreThanTwoTriangles {
                 edge: [a, b],
                 triangles,
@@ -285,7 +113,147 @@ impl MeshValidationError {
                 vertices: [v, w],
                 point,
             } => write!(f, "vertices {v} and {w} are both at {point:?}"),
-            _ => self.fmt_input(f),
+            Self::NotLatticeDirection {
+                component,
+                edge,
+                from,
+                to,
+            } => write!(
+                f,
+                "component {component} edge {edge} {from:?} -> {to:?} is not a lattice direction"
+            ),
+            Self::OutlineVertexMissing { component, point } => {
+                write!(
+                    f,
+                    "component {component} vertex {point:?} is not a mesh vertex"
+                )
+            }
+            Self::OutlineEdgeBroken {
+                component,
+                edge,
+                from,
+                to,
+                at,
+            } => write!(
+                f,
+                "component {component} edge {edge} {from:?} -> {to:?}: no mesh edge leaves \
+                 {at:?} along it"
+            ),
+            Self::RegionOutOfRange {
+                triangle,
+                vertices,
+                region,
+                components,
+            } => write!(
+                f,
+                "triangle {triangle} {vertices:?} has region {region}, but the board has \
+                 {components} components"
+            ),
+            Self::WrongRegion {
+                triangle,
+                region,
+                expected,
+                edge: [a, b],
+                rule,
+            } => {
+                write!(f, "triangle {triangle} has region {region}, but it lies ")?;
+                match rule {
+                    RegionRule::LeftOfOutline(c) => write!(f, "left of component {c}'s outline")?,
+                    RegionRule::RightOfOutline(c) => write!(f, "right of component {c}'s outline")?,
+                    RegionRule::AcrossFrom(t) => {
+                        write!(f, "across a non-input edge from triangle {t}")?
+                    }
+                }
+                write!(f, " (edge {a} -> {b}), so region {expected}")
+            }
+            Self::RegionArea {
+                region,
+                doubled_area,
+                expected_doubled_area,
+            } => write!(
+                f,
+                "the triangles of region {region} cover area {}, component {region} has area {}",
+                Half(*doubled_area),
+                Half(*expected_doubled_area)
+            ),
+            Self::SegmentNotEdge {
+                segment,
+                vertices: [a, b],
+                kind,
+            } => write!(f, "segment {segment} {a}-{b} ({kind:?}) is not a mesh edge"),
+            Self::RepeatedSegment {
+                segments: [j, k],
+                vertices: [a, b],
+                kind,
+            } => write!(f, "segments {j} and {k} both mark {a}-{b} as {kind:?}"),
+            Self::MissingBoundarySegment { edge: [a, b] } => {
+                write!(f, "board boundary edge {a}-{b} has no Boundary segment")
+            }
+            Self::MissingOutlineSegment {
+                edge: [a, b],
+                component,
+            } => write!(
+                f,
+                "edge {a}-{b} of component {component}'s outline has no segment"
+            ),
+            Self::SegmentWrongKind {
+                segment,
+                vertices: [a, b],
+                kind,
+            } => {
+                write!(f, "segment {segment} {a}-{b} is marked as on ")?;
+                match kind {
+                    SegmentKind::Boundary => write!(f, "the board boundary")?,
+                    SegmentKind::Component(c) => write!(f, "component {c}'s outline")?,
+                }
+                write!(f, ", but is not")
+            }
+            Self::Area { doubled_area, size } => write!(
+                f,
+                "the triangles cover area {}, not U^2 = {}",
+                Half(*doubled_area),
+                i128::from(*size) * i128::from(*size)
+            ),
+            Self::Angle {
+                triangle,
+                vertices,
+                vertex,
+                point,
+                dot,
+                cross,
+            } => {
+                let what = if *dot < 0 { "above 90" } else { "below 45" };
+                write!(
+                    f,
+                    "triangle {triangle} {vertices:?}: the angle at vertex {vertex} {point:?} is \
+                     {:.2} degrees, {what}",
+                    Self::degrees(*dot, *cross)
+                )
+            }
+            Self::Euler {
+                vertices,
+                edges,
+                triangles,
+            } => {
+                let chi = *vertices as i64 - *edges as i64 + *triangles as i64;
+                write!(
+                    f,
+                    "V - E + F = {vertices} - {edges} + {triangles} = {chi}, not 1"
+                )
+            }
+            Self::NotDelaunay {
+                edge: [a, b],
+                vertex,
+                point,
+                triangle,
+                circumcircle_of,
+                opposite,
+            } => write!(
+                f,
+                "across edge {a}-{b}: vertex {vertex} {point:?} of triangle {triangle} lies \
+                 strictly inside the circumcircle of triangle {circumcircle_of} (opposite vertex \
+                 {opposite})"
+            ),
         }
     }
 }
