@@ -66,17 +66,13 @@ pub enum Mode {
 /// ```
 #[derive(Clone, Default)]
 pub struct MeshOptions {
-    mode: Mode,
-    grid_unit: Option<i64>,
-    near_size: Option<i64>,
-    max_size: Option<i64>,
+    settings: MeshSettings,
     size_fn: Option<Arc<SizeFn>>,
-    max_triangles: Option<u64>,
 }
 
-/// The serializable settings of [`MeshOptions`] (all but the size function).
-#[cfg(feature = "serde")]
-#[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
+/// The settings of [`MeshOptions`] but the size function: what serde writes of them.
+#[derive(Clone, Copy, Debug, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct MeshSettings {
     mode: Mode,
     grid_unit: Option<i64>,
@@ -87,16 +83,17 @@ pub(crate) struct MeshSettings {
 
 impl fmt::Debug for MeshOptions {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let s = &self.settings;
         f.debug_struct("MeshOptions")
-            .field("mode", &self.mode)
-            .field("grid_unit", &self.grid_unit)
-            .field("near_size", &self.near_size)
-            .field("max_size", &self.max_size)
+            .field("mode", &s.mode)
+            .field("grid_unit", &s.grid_unit)
+            .field("near_size", &s.near_size)
+            .field("max_size", &s.max_size)
             .field(
                 "size_fn",
                 &self.size_fn.as_ref().map(|_| "Fn([f64; 2]) -> f64"),
             )
-            .field("max_triangles", &self.max_triangles)
+            .field("max_triangles", &s.max_triangles)
             .finish()
     }
 }
@@ -109,27 +106,27 @@ impl MeshOptions {
 
     /// Sets the mode.
     pub fn mode(mut self, mode: Mode) -> Self {
-        self.mode = mode;
+        self.settings.mode = mode;
         self
     }
 
     /// Fixes the grid unit (a power of two dividing U and every coordinate) instead of detecting
     /// it. `grid_unit(1)` is the chapter's unit whatever the board.
     pub fn grid_unit(mut self, unit: i64) -> Self {
-        self.grid_unit = Some(unit);
+        self.settings.grid_unit = Some(unit);
         self
     }
 
     /// Cells meeting a component edge get at most this side (at least one grid unit). In book
     /// mode the default is one grid unit; in coarsest mode there is no default limit.
     pub fn near_size(mut self, size: i64) -> Self {
-        self.near_size = Some(size);
+        self.settings.near_size = Some(size);
         self
     }
 
     /// Every cell gets at most this side (at least one grid unit). Default: no limit.
     pub fn max_size(mut self, size: i64) -> Self {
-        self.max_size = Some(size);
+        self.settings.max_size = Some(size);
         self
     }
 
@@ -156,32 +153,25 @@ impl MeshOptions {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn max_triangles(mut self, limit: u64) -> Self {
-        self.max_triangles = Some(limit);
+        self.settings.max_triangles = Some(limit);
         self
     }
 
     /// The triangle limit in force ([`MeshOptions::max_triangles`]).
     pub fn current_max_triangles(&self) -> u64 {
-        self.max_triangles.unwrap_or(DEFAULT_MAX_TRIANGLES)
+        self.settings.max_triangles.unwrap_or(DEFAULT_MAX_TRIANGLES)
     }
 
     /// The mode set.
     pub fn current_mode(&self) -> Mode {
-        self.mode
+        self.settings.mode
     }
 
     /// The settings as set (`None` where the default applies), and whether a size function is
     /// set: what serde writes.
     #[cfg(feature = "serde")]
     pub(crate) fn settings(&self) -> (MeshSettings, bool) {
-        let s = MeshSettings {
-            mode: self.mode,
-            grid_unit: self.grid_unit,
-            near_size: self.near_size,
-            max_size: self.max_size,
-            max_triangles: self.max_triangles,
-        };
-        (s, self.size_fn.is_some())
+        (self.settings, self.size_fn.is_some())
     }
 
     /// The options of `s`, with no size function, once the settings that do not depend on the
@@ -201,12 +191,8 @@ impl MeshOptions {
             }
         }
         Ok(MeshOptions {
-            mode: s.mode,
-            grid_unit: s.grid_unit,
-            near_size: s.near_size,
-            max_size: s.max_size,
+            settings: s,
             size_fn: None,
-            max_triangles: s.max_triangles,
         })
     }
 
@@ -224,7 +210,7 @@ impl MeshOptions {
     /// O(p(S) log^2 U) time (Theorem 14.5); in coarsest mode never more cells are split, and the
     /// work per split cell is the same.
     pub fn generate(&self, board: &Board) -> Result<MeshOutcome, OptionsError> {
-        let unit = match self.grid_unit {
+        let unit = match self.settings.grid_unit {
             None => board.grid_unit(),
             Some(u) => {
                 check_unit(board, u)?;
@@ -237,11 +223,11 @@ impl MeshOptions {
             Some(size) if size < unit => Err(OptionsError::SizeBelowUnit { option, size, unit }),
             Some(size) => Ok(size / unit),
         };
-        let near = match (self.mode, self.near_size) {
+        let near = match (self.settings.mode, self.settings.near_size) {
             (Mode::Book, None) => 1,
             (_, size) => limit("near size", size)?,
         };
-        let max = limit("maximum size", self.max_size)?;
+        let max = limit("maximum size", self.settings.max_size)?;
         generate(
             board,
             unit,
@@ -261,25 +247,18 @@ fn check_unit(board: &Board, unit: i64) -> Result<(), OptionsError> {
     if unit <= 0 || unit & (unit - 1) != 0 {
         return Err(OptionsError::GridUnitNotPowerOfTwo { unit });
     }
-    let bad = |p: Point| p.into_iter().find(|c| c % unit != 0);
-    if let Some(value) = bad([board.size(), 0]) {
-        return Err(OptionsError::GridUnitDoesNotDivide {
-            unit,
-            value,
-            component: 0,
-            point: [value, value],
-        });
-    }
-    for (i, c) in board.components().iter().enumerate() {
-        for &p in &c.outline {
-            if let Some(value) = bad(p) {
-                return Err(OptionsError::GridUnitDoesNotDivide {
-                    unit,
-                    value,
-                    component: i + 1,
-                    point: p,
-                });
-            }
+    // The board's side first (as component 0, at `[U, U]`), then every outline vertex.
+    let side = core::iter::once((0, [board.size(); 2]));
+    let vertices = (board.components().iter().enumerate())
+        .flat_map(|(i, c)| c.outline.iter().map(move |&p| (i + 1, p)));
+    for (component, point) in side.chain(vertices) {
+        if let Some(value) = point.into_iter().find(|c| c % unit != 0) {
+            return Err(OptionsError::GridUnitDoesNotDivide {
+                unit,
+                value,
+                component,
+                point,
+            });
         }
     }
     Ok(())
