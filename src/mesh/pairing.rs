@@ -109,7 +109,6 @@ fn sorted_keys(
         keys[*slot as usize] = (key, h);
         *slot += 1;
     }
-    drop(next);
     for v in 0..vertices {
         keys[start[v] as usize..start[v + 1] as usize].sort_unstable();
     }

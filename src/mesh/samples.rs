@@ -25,17 +25,12 @@ use super::{Board, Component, Point};
 
 /// A component from an outline, turned counter-clockwise (the orientation [`Board::new`]
 /// normalises to) so that the shapes below need not care about their winding.
-pub(super) fn ccw(mut outline: Vec<Point>) -> Component {
-    let doubled: i128 = (0..outline.len())
-        .map(|i| {
-            let (a, b) = (outline[i], outline[(i + 1) % outline.len()]);
-            a[0] as i128 * b[1] as i128 - b[0] as i128 * a[1] as i128
-        })
-        .sum();
-    if doubled < 0 {
-        outline.reverse();
+pub(super) fn ccw(outline: Vec<Point>) -> Component {
+    let mut c = Component::new(outline);
+    if c.doubled_area() < 0 {
+        c.outline.reverse();
     }
-    Component::new(outline)
+    c
 }
 
 /// The axis rectangle `[x0, x1] x [y0, y1]`.
@@ -167,21 +162,8 @@ fn fan(
 /// Side of [`sample_board`].
 const SAMPLE_SIZE: i64 = 1024;
 
-/// Components being laid out.
-#[derive(Default)]
-struct Layout {
-    parts: Vec<Vec<Point>>,
-}
-
-impl Layout {
-    fn add(&mut self, outline: Vec<Point>) {
-        self.parts.push(outline);
-    }
-
-    fn extend(&mut self, outlines: impl IntoIterator<Item = Vec<Point>>) {
-        self.parts.extend(outlines);
-    }
-}
+/// Components being laid out, one outline each.
+type Layout = Vec<Vec<Point>>;
 
 /// One side of the board's lower half, laid out for the left side and mirrored for the right:
 /// an 8-pin SOIC chip near the edge and a bus of 4 traces that leaves 4 of the edge connector's
@@ -196,7 +178,7 @@ fn lower_side(out: &mut Layout, mirror: bool) {
     } else {
         Frame::ID
     };
-    let mut add = |local: Vec<Point>| out.add(frame.outline(&local));
+    let mut add = |local: Vec<Point>| out.push(frame.outline(&local));
     // The chip body, pin 1 marked by a chamfer; 4 pins a side, 12 x 20, 6 from the body.
     add(chamfered(60, 260, 140, 420, [0, 0, 0, 10]));
     for k in 0..4 {
@@ -245,25 +227,25 @@ fn lower_side(out: &mut Layout, mirror: bool) {
 /// assert!(board.components().iter().any(|c| c.outline.iter().any(|p| p[1] == 0)));
 /// ```
 pub fn sample_board() -> Board {
-    let mut out = Layout::default();
+    let mut out = Layout::new();
     let u = SAMPLE_SIZE;
 
     // Edge connector J1: 16 fingers, 20 wide and 70 tall, pitch 40, centres 212 + 40 i.
     for i in 0..16 {
-        out.add(rect(202 + 40 * i, 0, 222 + 40 * i, 70));
+        out.push(rect(202 + 40 * i, 0, 222 + 40 * i, 70));
     }
 
     // U1, a QFP: body [412, 612] x [520, 720], pin 1 chamfered (north-west). 7 pads a side,
     // 10 x 24, pitch 20, 8 from the body; centres 452 + 20 k (along x) and 560 + 20 k (along y).
-    out.add(chamfered(412, 520, 612, 720, [0, 0, 0, 16]));
+    out.push(chamfered(412, 520, 612, 720, [0, 0, 0, 16]));
     let along: Vec<i64> = (0..7).map(|k| 452 + 20 * k).collect();
     let across: Vec<i64> = (0..7).map(|k| 560 + 20 * k).collect();
     for k in 0..7 {
         let (x, y) = (along[k], across[k]);
-        out.add(rect(x - 5, 488, x + 5, 512)); // bottom
-        out.add(rect(x - 5, 728, x + 5, 752)); // top
-        out.add(rect(380, y - 5, 404, y + 5)); // left
-        out.add(rect(620, y - 5, 644, y + 5)); // right
+        out.push(rect(x - 5, 488, x + 5, 512)); // bottom
+        out.push(rect(x - 5, 728, x + 5, 752)); // top
+        out.push(rect(380, y - 5, 404, y + 5)); // left
+        out.push(rect(620, y - 5, 644, y + 5)); // right
     }
 
     // Bottom fan: fingers 4 to 10 (centres 372 + 40 k) up to the bottom pads, width 4; finger 11
@@ -275,7 +257,7 @@ pub fn sample_board() -> Board {
     let header: Vec<i64> = (0..7).map(|k| 392 + 40 * k).collect();
     out.extend(fan(Frame::ID, &along, &header, (754, 780, 896), 4));
     for &x in &header {
-        out.add(octagon(x, 908, 8, 3));
+        out.push(octagon(x, 908, 8, 3));
     }
 
     // Left fan: left pads out to a column of 7 test pads, 14 x 14, pitch 30 (centres 530 + 30 k).
@@ -288,7 +270,7 @@ pub fn sample_board() -> Board {
     };
     out.extend(fan(left, &across, &tests, (-378, -360, -273), 3));
     for &y in &tests {
-        out.add(rect(256, y - 7, 270, y + 7));
+        out.push(rect(256, y - 7, 270, y + 7));
     }
 
     // Right fan: right pads out to a column of 7 resistors (pairs of 12 x 14 pads, 14 apart),
@@ -300,8 +282,8 @@ pub fn sample_board() -> Board {
     };
     out.extend(fan(right, &across, &tests, (646, 664, 751), 3));
     for &y in &tests {
-        out.add(rect(754, y - 7, 766, y + 7));
-        out.add(rect(780, y - 7, 792, y + 7));
+        out.push(rect(754, y - 7, 766, y + 7));
+        out.push(rect(780, y - 7, 792, y + 7));
     }
 
     // The lower corners: SOIC chips U2 and U3, their buses, mounting holes, fiducials.
@@ -309,26 +291,26 @@ pub fn sample_board() -> Board {
     lower_side(&mut out, true);
 
     // Upper left: U4, a large chip with every corner chamfered, and a row of 5 pads under it.
-    out.add(chamfered(80, 770, 240, 870, [12; 4]));
+    out.push(chamfered(80, 770, 240, 870, [12; 4]));
     for k in 0..5 {
         let x = 100 + 30 * k;
-        out.add(rect(x - 5, 736, x + 5, 756));
+        out.push(rect(x - 5, 736, x + 5, 756));
     }
 
     // Upper right: crystal Y1 between two octagonal pads, a row of 4 capacitors above it.
-    out.add(chamfered(820, 790, 900, 830, [6; 4]));
-    out.add(octagon(800, 810, 8, 3));
-    out.add(octagon(920, 810, 8, 3));
+    out.push(chamfered(820, 790, 900, 830, [6; 4]));
+    out.push(octagon(800, 810, 8, 3));
+    out.push(octagon(920, 810, 8, 3));
     for x in [800, 860] {
-        out.add(rect(x - 12, 880, x - 2, 892));
-        out.add(rect(x + 2, 880, x + 12, 892));
+        out.push(rect(x - 12, 880, x - 2, 892));
+        out.push(rect(x + 2, 880, x + 12, 892));
     }
 
     // Mounting holes at the upper corners, a fiducial upper left.
-    out.add(octagon(40, u - 40, 18, 6));
-    out.add(octagon(u - 40, u - 40, 18, 6));
-    out.add(diamond(110, u - 110, 9));
+    out.push(octagon(40, u - 40, 18, 6));
+    out.push(octagon(u - 40, u - 40, 18, 6));
+    out.push(diamond(110, u - 110, 9));
 
-    let components = out.parts.into_iter().map(ccw).collect();
+    let components = out.into_iter().map(ccw).collect();
     Board::new(u, components).expect("the sample board is valid by construction")
 }

@@ -18,6 +18,7 @@
 //! Also [`Grid`], the balanced tree as the later steps read it: the square of a node and point
 //! location just beside a grid point.
 
+use super::labels::SIDES;
 use super::Point;
 use crate::geom::Cell;
 use crate::geom::Direction;
@@ -83,15 +84,9 @@ impl<'a> Numbering<'a> {
             flags: vec![0; tree.node_count()],
             coords: Vec::with_capacity(tree.leaf_count() * 3 / 2),
         };
-        let sides = [
-            Direction::SOUTH,
-            Direction::EAST,
-            Direction::NORTH,
-            Direction::WEST,
-        ];
         for (leaf, cell) in tree.leaves() {
             let mut f = 0u8;
-            for (k, &d) in sides.iter().enumerate() {
+            for (k, &d) in SIDES.iter().enumerate() {
                 let split = tree
                     .neighbor(leaf, d)
                     .is_some_and(|m| tree.level(m) == cell.level() && !tree.is_leaf(m));
