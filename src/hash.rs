@@ -1,5 +1,6 @@
 //! A fast, non-cryptographic hasher for integer keys (the multiply-rotate scheme of rustc's
-//! FxHash), for the hash maps of vertices and edges built from trusted integer data.
+//! FxHash), for the hash maps of vertices and edges built from trusted integer data, and
+//! SplitMix64's mixing step, for seeded coins and random boards.
 
 use core::hash::{BuildHasherDefault, Hasher};
 
@@ -40,6 +41,16 @@ impl Hasher for FastHasher {
         // bits, so bring the well-mixed high bits down.
         self.0.rotate_left(26)
     }
+}
+
+/// SplitMix64 (Steele, Lea and Flood, 2014) from state `x`: the output after one step, a fast
+/// hash of `x` whose bits are close to independent.
+#[inline]
+pub(crate) fn splitmix64(x: u64) -> u64 {
+    let mut z = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
 }
 
 /// A `HashMap` with [`FastHasher`].

@@ -34,6 +34,7 @@ use super::{CompressedTree, Located};
 use crate::error::Error;
 use crate::error::ValidationError;
 use crate::geom::{Aabb, DeepCell, DeepKey, Scalar};
+use crate::hash::splitmix64;
 use crate::query::{InsertError, Location};
 use crate::query::{
     Metric, Neighbor, PointSet, PointSetMut, PositionSlots, QueryError, SpatialIndex,
@@ -301,14 +302,6 @@ impl<const D: usize> Ord for Pending<D> {
     fn cmp(&self, other: &Self) -> Ordering {
         other.0.total_cmp(&self.0).then(other.1.cmp(&self.1))
     }
-}
-
-/// SplitMix64's output function: a fast hash whose bits are close to independent.
-fn splitmix64(x: u64) -> u64 {
-    let mut z = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
 }
 
 impl<S: Scalar, T, const D: usize> PointSet<D> for SkipQuadtree<S, T, D> {
