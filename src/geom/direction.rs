@@ -21,25 +21,13 @@ pub struct Direction {
 
 impl Direction {
     /// +y in 2D (the chapter's north).
-    pub const NORTH: Direction = Direction {
-        plus: 0b10,
-        minus: 0,
-    };
+    pub const NORTH: Direction = Direction::face(1, true);
     /// -y in 2D.
-    pub const SOUTH: Direction = Direction {
-        plus: 0,
-        minus: 0b10,
-    };
+    pub const SOUTH: Direction = Direction::face(1, false);
     /// +x.
-    pub const EAST: Direction = Direction {
-        plus: 0b01,
-        minus: 0,
-    };
+    pub const EAST: Direction = Direction::face(0, true);
     /// -x.
-    pub const WEST: Direction = Direction {
-        plus: 0,
-        minus: 0b01,
-    };
+    pub const WEST: Direction = Direction::face(0, false);
 
     /// One step along `axis`, up if `positive`.
     ///

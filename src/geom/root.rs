@@ -55,10 +55,7 @@ impl<const D: usize> RootGeometry<D> {
     /// When a coordinate of `min` or `side` is not finite, or `side` is negative:
     /// [`RootGeometry::try_new`] returns the error instead.
     pub fn new(min: [f64; D], side: f64) -> Self {
-        match Self::try_new(min, side) {
-            Ok(g) => g,
-            Err(e) => panic!("RootGeometry::new: {e}"),
-        }
+        Self::try_new(min, side).unwrap_or_else(|e| panic!("RootGeometry::new: {e}"))
     }
 
     /// [`RootGeometry::new`], or an error.
@@ -80,12 +77,7 @@ impl<const D: usize> RootGeometry<D> {
     /// ));
     /// ```
     pub fn try_new(min: [f64; D], side: f64) -> Result<Self, AabbError> {
-        if let Some(axis) = min.iter().position(|x| !x.is_finite()) {
-            return Err(AabbError::NonFinite { axis });
-        }
-        if !(side >= 0.0 && side.is_finite()) {
-            return Err(AabbError::InvalidSide { side: side.into() });
-        }
+        check_corner_side(&min, side)?;
         // Half the side rounded up: halving an odd subnormal side rounds, and the cube must
         // not shrink below `side`.
         let half = side.abs() * 0.5;
@@ -112,14 +104,7 @@ impl<const D: usize> RootGeometry<D> {
     /// [`AabbError::InvalidSide`] for a half side that is NaN, infinite or negative.
     #[cfg(any(feature = "saved", feature = "serde"))]
     pub(crate) fn try_from_halves(half_lo: [f64; D], half_side: f64) -> Result<Self, AabbError> {
-        if let Some(axis) = half_lo.iter().position(|x| !x.is_finite()) {
-            return Err(AabbError::NonFinite { axis });
-        }
-        if !(half_side >= 0.0 && half_side.is_finite()) {
-            return Err(AabbError::InvalidSide {
-                side: half_side.into(),
-            });
-        }
+        check_corner_side(&half_lo, half_side)?;
         Ok(Self::from_halves(half_lo, half_side))
     }
 
@@ -389,6 +374,22 @@ pub(crate) fn child_box<const D: usize>(
             }
         }),
     }
+}
+
+/// A cube's corner (or halved corner) and side (or half side), checked: every coordinate finite,
+/// the side finite and not negative.
+///
+/// # Errors
+/// [`AabbError::NonFinite`] naming the first non-finite axis, [`AabbError::InvalidSide`] for a
+/// side that is NaN, infinite or negative.
+fn check_corner_side<const D: usize>(lo: &[f64; D], side: f64) -> Result<(), AabbError> {
+    if let Some(axis) = lo.iter().position(|x| !x.is_finite()) {
+        return Err(AabbError::NonFinite { axis });
+    }
+    if !(side >= 0.0 && side.is_finite()) {
+        return Err(AabbError::InvalidSide { side: side.into() });
+    }
+    Ok(())
 }
 
 /// The `margin` of [`RootGeometry::coordinate`] for an axis with `half_lo` and `half_side`,
