@@ -40,7 +40,7 @@ pub(crate) use build::settle;
 #[cfg(feature = "serde")]
 pub(crate) use dynamic::DynamicParts;
 #[cfg(any(feature = "saved", feature = "serde"))]
-pub(crate) use raw::checked_root;
+pub(crate) use raw::{check_bucket, checked_root};
 #[cfg(any(feature = "saved", feature = "serde"))]
 pub(crate) use raw::{PointTreeArrays, PointTreeParts};
 pub(crate) use runs::Runs;

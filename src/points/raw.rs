@@ -67,6 +67,28 @@ pub(crate) fn checked_root<const D: usize>(
     Ok(geometry)
 }
 
+/// A stored bucket size and maximum depth, checked: the bucket size positive, the depth at
+/// most [`Cell::MAX_LEVEL`]. Shared by the point trees read back from their parts.
+///
+/// # Errors
+/// [`Invariant::Settings`] naming the zero bucket size, or the depth and its limit.
+pub(crate) fn check_bucket<const D: usize>(
+    bucket_size: usize,
+    max_depth: u8,
+) -> Result<(), ValidationError> {
+    let settings = |detail: String| Err(ValidationError::new(Invariant::Settings).detail(detail));
+    if bucket_size == 0 {
+        return settings("the bucket size is 0".into());
+    }
+    if max_depth > Cell::<D>::MAX_LEVEL {
+        let limit = Cell::<D>::MAX_LEVEL;
+        return settings(format!(
+            "the maximum depth {max_depth} exceeds the limit {limit}"
+        ));
+    }
+    Ok(())
+}
+
 impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// The stored arrays and settings.
     pub(crate) fn view(&self) -> PointTreeArrays<'_, S, T, D> {
@@ -97,17 +119,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// # Complexity
     /// O(n + m depth) for n points and m node slots.
     pub(crate) fn from_parts(parts: PointTreeParts<S, T, D>) -> Result<Self, ValidationError> {
-        let settings = |detail: String| ValidationError::new(Invariant::Settings).detail(detail);
-        if parts.bucket_size == 0 {
-            return Err(settings("the bucket size is 0".into()));
-        }
-        if parts.max_depth > Cell::<D>::MAX_LEVEL {
-            return Err(settings(format!(
-                "the maximum depth {} exceeds the limit {}",
-                parts.max_depth,
-                Cell::<D>::MAX_LEVEL
-            )));
-        }
+        check_bucket::<D>(parts.bucket_size, parts.max_depth)?;
         let geometry = checked_root(parts.half_lo, parts.half_side, &parts.domain)?;
         let domain = parts.domain;
         if parts.points.len() != parts.items.len() || parts.points.len() > u32::MAX as usize {

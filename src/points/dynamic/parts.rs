@@ -18,8 +18,8 @@
 use super::pool::Pool;
 use super::{DynamicIndex, DynamicPointTree, NodeData};
 use crate::error::{Invariant, ValidationError};
-use crate::geom::{Aabb, Cell, Scalar};
-use crate::points::checked_root;
+use crate::geom::{Aabb, Scalar};
+use crate::points::{check_bucket, checked_root};
 use crate::query::PointSet;
 use crate::tree::raw::{OwnedRawTree, RawTree};
 use crate::tree::Tree;
@@ -79,8 +79,9 @@ impl<S: Scalar, T, const D: usize> DynamicPointTree<S, T, D> {
     ///
     /// # Errors
     /// The first broken invariant: [`Invariant::Settings`] for a bucket size of 0, a maximum
-    /// depth beyond [`Cell::MAX_LEVEL`], a root cube or domain that is not finite, or a domain
-    /// outside the cube; [`Invariant::Lengths`] for arrays of the wrong lengths;
+    /// depth beyond [`Cell::MAX_LEVEL`](crate::Cell::MAX_LEVEL), a root cube or domain that is
+    /// not finite, or a domain outside the cube; [`Invariant::Lengths`] for arrays of the wrong
+    /// lengths;
     /// [`Invariant::Topology`] naming the [`crate::tree::TreeError`]; [`Invariant::Counts`] or
     /// [`Invariant::Links`] naming the node whose count or chunk is wrong, or the entry whose
     /// slot is out of range; then whatever the tree's `validate` finds.
@@ -88,18 +89,8 @@ impl<S: Scalar, T, const D: usize> DynamicPointTree<S, T, D> {
     /// # Complexity
     /// O(e + m log e) for e entries in the chunk array and m node slots.
     pub(crate) fn from_parts(parts: DynamicParts<S, T, D>) -> Result<Self, ValidationError> {
-        let settings = |detail: String| ValidationError::new(Invariant::Settings).detail(detail);
         let lengths = |detail: String| ValidationError::new(Invariant::Lengths).detail(detail);
-        if parts.bucket_size == 0 {
-            return Err(settings("the bucket size is 0".into()));
-        }
-        if parts.max_depth > Cell::<D>::MAX_LEVEL {
-            return Err(settings(format!(
-                "the maximum depth {} exceeds the limit {}",
-                parts.max_depth,
-                Cell::<D>::MAX_LEVEL
-            )));
-        }
+        check_bucket::<D>(parts.bucket_size, parts.max_depth)?;
         let geometry = checked_root(parts.half_lo, parts.half_side, &parts.domain)?;
         let (entries, n) = (parts.points.len(), parts.items.len());
         if parts.slots.len() != entries || entries >= u32::MAX as usize || n > entries {
