@@ -73,6 +73,15 @@ pub(crate) const INEXACT: &str =
     "has no exact f64 (beyond 2^53 only multiples of the f64 spacing are exact)";
 
 impl Error {
+    /// `Ok` when a tree can index `len` points (fewer than 2^32 - 1), else
+    /// [`Error::TooManyPoints`] naming `len`.
+    pub(crate) fn check_count(len: usize) -> Result<(), Error> {
+        if len >= u32::MAX as usize {
+            return Err(Error::TooManyPoints { len });
+        }
+        Ok(())
+    }
+
     /// The point check of input point `index`: `point` in `f64` when it is finite, exact and
     /// (when `domain` is given) inside the closed box; else the error naming the first bad
     /// axis.

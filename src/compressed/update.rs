@@ -28,9 +28,7 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
     /// The key of a point to insert, checked (finiteness, domain, room for one more).
     pub(crate) fn checked_insert_key(&self, point: &[S; D]) -> Result<DeepKey<D>, Error> {
         let n = self.len();
-        if n + 1 >= u32::MAX as usize {
-            return Err(Error::TooManyPoints { len: n + 1 });
-        }
+        Error::check_count(n + 1)?;
         self.input_key(point, n)
     }
 

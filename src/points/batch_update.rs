@@ -56,11 +56,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         for (i, (p, _)) in entries.iter().enumerate() {
             self.check_insertable(p, n + i)?;
         }
-        if n + entries.len() >= u32::MAX as usize {
-            return Err(Error::TooManyPoints {
-                len: n + entries.len(),
-            });
-        }
+        Error::check_count(n + entries.len())?;
         let mut keyed: Vec<u128> = entries
             .iter()
             .enumerate()

@@ -124,12 +124,8 @@ impl<S: Scalar, T, const D: usize> PointSetMut<D> for PointTree<S, T, D> {
     /// ```
     fn insert(&mut self, point: [S; D], item: T) -> Result<(), InsertError<T>> {
         let index = self.len();
-        let checked = self.check_insertable(&point, index).and_then(|()| {
-            if index + 1 >= u32::MAX as usize {
-                return Err(Error::TooManyPoints { len: index + 1 });
-            }
-            Ok(())
-        });
+        let checked =
+            (self.check_insertable(&point, index)).and_then(|()| Error::check_count(index + 1));
         if let Err(error) = checked {
             return Err(InsertError { error, item });
         }

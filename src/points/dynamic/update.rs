@@ -211,12 +211,8 @@ impl<S: Scalar, T, const D: usize> PointSetMut<D> for DynamicPointTree<S, T, D> 
     /// ```
     fn insert(&mut self, point: [S; D], item: T) -> Result<(), InsertError<T>> {
         let slot = self.len();
-        let checked = Error::check_input(&point, Some(&self.domain), slot).and_then(|_| {
-            if slot + 1 >= u32::MAX as usize {
-                return Err(Error::TooManyPoints { len: slot + 1 });
-            }
-            Ok(())
-        });
+        let checked = Error::check_input(&point, Some(&self.domain), slot)
+            .and_then(|_| Error::check_count(slot + 1));
         if let Err(error) = checked {
             return Err(InsertError { error, item });
         }
