@@ -224,12 +224,7 @@ impl<S: Scalar, const D: usize> CompressedIndex<S, D> {
         self.leaf.push(leaf);
         self.prev.push(tail);
         self.next.push(NIL);
-        if tail == NIL {
-            self.topology.nodes[leaf as usize].head = s;
-        } else {
-            self.next[tail as usize] = s;
-        }
-        self.topology.nodes[leaf as usize].tail = s;
+        self.link(leaf, tail, s, NIL, s);
         self.changed();
     }
 
@@ -247,14 +242,7 @@ impl<S: Scalar, const D: usize> CompressedIndex<S, D> {
         if s != last {
             // Whatever pointed at `last` points at `s` now.
             let (lp, ln, ll) = (self.prev[last], self.next[last], self.leaf[last]);
-            match lp {
-                NIL => self.topology.nodes[ll as usize].head = s as u32,
-                p => self.next[p as usize] = s as u32,
-            }
-            match ln {
-                NIL => self.topology.nodes[ll as usize].tail = s as u32,
-                x => self.prev[x as usize] = s as u32,
-            }
+            self.link(ll, lp, s as u32, ln, s as u32);
         }
         self.points.swap_remove(s);
         self.keys.swap_remove(s);
@@ -271,13 +259,20 @@ impl<S: Scalar, const D: usize> CompressedIndex<S, D> {
 
     fn unlink(&mut self, s: usize) {
         let (p, x, leaf) = (self.prev[s], self.next[s], self.leaf[s]);
+        self.link(leaf, p, x, x, p);
+    }
+
+    /// Relinks the list of `leaf` around a place between slots `p` and `x` (NIL for the list's
+    /// ends): what follows `p` (the head when `p` is NIL) becomes `after`, what precedes `x` (the
+    /// tail when `x` is NIL) becomes `before`.
+    fn link(&mut self, leaf: u32, p: u32, after: u32, x: u32, before: u32) {
         match p {
-            NIL => self.topology.nodes[leaf as usize].head = x,
-            p => self.next[p as usize] = x,
+            NIL => self.topology.nodes[leaf as usize].head = after,
+            p => self.next[p as usize] = after,
         }
         match x {
-            NIL => self.topology.nodes[leaf as usize].tail = p,
-            x => self.prev[x as usize] = p,
+            NIL => self.topology.nodes[leaf as usize].tail = before,
+            x => self.prev[x as usize] = before,
         }
     }
 

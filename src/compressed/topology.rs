@@ -158,7 +158,12 @@ impl<const D: usize> Topology<D> {
 
     /// The sibling before `v` in its parent's list (NIL for the first child).
     fn previous(&self, v: u32) -> u32 {
-        let parent = self.nodes[v as usize].parent;
+        self.before(self.nodes[v as usize].parent, v)
+    }
+
+    /// The child of `parent` that `v` follows in its list: NIL when `v` is the first child, the
+    /// last child when `v` is NIL.
+    fn before(&self, parent: u32, v: u32) -> u32 {
         let mut prev = NIL;
         let mut at = self.nodes[parent as usize].first_child;
         while at != v {
@@ -277,13 +282,7 @@ impl<const D: usize> Topology<D> {
 
     /// Appends `child` as the last child of `parent` (the construction's order is Morton order).
     fn append(&mut self, parent: u32, child: u32) {
-        let mut prev = NIL;
-        let mut at = self.nodes[parent as usize].first_child;
-        while at != NIL {
-            prev = at;
-            at = self.nodes[at as usize].next_sibling;
-        }
-        self.set_next(parent, prev, child);
+        self.set_next(parent, self.before(parent, NIL), child);
     }
 
     /// The nodes in pre-order (Morton order, an ancestor before its descendants), with an
