@@ -213,13 +213,7 @@ impl<const D: usize> RegionTree<D> {
     /// assert!(ImageTree::from_bools([2, 2], &[true]).is_err());
     /// ```
     pub fn from_bools(extent: [u32; D], pixels: &[bool]) -> Result<Self, ImageError> {
-        let n = pixel_count(extent);
-        if pixels.len() != n {
-            return Err(ImageError::BitmapLength {
-                expected: n,
-                found: pixels.len(),
-            });
-        }
+        check_length(pixel_count(extent), pixels.len())?;
         // Backed by the data: one bool per pixel is held already.
         Self::from_fn_with_limit(extent, u64::MAX, |p| pixels[row_major(p, extent)])
     }
@@ -241,13 +235,7 @@ impl<const D: usize> RegionTree<D> {
     /// assert_eq!(t.to_packed(), [0xff]);
     /// ```
     pub fn from_packed(extent: [u32; D], words: &[u64]) -> Result<Self, ImageError> {
-        let n = pixel_count(extent).div_ceil(64);
-        if words.len() != n {
-            return Err(ImageError::BitmapLength {
-                expected: n,
-                found: words.len(),
-            });
-        }
+        check_length(pixel_count(extent).div_ceil(64), words.len())?;
         // Backed by the data: one bit per pixel is held already.
         Self::from_fn_with_limit(extent, u64::MAX, |p| {
             let i = row_major(p, extent);
@@ -437,6 +425,15 @@ impl<const D: usize> RegionTree<D> {
             }
         })
     }
+}
+
+/// `Ok` when a bitmap (or a row) of `found` values has the `expected` length, else
+/// [`ImageError::BitmapLength`] naming both.
+pub(super) fn check_length(expected: usize, found: usize) -> Result<(), ImageError> {
+    if found != expected {
+        return Err(ImageError::BitmapLength { expected, found });
+    }
+    Ok(())
 }
 
 fn pixel_count<const D: usize>(extent: [u32; D]) -> usize {

@@ -168,12 +168,7 @@ impl RowBuilder {
     /// # Complexity
     /// O(width / 64) amortised, plus the merges it completes.
     pub fn push_row(&mut self, row: &[u64]) -> Result<(), ImageError> {
-        if row.len() != self.row_words {
-            return Err(ImageError::BitmapLength {
-                expected: self.row_words,
-                found: row.len(),
-            });
-        }
+        super::build::check_length(self.row_words, row.len())?;
         if self.rows >= self.extent[1] {
             return Err(ImageError::TooManyRows {
                 height: self.extent[1],
