@@ -104,21 +104,7 @@ impl Attributes {
 
     /// Empty columns of the same kinds as these, for a reader or an operation to fill.
     pub fn same_kinds(&self) -> Attributes {
-        Attributes {
-            intensity: self.intensity.as_ref().map(|_| Vec::new()),
-            classification: self.classification.as_ref().map(|_| Vec::new()),
-            color: self.color.as_ref().map(|_| Vec::new()),
-            gps_time: self.gps_time.as_ref().map(|_| Vec::new()),
-            normal: self.normal.as_ref().map(|_| Vec::new()),
-            extra: self
-                .extra
-                .iter()
-                .map(|c| Column {
-                    name: c.name.clone(),
-                    values: Vec::new(),
-                })
-                .collect(),
-        }
+        self.select(&[])
     }
 
     /// Whether no column is present.

@@ -46,7 +46,8 @@ pub fn symmetric_eigen(mut a: [[f64; 3]; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
             let t = if theta == 0.0 { 1.0 } else { t };
             let c = 1.0 / (t * t + 1.0).sqrt();
             let s = t * c;
-            for row in a.iter_mut() {
+            // Columns p and q of `a` and of `v` turn alike; then rows p and q of `a`.
+            for row in a.iter_mut().chain(v.iter_mut()) {
                 let (x, y) = (row[p], row[q]);
                 row[p] = c * x - s * y;
                 row[q] = s * x + c * y;
@@ -54,11 +55,6 @@ pub fn symmetric_eigen(mut a: [[f64; 3]; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
             let (row_p, row_q) = (a[p], a[q]);
             a[p] = core::array::from_fn(|j| c * row_p[j] - s * row_q[j]);
             a[q] = core::array::from_fn(|j| s * row_p[j] + c * row_q[j]);
-            for row in v.iter_mut() {
-                let (x, y) = (row[p], row[q]);
-                row[p] = c * x - s * y;
-                row[q] = s * x + c * y;
-            }
         }
     }
     let mut order = [0usize, 1, 2];
