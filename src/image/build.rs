@@ -126,9 +126,7 @@ impl<const D: usize> RegionTree<D> {
                 };
                 top.2 += 1;
                 if usize::from(top.2) < 1 << D {
-                    let (base, c) = (top.0, top.2);
-                    let half = 1u32 << (depth - top.1 - 1);
-                    min = core::array::from_fn(|a| base[a] + ((c >> a) & 1) as u32 * half);
+                    min = super::iter::child(top.0, top.1, depth, top.2);
                     level = top.1 + 1;
                     break;
                 }

@@ -31,7 +31,10 @@ pub struct Blocks<'a, const D: usize> {
     stack: SmallVec<[([u32; D], u8, u16); 32]>,
 }
 
-fn child<const D: usize>(min: [u32; D], level: u8, depth: u8, c: u16) -> [u32; D] {
+/// The lower corner of child `c` of the cell at `min` on `level`, in a tree of depth `depth`
+/// (shared by the blocks, the builder and the validator).
+#[inline]
+pub(super) fn child<const D: usize>(min: [u32; D], level: u8, depth: u8, c: u16) -> [u32; D] {
     let half = 1u32 << (depth - level - 1);
     core::array::from_fn(|a| min[a] + ((c >> a) & 1) as u32 * half)
 }

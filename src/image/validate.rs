@@ -158,9 +158,7 @@ impl<const D: usize> RegionTree<D> {
             };
             top.1 += 1;
             if top.1 < n {
-                let child_side = 1u32 << (self.depth - open);
-                let (c, base) = (top.1, top.2);
-                let min = core::array::from_fn(|a| base[a] + ((c >> a) as u32 & 1) * child_side);
+                let min = super::iter::child(top.2, open - 1, self.depth, top.1 as u16);
                 return Ok(Some(min));
             }
             let (start, _, _) = stack.pop().expect("non-empty");
