@@ -106,13 +106,11 @@ impl<S: Scalar> Cloud<S> {
     pub fn check(&self) -> Result<(), CloudError> {
         self.attributes.check(self.points.len())?;
         for (index, p) in self.points.iter().enumerate() {
-            if let Err(axis) = crate::geom::validate_point(p) {
-                return Err(CloudError::BadCoordinate {
-                    index,
-                    axis,
-                    value: p[axis].to_f64(),
-                });
-            }
+            crate::geom::validate_point(p).map_err(|axis| CloudError::BadCoordinate {
+                index,
+                axis,
+                value: p[axis].to_f64(),
+            })?;
         }
         Ok(())
     }

@@ -298,9 +298,8 @@ impl<S: Scalar, T, const D: usize> PointSet<D> for CompressedTree<S, T, D> {
         use crate::error::Invariant as I;
         let ix = &self.index;
         let t = &ix.topology;
-        if let Err(e) = t.validate() {
-            return Err(ValidationError::new(I::Topology).detail(e));
-        }
+        t.validate()
+            .map_err(|e| ValidationError::new(I::Topology).detail(e))?;
         let n = self.len();
         if [ix.points.len(), ix.keys.len(), ix.leaf.len(), ix.prev.len()] != [n; 4] {
             return Err(ValidationError::new(I::Lengths).detail("slot arrays"));

@@ -345,9 +345,8 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
     /// more than the bucket size unless balance split it, and then the tree is balanced.
     fn check_invariants(&self) -> Result<(), ValidationError> {
         use crate::error::Invariant as I;
-        if let Err(e) = self.tree.validate() {
-            return Err(ValidationError::new(I::Topology).detail(e.to_string()));
-        }
+        (self.tree.validate())
+            .map_err(|e| ValidationError::new(I::Topology).detail(e.to_string()))?;
         self.check_points_and_runs()
     }
 

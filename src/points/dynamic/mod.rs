@@ -272,9 +272,8 @@ impl<S: Scalar, T, const D: usize> PointSet<D> for DynamicPointTree<S, T, D> {
     fn validate(&self) -> Result<(), ValidationError> {
         use crate::error::Invariant as I;
         let ix = &self.index;
-        if let Err(e) = ix.tree.validate() {
-            return Err(ValidationError::new(I::Topology).detail(e.to_string()));
-        }
+        (ix.tree.validate())
+            .map_err(|e| ValidationError::new(I::Topology).detail(e.to_string()))?;
         if ix.nodes.len() < ix.tree.node_count() || self.pos.len() != self.items.len() {
             return Err(ValidationError::new(I::Lengths)
                 .detail("one record per node and one position per item"));
