@@ -311,25 +311,22 @@ fn check_crossings(edges: &[Edge]) -> Result<(), BoardError> {
         ),
     ];
     let classes: Vec<Class> = edges.iter().map(Edge::class).collect();
+    // The segment of mapped ends `a`, `b` fixed on axis `f` (1 for horizontal, 0 for vertical).
+    let seg = |f: usize, a: [i64; 2], b: [i64; 2], edge| Seg {
+        fixed: a[f],
+        lo: a[1 - f].min(b[1 - f]),
+        hi: a[1 - f].max(b[1 - f]),
+        edge,
+    };
     for (hclass, vclass, map, back) in pairs {
         let mut hs = Vec::new();
         let mut vs = Vec::new();
         for (id, e) in edges.iter().enumerate() {
             let (a, b) = (map(e.a), map(e.b));
             if classes[id] == hclass {
-                hs.push(Seg {
-                    fixed: a[1],
-                    lo: a[0].min(b[0]),
-                    hi: a[0].max(b[0]),
-                    edge: id,
-                });
+                hs.push(seg(1, a, b, id));
             } else if classes[id] == vclass {
-                vs.push(Seg {
-                    fixed: a[0],
-                    lo: a[1].min(b[1]),
-                    hi: a[1].max(b[1]),
-                    edge: id,
-                });
+                vs.push(seg(0, a, b, id));
             }
         }
         sweep(edges, &hs, &vs, back)?;
