@@ -271,16 +271,7 @@ impl RowBuilder {
             black: Vec::with_capacity(words),
             ..Band::default()
         };
-        let mut from = [
-            Subtrees {
-                band: upper,
-                next: 0,
-            },
-            Subtrees {
-                band: lower,
-                next: 0,
-            },
-        ];
+        let mut from = [upper, lower].map(|band| Subtrees { band, next: 0 });
         for w in 0..words {
             let (um_or, _) = pairs(&upper.mixed, w);
             let (lm_or, _) = pairs(&lower.mixed, w);

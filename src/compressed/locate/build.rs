@@ -91,16 +91,12 @@ impl PointLocator {
     fn outside_face(&self, quadrant: Cell<2>, cell: Cell<2>, edges: &[u32]) -> u32 {
         let qb = self.geometry.cell_box(&quadrant);
         let cb = self.geometry.cell_box(&cell);
-        let corners = [0, 1, 2, 3].map(|c: usize| {
-            let pick = |a: usize| {
-                if (c >> a) & 1 == 0 {
-                    qb.min[a]
-                } else {
-                    qb.max[a]
-                }
-            };
-            [pick(0), pick(1)]
-        });
+        let corners = [
+            qb.min,
+            [qb.max[0], qb.min[1]],
+            [qb.min[0], qb.max[1]],
+            qb.max,
+        ];
         let sample = corners
             .into_iter()
             .find(|p| !cb.contains(p))
