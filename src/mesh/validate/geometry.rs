@@ -14,7 +14,6 @@ impl Validator<'_> {
         // plane, compared exactly by their cross product; converted to degrees at the end.
         let mut range: Option<[(i128, i128); 2]> = None;
         let less = |(d1, c1): (i128, i128), (d2, c2): (i128, i128)| d1 * c2 - c1 * d2 > 0;
-        let degrees = |(dot, cr): (i128, i128)| (cr as f64).atan2(dot as f64).to_degrees();
         for (t, tri) in self.good_triangles() {
             let p = self.tri_points(t);
             for i in 0..3 {

@@ -274,6 +274,12 @@ impl Mesh {
     }
 }
 
+/// The angle of a dot and an absolute cross product ([`MeshValidationError::Angle`]) in
+/// degrees (floating point, for reporting).
+fn degrees((dot, cross): (i128, i128)) -> f64 {
+    (cross as f64).atan2(dot as f64).to_degrees()
+}
+
 /// Twice the signed area of (a, b, c).
 fn cross(a: Point, b: Point, c: Point) -> i128 {
     let (ux, uy) = (b[0] as i128 - a[0] as i128, b[1] as i128 - a[1] as i128);

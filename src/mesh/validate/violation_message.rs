@@ -3,16 +3,9 @@
 //! (an angle in degrees, a doubled area, the region's name).
 
 use super::violation::{MeshValidationError, RegionRule};
-use super::SegmentKind;
+use super::{degrees, SegmentKind};
 use crate::mesh::error::Half;
 use core::fmt;
-
-impl MeshValidationError {
-    /// The angle of [`MeshValidationError::Angle`] in degrees (floating point, for reporting).
-    fn degrees(dot: i128, cross: i128) -> f64 {
-        (cross as f64).atan2(dot as f64).to_degrees()
-    }
-}
 
 impl fmt::Display for MeshValidationError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -227,7 +220,7 @@ impl fmt::Display for MeshValidationError {
                     f,
                     "triangle {triangle} {vertices:?}: the angle at vertex {vertex} {point:?} is \
                      {:.2} degrees, {what}",
-                    Self::degrees(*dot, *cross)
+                    degrees((*dot, *cross))
                 )
             }
             Self::Euler {
