@@ -159,10 +159,7 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
     pub fn depth(&self) -> usize {
         let t = &self.index.topology;
         let mut deepest = 0;
-        let mut stack = Vec::new();
-        if !t.is_empty() {
-            stack.push((0u32, 0usize));
-        }
+        let mut stack = Vec::from_iter((!t.is_empty()).then_some((0u32, 0usize)));
         while let Some((v, d)) = stack.pop() {
             deepest = deepest.max(d);
             stack.extend(t.children(v).map(|c| (c, d + 1)));
