@@ -21,6 +21,7 @@ use super::knn_group::Search;
 use super::knn_map::{swap_rows, to_slot_order};
 use super::slots::SlotView;
 use super::traverse::{children, Side, SCAN};
+use super::Join;
 use crate::cpu::compiled_copy;
 use crate::geom::{Aabb, Scalar};
 use crate::huge_pages;
@@ -137,10 +138,9 @@ pub(crate) fn parts<'t>(
 #[inline]
 pub(crate) fn fill<A, B, P, const D: usize>(
     search: &mut Search<<B::Index as SpatialIndex<D>>::Node, D>,
-    (a, b, metric): (&A, &B, &P),
+    Join(a, b, metric, same): Join<'_, A, B, P>,
     part: Part<'_>,
     k: usize,
-    same: bool,
 ) where
     A: PointSet<D>,
     B: PointSet<D>,
@@ -208,12 +208,13 @@ fn fill_rows<SA: Scalar, I: SpatialIndex<D>, P: PairDistance<D>, const D: usize>
     }
 }
 
-/// The slot in `a` of each row of a table in the order of `groups`; `None` when that is the
-/// identity (row `i` is slot `i`, as in a [`PointTree`](crate::PointTree)).
-pub(crate) fn row_slots<A: PointSet<D>, const D: usize>(
+/// Puts rows in the order of `groups` into slot order in `a` by `swap` ([`to_slot_order`]);
+/// nothing to do when row `i` is slot `i` already (as in a [`PointTree`](crate::PointTree)).
+pub(crate) fn in_slot_order<A: PointSet<D>, const D: usize>(
     a: &A,
     groups: &[Group],
-) -> Option<Vec<usize>> {
+    swap: impl FnMut(usize, usize),
+) {
     let qa = a.index().payloads();
     let order = || {
         groups
@@ -222,47 +223,57 @@ pub(crate) fn row_slots<A: PointSet<D>, const D: usize>(
             .map(|i| a.slot_of(i, &qa[i]))
     };
     // Checked before anything is allocated: the identity is the common case.
-    if order().enumerate().all(|(r, s)| r == s) {
-        return None;
-    }
-    Some(order().collect())
-}
-
-/// A table of `rows` rows of `k` entries from its entries row after row.
-pub(crate) fn table(k: usize, rows: usize, slots: Vec<usize>, distances: Vec<f64>) -> KnnTable {
-    KnnTable {
-        k,
-        rows,
-        slots,
-        distances,
+    if !order().enumerate().all(|(r, s)| r == s) {
+        to_slot_order(&mut order().collect::<Vec<_>>(), swap);
     }
 }
 
-/// The k-nearest join of `a` in `b` (`same`: the self-join of `a`, `b` being `a`), serially.
-pub(crate) fn knn_join<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, const D: usize>(
-    a: &A,
-    b: &B,
-    metric: &P,
-    k: usize,
-    same: bool,
-) -> KnnTable {
-    let (n, w) = (a.len(), width(k, b.len(), same));
-    if w == 0 {
-        return table(0, n, Vec::new(), Vec::new());
+impl<A, B, P> Join<'_, A, B, P> {
+    /// The k-nearest table, serially.
+    pub(crate) fn knn<const D: usize>(self, k: usize) -> KnnTable
+    where
+        A: PointSet<D>,
+        B: PointSet<D>,
+        P: PairDistance<D>,
+    {
+        self.table(k, |parts, w| {
+            let mut search = Search::new();
+            for part in parts {
+                fill(&mut search, self, part, w);
+            }
+        })
     }
-    let gs = groups(a.index());
-    let (mut slots, mut distances) = (huge_pages::zeros(n * w), huge_pages::zeros(n * w));
-    let mut search = Search::new();
-    for part in parts(&gs, w, &mut slots, &mut distances) {
-        fill(&mut search, (a, b, metric), part, w, same);
+
+    /// The table of the `k` nearest: its rows cut into the parts of the querying set's groups
+    /// ([`parts`]), filled by `fill_parts(parts, width)` (`width` at least 1), then put into
+    /// slot order.
+    pub(crate) fn table<const D: usize>(
+        self,
+        k: usize,
+        fill_parts: impl FnOnce(Vec<Part<'_>>, usize),
+    ) -> KnnTable
+    where
+        A: PointSet<D>,
+        B: PointSet<D>,
+    {
+        let Join(a, b, _, same) = self;
+        let (rows, w) = (a.len(), width(k, b.len(), same));
+        let (mut slots, mut distances) = (huge_pages::zeros(rows * w), huge_pages::zeros(rows * w));
+        if w > 0 {
+            let gs = groups(a.index());
+            fill_parts(parts(&gs, w, &mut slots, &mut distances), w);
+            in_slot_order(a, &gs, |x, y| {
+                swap_rows(&mut slots, x, y, w);
+                swap_rows(&mut distances, x, y, w);
+            });
+        }
+        KnnTable {
+            k: w,
+            rows,
+            slots,
+            distances,
+        }
     }
-    if let Some(mut order) = row_slots(a, &gs) {
-        to_slot_order(&mut order, |x, y| {
-            swap_rows(&mut slots, x, y, w);
-            swap_rows(&mut distances, x, y, w);
-        });
-    }
-    table(w, n, slots, distances)
 }
 
 /// Checks that every part's rows through [`fill`] (the copy the processor runs) and through
@@ -280,7 +291,7 @@ pub(crate) fn assert_copies_agree<P: PointSet<D>, const D: usize>(set: &P, k: us
         .into_iter()
         .zip(parts(&gs, k, &mut s2, &mut d2))
     {
-        fill(&mut search1, (set, set, &Euclid), p1, k, true);
+        fill(&mut search1, Join(set, set, &Euclid, true), p1, k);
         let sides = (
             set.index().points(),
             set.index(),

@@ -9,8 +9,9 @@
 //! copied when the rows are already the slots (a [`PointTree`](crate::PointTree)).
 
 use super::bounds::PairDistance;
-use super::knn::{fill, groups, row_slots, width, Group};
+use super::knn::{fill, groups, in_slot_order, width, Group};
 use super::knn_group::Search;
+use super::Join;
 use crate::query::{PointSet, SpatialIndex};
 
 /// One thread's buffers: the group searcher and one group's rows (slots and distances).
@@ -30,14 +31,13 @@ impl<N: Copy, const D: usize> Scratch<N, D> {
     }
 }
 
-/// Searches `group` of `a` in `b` (`w` neighbours per point, at least 1) and pushes
-/// `f(slot in a, neighbour slots in b, squared distances)` for each of its points, in
-/// position order, onto `out`.
-pub(crate) fn map_group<A, B, P, T, const D: usize>(
+/// Searches `group` of the querying set in the other (`w` neighbours per point, at least 1)
+/// and pushes `f(slot in a, neighbour slots in b, squared distances)` for each of its points,
+/// in position order, onto `out`.
+fn map_group<A, B, P, T, const D: usize>(
     scratch: &mut Scratch<<B::Index as SpatialIndex<D>>::Node, D>,
-    (a, b, metric): (&A, &B, &P),
-    group: &Group,
-    (w, same): (usize, bool),
+    join: Join<'_, A, B, P>,
+    (group, w): (&Group, usize),
     f: &mut impl FnMut(usize, &[usize], &[f64]) -> T,
     out: &mut Vec<T>,
 ) where
@@ -49,94 +49,78 @@ pub(crate) fn map_group<A, B, P, T, const D: usize>(
     scratch.slots.resize(n, 0);
     scratch.distances.resize(n, 0.0);
     let (slots, distances) = (&mut scratch.slots[..n], &mut scratch.distances[..n]);
-    fill(
-        &mut scratch.search,
-        (a, b, metric),
-        (group, &mut *slots, &mut *distances),
-        w,
-        same,
-    );
-    let qa = a.index().payloads();
+    let part = (group, &mut *slots, &mut *distances);
+    fill(&mut scratch.search, join, part, w);
+    let (a, qa) = (join.0, join.0.index().payloads());
     let rows = slots.chunks(w).zip(distances.chunks(w));
     for (i, (s, d)) in group.clone().zip(rows) {
         out.push(f(a.slot_of(i, &qa[i]), s, d));
     }
 }
 
-/// `f(slot, neighbour slots, squared distances)` for every slot of `a`, its `k` nearest in `b`
-/// under `metric` (`same`: the others of `a`, `b` being `a`), serially; the values in slot
-/// order.
-pub(crate) fn knn_map<A, B, P, T, const D: usize>(
-    (a, b, metric): (&A, &B, &P),
-    k: usize,
-    same: bool,
-    mut f: impl FnMut(usize, &[usize], &[f64]) -> T,
-) -> Vec<T>
-where
-    A: PointSet<D>,
-    B: PointSet<D>,
-    P: PairDistance<D>,
-{
-    let w = width(k, b.len(), same);
-    if w == 0 {
-        return (0..a.len()).map(|s| f(s, &[], &[])).collect();
-    }
-    let gs = groups(a.index());
-    let mut out = Vec::with_capacity(a.len());
-    let mut scratch = Scratch::new();
-    for g in &gs {
-        map_group(&mut scratch, (a, b, metric), g, (w, same), &mut f, &mut out);
-    }
-    if let Some(mut order) = row_slots(a, &gs) {
-        to_slot_order(&mut order, |x, y| out.swap(x, y));
-    }
-    out
-}
-
-/// [`knn_map`] with the groups on rayon's threads; `f` is called from several threads at
-/// once, in no particular order.
-#[cfg(feature = "rayon")]
-pub(crate) fn par_knn_map<A, B, P, T, const D: usize>(
-    (a, b, metric): (&A, &B, &P),
-    k: usize,
-    same: bool,
-    f: impl Fn(usize, &[usize], &[f64]) -> T + Sync,
-) -> Vec<T>
-where
-    A: PointSet<D> + Sync,
-    B: PointSet<D> + Sync,
-    P: PairDistance<D>,
-    T: Send,
-{
-    use crate::par_tasks::{chunks, map_indices, map_ranges};
-    let w = width(k, b.len(), same);
-    if w == 0 {
-        return map_indices(a.len(), &|s| f(s, &[], &[]));
-    }
-    let gs = groups(a.index());
-    // Runs of consecutive groups, one scratch space a run, the values concatenated in order.
-    let runs = map_ranges(gs.len(), chunks(), &|run| {
-        let (mut scratch, mut values) = (Scratch::new(), Vec::new());
-        for g in &gs[run] {
-            map_group(
-                &mut scratch,
-                (a, b, metric),
-                g,
-                (w, same),
-                &mut &f,
-                &mut values,
-            );
+impl<A, B, P> Join<'_, A, B, P> {
+    /// `f(slot, neighbour slots, squared distances)` for every slot of the querying set, with
+    /// its row of the `k`-nearest table, serially; the values in slot order.
+    pub(crate) fn map_knn<T, const D: usize>(
+        self,
+        k: usize,
+        mut f: impl FnMut(usize, &[usize], &[f64]) -> T,
+    ) -> Vec<T>
+    where
+        A: PointSet<D>,
+        B: PointSet<D>,
+        P: PairDistance<D>,
+    {
+        let Join(a, b, _, same) = self;
+        let w = width(k, b.len(), same);
+        if w == 0 {
+            return (0..a.len()).map(|s| f(s, &[], &[])).collect();
         }
-        values
-    });
-    let mut out: Vec<T> = Vec::with_capacity(a.len());
-    for run in runs {
-        out.extend(run);
+        let gs = groups(a.index());
+        let mut out = Vec::with_capacity(a.len());
+        let mut scratch = Scratch::new();
+        for g in &gs {
+            map_group(&mut scratch, self, (g, w), &mut f, &mut out);
+        }
+        in_slot_order(a, &gs, |x, y| out.swap(x, y));
+        out
     }
-    if let Some(mut order) = row_slots(a, &gs) {
-        to_slot_order(&mut order, |x, y| out.swap(x, y));
+
+    /// [`Join::map_knn`] with the groups on rayon's threads; `f` is called from several threads
+    /// at once, in no particular order.
+    #[cfg(feature = "rayon")]
+    pub(crate) fn par_map_knn<T: Send, const D: usize>(
+        self,
+        k: usize,
+        f: impl Fn(usize, &[usize], &[f64]) -> T + Sync,
+    ) -> Vec<T>
+    where
+        A: PointSet<D> + Sync,
+        B: PointSet<D> + Sync,
+        P: PairDistance<D>,
+    {
+        use crate::par_tasks::{chunks, map_indices, map_ranges};
+        let Join(a, b, _, same) = self;
+        let w = width(k, b.len(), same);
+        if w == 0 {
+            return map_indices(a.len(), &|s| f(s, &[], &[]));
+        }
+        let gs = groups(a.index());
+        // Runs of consecutive groups, one scratch space a run, the values concatenated in order.
+        let runs = map_ranges(gs.len(), chunks(), &|run| {
+            let (mut scratch, mut values) = (Scratch::new(), Vec::new());
+            for g in &gs[run] {
+                map_group(&mut scratch, self, (g, w), &mut &f, &mut values);
+            }
+            values
+        });
+        let mut out: Vec<T> = Vec::with_capacity(a.len());
+        for run in runs {
+            out.extend(run);
+        }
+        in_slot_order(a, &gs, |x, y| out.swap(x, y));
+        out
     }
-    out
 }
 
 /// Puts rows into slot order: row `r` belongs to slot `order[r]` (a permutation), and

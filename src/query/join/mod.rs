@@ -11,7 +11,9 @@
 //! squared Euclidean in `f64`, as [`PointSet::k_nearest`] computes them (exact for integer
 //! coordinates whose squares `f64` holds); the only geometry the engines see is the small seam
 //! of [`bounds`], so another distance plugs in there: a periodic domain's minimum-image
-//! distance gives the same joins on a torus ([`PeriodicJoins`]).
+//! distance gives the same joins on a torus ([`PeriodicJoins`]). Every engine, serial or
+//! parallel, is a method of [`Join`] (the two sets, their distance, whether it is a self-join),
+//! so that each public method names its sets and distance once and calls one engine.
 
 mod bounds;
 mod knn;
@@ -79,7 +81,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        knn::knn_join(self, other, &Euclid, k, false)
+        Join(self, other, &Euclid, false).knn(k)
     }
 
     /// The `k` nearest other points to every point of this set: row `s` is
@@ -102,7 +104,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        knn::knn_join(self, self, &Euclid, k, true)
+        Join(self, self, &Euclid, true).knn(k)
     }
 
     /// `f(s, neighbours, distances)` for every slot `s` of this set, with the row that
@@ -133,7 +135,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        knn_map::knn_map((self, other, &Euclid), k, false, f)
+        Join(self, other, &Euclid, false).map_knn(k, f)
     }
 
     /// [`Joins::map_k_nearest_join`] for the self-join: `f(s, neighbours, distances)` with the
@@ -156,7 +158,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        knn_map::knn_map((self, self, &Euclid), k, true, f)
+        Join(self, self, &Euclid, true).map_knn(k, f)
     }
 
     /// Calls `visit(s, t, d)` for every unordered pair of distinct slots `s < t` whose points
@@ -196,7 +198,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        pairs_of(self, self, &Euclid, true, r, boundary, visit)
+        Join(self, self, &Euclid, true).pairs(r, boundary, visit)
     }
 
     /// Calls `visit(s, t, d)` for every slot `s` of this set and `t` of `other` whose points
@@ -229,7 +231,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        pairs_of(self, other, &Euclid, false, r, boundary, visit)
+        Join(self, other, &Euclid, false).pairs(r, boundary, visit)
     }
 
     /// For each radius of `radii` (non-decreasing), the number of unordered pairs of distinct
@@ -255,7 +257,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        count_of(self, self, &Euclid, true, radii, boundary)
+        Join(self, self, &Euclid, true).count(radii, boundary)
     }
 
     /// For each radius of `radii` (non-decreasing), the number of pairs of a point of this set
@@ -280,7 +282,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        count_of(self, other, &Euclid, false, radii, boundary)
+        Join(self, other, &Euclid, false).count(radii, boundary)
     }
 
     /// Every pair of a point of this set (row) and a point of `other` (column) within `r`,
@@ -307,77 +309,91 @@ pub trait Joins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        sparse_of(self, other, &Euclid, r, boundary)
+        Join(self, other, &Euclid, false).sparse(r, boundary)
     }
 }
 
 impl<P: PointSet<D>, const D: usize> Joins<D> for P {}
 
-/// The pairs within `r` between `a` and `b` under `metric` (`same`: `b` is `a`, unordered
-/// pairs once).
-fn pairs_of<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, Br, const D: usize>(
-    a: &A,
-    b: &B,
-    metric: &P,
-    same: bool,
-    r: f64,
-    boundary: Boundary,
-    visit: impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
-) -> Result<ControlFlow<Br>, QueryError> {
-    let r2 = radius::squared_radius(r)?;
-    let mut v = PairsWithin {
-        metric,
-        unordered: same,
-        a,
-        b,
-        r2,
-        boundary,
-        visit,
-        block: scan::Block::boxed([a.len(), b.len()]),
-    };
-    let start = traverse::roots((a.index(), b.index(), metric), same, (), &mut v);
-    Ok(traverse::run(a.index(), b.index(), metric, start, &mut v))
-}
+/// A join: the querying set, the other set, the distance between their points, and whether the
+/// other set is the querying one (a self-join: unordered pairs once, no point its own
+/// neighbour). The engines, serial and parallel, are its methods, so that every front end
+/// ([`Joins`], [`PeriodicJoins`] and their parallel forms) names its sets and distance once.
+pub(crate) struct Join<'s, A, B, P>(
+    pub(crate) &'s A,
+    pub(crate) &'s B,
+    pub(crate) &'s P,
+    pub(crate) bool,
+);
 
-/// The counts within each of `radii` between `a` and `b` under `metric` (`same`: `b` is `a`).
-fn count_of<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, const D: usize>(
-    a: &A,
-    b: &B,
-    metric: &P,
-    same: bool,
-    radii: &[f64],
-    boundary: Boundary,
-) -> Result<Vec<u64>, QueryError> {
-    let r2 = radius::squared_radii(radii)?;
-    if r2.is_empty() {
-        return Ok(Vec::new());
+impl<A, B, P> Clone for Join<'_, A, B, P> {
+    fn clone(&self) -> Self {
+        *self
     }
-    let mut v = CountWithin {
-        metric,
-        a,
-        b,
-        r2: &r2,
-        boundary,
-        diff: vec![0; r2.len() + 1],
-        block: scan::Block::boxed([a.len(), b.len()]),
-    };
-    let start = traverse::roots((a.index(), b.index(), metric), same, (0, r2.len()), &mut v);
-    let _ = traverse::run(a.index(), b.index(), metric, start, &mut v);
-    Ok(v.counts())
 }
 
-/// The sparse distance matrix of the pairs within `r` between `a` and `b` under `metric`.
-fn sparse_of<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, const D: usize>(
-    a: &A,
-    b: &B,
-    metric: &P,
-    r: f64,
-    boundary: Boundary,
-) -> Result<SparseDistances, QueryError> {
-    let mut triples = Vec::new();
-    let _ = pairs_of(a, b, metric, false, r, boundary, |s, t, d| {
-        triples.push((s, t, d));
-        ControlFlow::<()>::Continue(())
-    })?;
-    Ok(SparseDistances::new((a.len(), b.len()), triples))
+impl<A, B, P> Copy for Join<'_, A, B, P> {}
+
+impl<A, B, P> Join<'_, A, B, P> {
+    /// The pairs within `r` (under `boundary`) handed to `visit`, each unordered pair once in a
+    /// self-join.
+    fn pairs<Br, const D: usize>(
+        self,
+        r: f64,
+        boundary: Boundary,
+        visit: impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
+    ) -> Result<ControlFlow<Br>, QueryError>
+    where
+        A: PointSet<D>,
+        B: PointSet<D>,
+        P: PairDistance<D>,
+    {
+        let Join(a, b, metric, same) = self;
+        let r2 = radius::squared_radius(r)?;
+        let mut v = PairsWithin::new(self, (r2, boundary), [a.len(), b.len()], visit);
+        let start = traverse::roots((a.index(), b.index(), metric), same, (), &mut v);
+        Ok(traverse::run(a.index(), b.index(), metric, start, &mut v))
+    }
+
+    /// The counts within each of `radii`.
+    fn count<const D: usize>(
+        self,
+        radii: &[f64],
+        boundary: Boundary,
+    ) -> Result<Vec<u64>, QueryError>
+    where
+        A: PointSet<D>,
+        B: PointSet<D>,
+        P: PairDistance<D>,
+    {
+        let Join(a, b, metric, same) = self;
+        let r2 = radius::squared_radii(radii)?;
+        if r2.is_empty() {
+            return Ok(Vec::new());
+        }
+        let mut v = CountWithin::new(self, (&r2, boundary), [a.len(), b.len()]);
+        let start = traverse::roots((a.index(), b.index(), metric), same, (0, r2.len()), &mut v);
+        let _ = traverse::run(a.index(), b.index(), metric, start, &mut v);
+        Ok(v.counts())
+    }
+
+    /// The sparse distance matrix of the pairs within `r` (of a join that is not a self-join:
+    /// every pair of a row and a column).
+    fn sparse<const D: usize>(
+        self,
+        r: f64,
+        boundary: Boundary,
+    ) -> Result<SparseDistances, QueryError>
+    where
+        A: PointSet<D>,
+        B: PointSet<D>,
+        P: PairDistance<D>,
+    {
+        let mut triples = Vec::new();
+        let _ = self.pairs(r, boundary, |s, t, d| {
+            triples.push((s, t, d));
+            ControlFlow::<()>::Continue(())
+        })?;
+        Ok(SparseDistances::new((self.0.len(), self.1.len()), triples))
+    }
 }

@@ -19,6 +19,7 @@ use super::radius::Boundary;
 use super::scan::{scan_counts, scan_pairs, Block, Run};
 use super::slots::SlotView;
 use super::traverse::{PairVisitor, Step};
+use super::Join;
 use crate::geom::{Aabb, Scalar};
 use crate::query::{PointSet, SpatialIndex};
 use core::ops::{ControlFlow, Range};
@@ -36,6 +37,28 @@ pub(crate) struct PairsWithin<'s, A, B, P, F, const D: usize> {
     pub(crate) visit: F,
     /// The leaf kernel's scratch.
     pub(crate) block: Box<Block<D>>,
+}
+
+impl<'s, A, B, P, F, const D: usize> PairsWithin<'s, A, B, P, F, D> {
+    /// The pairs of `join` within `r2` (under `boundary`) handed to `visit`, the leaf kernel's
+    /// caches sized for a traversal meeting `points` points of each side ([`Block::boxed`]).
+    pub(crate) fn new(
+        Join(a, b, metric, same): Join<'s, A, B, P>,
+        (r2, boundary): (f64, Boundary),
+        points: [usize; 2],
+        visit: F,
+    ) -> Self {
+        PairsWithin {
+            metric,
+            unordered: same,
+            a,
+            b,
+            r2,
+            boundary,
+            visit,
+            block: Block::boxed(points),
+        }
+    }
 }
 
 impl<'s, A, B, P, F, Br, const D: usize> PairVisitor<A::Index, B::Index, (), D>
@@ -151,6 +174,24 @@ pub(crate) struct CountWithin<'s, A, B, P, const D: usize> {
 }
 
 impl<'s, A, B, P, const D: usize> CountWithin<'s, A, B, P, D> {
+    /// The counts of the pairs of `join` within each of the squared radii `r2` (under
+    /// `boundary`), all 0, the kernel's caches sized as [`PairsWithin::new`] sizes them.
+    pub(crate) fn new(
+        Join(a, b, metric, _): Join<'s, A, B, P>,
+        (r2, boundary): (&'s [f64], Boundary),
+        points: [usize; 2],
+    ) -> Self {
+        CountWithin {
+            metric,
+            a,
+            b,
+            r2,
+            boundary,
+            diff: vec![0; r2.len() + 1],
+            block: Block::boxed(points),
+        }
+    }
+
     /// The first radius of `range` that takes in distance `d` (the end if none).
     #[inline(always)]
     fn first_admitting(&self, range: Range<usize>, d: f64) -> usize {

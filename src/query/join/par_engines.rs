@@ -1,6 +1,6 @@
-//! The engines of the parallel joins (feature `rayon`), once for every distance of
-//! [`bounds`](super::bounds): the same answers as the serial engines, the work split into
-//! independent parts run on rayon's threads.
+//! The engines of the parallel joins (feature `rayon`), methods of [`Join`] as the serial
+//! engines are, once for every distance of [`bounds`](super::bounds): the same answers as the
+//! serial engines, the work split into independent parts run on rayon's threads.
 //!
 //! - The k-nearest joins hand the querying tree's groups (see [`knn`](super::knn)) to the
 //!   threads in runs of consecutive groups; each run reuses one [`Search`] for all its groups
@@ -17,15 +17,13 @@
 //! engines' closures.
 
 use super::bounds::PairDistance;
-use super::knn::{fill, groups, parts, row_slots, table, width, KnnTable};
+use super::knn::{fill, KnnTable};
 use super::knn_group::Search;
-use super::knn_map::{swap_rows, to_slot_order};
 use super::pairs::{CountWithin, PairsWithin};
 use super::radius::{squared_radii, squared_radius, Boundary};
-use super::scan::Block;
 use super::sparse::SparseDistances;
-use super::traverse::{roots, run, split_top, Pair};
-use crate::huge_pages;
+use super::traverse::{roots, run, split_top, Frontier, Pair, PairVisitor};
+use super::Join;
 use crate::par_tasks::{chunks, for_each_chunk, for_each_index, lock, map_indices};
 use crate::query::{PointSet, QueryError, SpatialIndex};
 use core::convert::Infallible;
@@ -33,181 +31,211 @@ use core::ops::ControlFlow;
 use core::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Mutex, PoisonError};
 
-/// The k-nearest join of `a` in `b` under `metric` (`same`: the self-join), the groups of `a`
-/// on rayon's threads.
-pub(crate) fn par_knn<A, B, P, const D: usize>(
-    a: &A,
-    b: &B,
-    metric: &P,
-    k: usize,
-    same: bool,
-) -> KnnTable
-where
-    A: PointSet<D> + Sync,
-    B: PointSet<D> + Sync,
-    P: PairDistance<D>,
-{
-    let (n, w) = (a.len(), width(k, b.len(), same));
-    if w == 0 {
-        return table(0, n, Vec::new(), Vec::new());
-    }
-    let gs = groups(a.index());
-    let (mut slots, mut distances) = (huge_pages::zeros(n * w), huge_pages::zeros(n * w));
-    let parts = parts(&gs, w, &mut slots, &mut distances);
-    for_each_chunk(parts, chunks(), &|run| {
-        let mut search = Search::new();
-        for part in run {
-            fill(&mut search, (a, b, metric), part, w, same);
-        }
-    });
-    if let Some(mut order) = row_slots(a, &gs) {
-        to_slot_order(&mut order, |x, y| {
-            swap_rows(&mut slots, x, y, w);
-            swap_rows(&mut distances, x, y, w);
-        });
-    }
-    table(w, n, slots, distances)
-}
+/// A node of the index of point set `A`.
+type Node<A, const D: usize> = <<A as PointSet<D>>::Index as SpatialIndex<D>>::Node;
 
-/// The visitor of the pairs within `r2` between `a` and `b` under `metric` (`same`: `b` is `a`,
-/// unordered pairs once) that hands them to `visit`.
-fn pairs_visitor<'s, A, B, P, F, Br, const D: usize>(
-    (a, b, metric): (&'s A, &'s B, &'s P),
-    same: bool,
-    r2: f64,
-    boundary: Boundary,
-    points: [usize; 2],
-    visit: F,
-) -> PairsWithin<'s, A, B, P, F, D>
+/// A node pair of the traversal of the indices of point sets `A` and `B`.
+type SetPair<A, B, T, const D: usize> = Pair<Node<A, D>, Node<B, D>, T, D>;
+
+impl<A, B, P> Join<'_, A, B, P>
 where
-    F: FnMut(usize, usize, f64) -> ControlFlow<Br>,
+    A: Sync,
+    B: Sync,
 {
-    PairsWithin {
-        metric,
-        unordered: same,
-        a,
-        b,
-        r2,
-        boundary,
-        visit,
-        block: Block::boxed(points),
+    /// The k-nearest table, the groups of the querying set on rayon's threads.
+    pub(crate) fn par_knn<const D: usize>(self, k: usize) -> KnnTable
+    where
+        A: PointSet<D>,
+        B: PointSet<D>,
+        P: PairDistance<D>,
+    {
+        self.table(k, |parts, w| {
+            for_each_chunk(parts, chunks(), &|run| {
+                let mut search = Search::new();
+                for part in run {
+                    fill(&mut search, self, part, w);
+                }
+            });
+        })
     }
-}
 
-/// The points of each side of a frontier pair: all that its part of the traversal can meet, to
-/// size the kernel's caches ([`Block::boxed`]).
-fn part_points<A: PointSet<D>, B: PointSet<D>, T, const D: usize>(
-    (a, b): (&A, &B),
-    pair: &Pair<<A::Index as SpatialIndex<D>>::Node, <B::Index as SpatialIndex<D>>::Node, T, D>,
-) -> [usize; 2] {
-    [
-        a.index().run(pair.0 .0).len(),
-        b.index().run(pair.1 .0).len(),
-    ]
-}
+    /// The node pairs the top of the traversal is split into from the root pair (state
+    /// `state`), `visitor` taking the pairs met on the way.
+    fn split<T, V, const D: usize>(
+        self,
+        state: T,
+        visitor: &mut V,
+    ) -> Frontier<Node<A, D>, Node<B, D>, T, V::Break, D>
+    where
+        A: PointSet<D>,
+        B: PointSet<D>,
+        P: PairDistance<D>,
+        V: PairVisitor<A::Index, B::Index, T, D>,
+    {
+        let Join(a, b, metric, same) = self;
+        let (ia, ib) = (a.index(), b.index());
+        let start = roots((ia, ib, metric), same, state, visitor);
+        split_top(ia, ib, metric, start, chunks(), visitor)
+    }
 
-/// Every pair within `r` between `a` and `b` under `metric` (`same`: `b` is `a`, unordered pairs
-/// once) handed to `visit` from rayon's threads; the first break seen stops every thread (pairs
-/// being visited on other threads at that moment finish) and is returned.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn par_pairs<A, B, P, F, Br, const D: usize>(
-    a: &A,
-    b: &B,
-    metric: &P,
-    same: bool,
-    r: f64,
-    boundary: Boundary,
-    visit: F,
-) -> Result<ControlFlow<Br>, QueryError>
-where
-    A: PointSet<D> + Sync,
-    B: PointSet<D> + Sync,
-    P: PairDistance<D>,
-    F: Fn(usize, usize, f64) -> ControlFlow<Br> + Sync,
-    Br: Send,
-{
-    let r2 = squared_radius(r)?;
-    let (ia, ib) = (a.index(), b.index());
-    let frontier = {
-        let mut v = pairs_visitor(
-            (a, b, metric),
-            same,
-            r2,
-            boundary,
-            [a.len(), b.len()],
-            &visit,
-        );
-        let start = roots((ia, ib, metric), same, (), &mut v);
-        match split_top(ia, ib, metric, start, chunks(), &mut v) {
+    /// One part of a split traversal: the node pair `pair` and its descendants.
+    fn part<T, V, const D: usize>(
+        self,
+        pair: SetPair<A, B, T, D>,
+        visitor: &mut V,
+    ) -> ControlFlow<V::Break>
+    where
+        A: PointSet<D>,
+        B: PointSet<D>,
+        P: PairDistance<D>,
+        V: PairVisitor<A::Index, B::Index, T, D>,
+    {
+        run(self.0.index(), self.1.index(), self.2, vec![pair], visitor)
+    }
+
+    /// The points of each side of a frontier pair: all that its part of the traversal can
+    /// meet, to size the kernel's caches ([`Block::boxed`](super::scan::Block::boxed)).
+    fn part_points<T, const D: usize>(self, pair: &SetPair<A, B, T, D>) -> [usize; 2]
+    where
+        A: PointSet<D>,
+        B: PointSet<D>,
+    {
+        [
+            self.0.index().run(pair.0 .0).len(),
+            self.1.index().run(pair.1 .0).len(),
+        ]
+    }
+
+    /// Every pair within `r` (under `boundary`) handed to `visit` from rayon's threads; the
+    /// first break seen stops every thread (pairs being visited on other threads at that moment
+    /// finish) and is returned.
+    pub(crate) fn par_pairs<Br: Send, const D: usize>(
+        self,
+        r: f64,
+        boundary: Boundary,
+        visit: impl Fn(usize, usize, f64) -> ControlFlow<Br> + Sync,
+    ) -> Result<ControlFlow<Br>, QueryError>
+    where
+        A: PointSet<D>,
+        B: PointSet<D>,
+        P: PairDistance<D>,
+    {
+        let within = (squared_radius(r)?, boundary);
+        let all = [self.0.len(), self.1.len()];
+        let frontier = match self.split((), &mut PairsWithin::new(self, within, all, &visit)) {
             ControlFlow::Continue(f) => f,
             ControlFlow::Break(br) => return Ok(ControlFlow::Break(br)),
-        }
-    };
-    let stopped = AtomicBool::new(false);
-    let found = Mutex::new(None);
-    for_each_index(frontier.len(), &|i| {
-        if stopped.load(Ordering::Relaxed) {
-            return;
-        }
-        let pair = frontier[i];
-        let each = until_stopped(&visit, &stopped);
-        let points = part_points((a, b), &pair);
-        let mut v = pairs_visitor((a, b, metric), same, r2, boundary, points, each);
-        if let ControlFlow::Break(Some(br)) = run(a.index(), b.index(), metric, vec![pair], &mut v)
-        {
-            // The first break is kept; a later one (from a part that had not yet seen the flag)
-            // is dropped.
-            lock(&found).get_or_insert(br);
-        }
-    });
-    let found = found.into_inner().unwrap_or_else(PoisonError::into_inner);
-    Ok(found.map_or(ControlFlow::Continue(()), ControlFlow::Break))
-}
+        };
+        let stopped = AtomicBool::new(false);
+        let found = Mutex::new(None);
+        for_each_index(frontier.len(), &|i| {
+            if stopped.load(Ordering::Relaxed) {
+                return;
+            }
+            let (pair, each) = (frontier[i], until_stopped(&visit, &stopped));
+            let mut v = PairsWithin::new(self, within, self.part_points(&pair), each);
+            if let ControlFlow::Break(Some(br)) = self.part(pair, &mut v) {
+                // The first break is kept; a later one (from a part that had not yet seen the
+                // flag) is dropped.
+                lock(&found).get_or_insert(br);
+            }
+        });
+        let found = found.into_inner().unwrap_or_else(PoisonError::into_inner);
+        Ok(found.map_or(ControlFlow::Continue(()), ControlFlow::Break))
+    }
 
-/// Every pair within `r` between `a` and `b` under `metric` (`same`: `b` is `a`, unordered pairs
-/// once) folded by `fold` into accumulators made by `identity`, one per part of the traversal,
-/// then combined by `reduce`.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn par_fold_pairs<A, B, P, T, I, F, R, const D: usize>(
-    a: &A,
-    b: &B,
-    metric: &P,
-    same: bool,
-    (r, boundary): (f64, Boundary),
-    identity: I,
-    fold: F,
-    reduce: R,
-) -> Result<T, QueryError>
-where
-    A: PointSet<D> + Sync,
-    B: PointSet<D> + Sync,
-    P: PairDistance<D>,
-    T: Send,
-    I: Fn() -> T + Sync + Send,
-    F: Fn(&mut T, usize, usize, f64) + Sync,
-    R: Fn(T, T) -> T + Sync + Send,
-{
-    let r2 = squared_radius(r)?;
-    let (ia, ib) = (a.index(), b.index());
-    let mut top = identity();
-    let frontier = {
-        let each = folding(&fold, &mut top);
-        let mut v = pairs_visitor((a, b, metric), same, r2, boundary, [a.len(), b.len()], each);
-        let start = roots((ia, ib, metric), same, (), &mut v);
-        let ControlFlow::Continue(f) = split_top(ia, ib, metric, start, chunks(), &mut v);
-        f
-    };
-    let accs = map_indices(frontier.len(), &|i| {
-        let pair = frontier[i];
-        let mut acc = identity();
-        let each = folding(&fold, &mut acc);
-        let points = part_points((a, b), &pair);
-        let mut v = pairs_visitor((a, b, metric), same, r2, boundary, points, each);
-        let _ = run(a.index(), b.index(), metric, vec![pair], &mut v);
-        drop(v);
-        acc
-    });
-    Ok(accs.into_iter().fold(top, reduce))
+    /// Every pair within `r` (under `boundary`) folded by `fold` into accumulators made by
+    /// `identity`, one per part of the traversal, then combined by `reduce`.
+    pub(crate) fn par_fold<T: Send, const D: usize>(
+        self,
+        (r, boundary): (f64, Boundary),
+        identity: impl Fn() -> T + Sync + Send,
+        fold: impl Fn(&mut T, usize, usize, f64) + Sync,
+        reduce: impl Fn(T, T) -> T + Sync + Send,
+    ) -> Result<T, QueryError>
+    where
+        A: PointSet<D>,
+        B: PointSet<D>,
+        P: PairDistance<D>,
+    {
+        let within = (squared_radius(r)?, boundary);
+        let mut top = identity();
+        let frontier = {
+            let each = folding(&fold, &mut top);
+            let all = [self.0.len(), self.1.len()];
+            let ControlFlow::Continue(f) =
+                self.split((), &mut PairsWithin::new(self, within, all, each));
+            f
+        };
+        let accs = map_indices(frontier.len(), &|i| {
+            let pair = frontier[i];
+            let mut acc = identity();
+            let each = folding(&fold, &mut acc);
+            let mut v = PairsWithin::new(self, within, self.part_points(&pair), each);
+            let _ = self.part(pair, &mut v);
+            drop(v);
+            acc
+        });
+        Ok(accs.into_iter().fold(top, reduce))
+    }
+
+    /// The sparse distance matrix of the pairs within `r` (of a join that is not a self-join).
+    pub(crate) fn par_sparse<const D: usize>(
+        self,
+        r: f64,
+        boundary: Boundary,
+    ) -> Result<SparseDistances, QueryError>
+    where
+        A: PointSet<D>,
+        B: PointSet<D>,
+        P: PairDistance<D>,
+    {
+        let triples = self.par_fold(
+            (r, boundary),
+            Vec::new,
+            |acc: &mut Vec<(usize, usize, f64)>, s, t, d| acc.push((s, t, d)),
+            |mut x, mut y| {
+                if x.len() < y.len() {
+                    core::mem::swap(&mut x, &mut y);
+                }
+                x.extend(y);
+                x
+            },
+        )?;
+        Ok(SparseDistances::new((self.0.len(), self.1.len()), triples))
+    }
+
+    /// The counts within each of `radii`, the top of the traversal split into node pairs
+    /// counted on rayon's threads.
+    pub(crate) fn par_count<const D: usize>(
+        self,
+        radii: &[f64],
+        boundary: Boundary,
+    ) -> Result<Vec<u64>, QueryError>
+    where
+        A: PointSet<D>,
+        B: PointSet<D>,
+        P: PairDistance<D>,
+    {
+        let r2 = squared_radii(radii)?;
+        if r2.is_empty() {
+            return Ok(Vec::new());
+        }
+        let mut top = CountWithin::new(self, (&r2, boundary), [self.0.len(), self.1.len()]);
+        let ControlFlow::Continue(frontier) = self.split((0, r2.len()), &mut top);
+        let parts = map_indices(frontier.len(), &|i| {
+            let pair = frontier[i];
+            let mut c = CountWithin::new(self, (&r2, boundary), self.part_points(&pair));
+            let _ = self.part(pair, &mut c);
+            c.diff
+        });
+        for part in parts {
+            for (t, p) in top.diff.iter_mut().zip(part) {
+                *t += p;
+            }
+        }
+        Ok(top.counts())
+    }
 }
 
 /// `visit`, stopping every part once one has broken (`stopped`): its break, `None` for the
@@ -243,82 +271,4 @@ where
         fold(acc, s, t, d);
         ControlFlow::Continue(())
     }
-}
-
-/// The sparse distance matrix of the pairs within `r` between `a` and `b` under `metric`.
-pub(crate) fn par_sparse<A, B, P, const D: usize>(
-    a: &A,
-    b: &B,
-    metric: &P,
-    r: f64,
-    boundary: Boundary,
-) -> Result<SparseDistances, QueryError>
-where
-    A: PointSet<D> + Sync,
-    B: PointSet<D> + Sync,
-    P: PairDistance<D>,
-{
-    let triples = par_fold_pairs(
-        a,
-        b,
-        metric,
-        false,
-        (r, boundary),
-        Vec::new,
-        |acc: &mut Vec<(usize, usize, f64)>, s, t, d| acc.push((s, t, d)),
-        |mut x, mut y| {
-            if x.len() < y.len() {
-                core::mem::swap(&mut x, &mut y);
-            }
-            x.extend(y);
-            x
-        },
-    )?;
-    Ok(SparseDistances::new((a.len(), b.len()), triples))
-}
-
-/// The counts within each of `radii` between `a` and `b` under `metric` (`same`: `b` is `a`),
-/// the top of the traversal split into node pairs counted on rayon's threads.
-pub(crate) fn par_count<A, B, P, const D: usize>(
-    a: &A,
-    b: &B,
-    metric: &P,
-    same: bool,
-    radii: &[f64],
-    boundary: Boundary,
-) -> Result<Vec<u64>, QueryError>
-where
-    A: PointSet<D> + Sync,
-    B: PointSet<D> + Sync,
-    P: PairDistance<D>,
-{
-    let r2 = squared_radii(radii)?;
-    if r2.is_empty() {
-        return Ok(Vec::new());
-    }
-    let counter = |points| CountWithin {
-        metric,
-        a,
-        b,
-        r2: &r2,
-        boundary,
-        diff: vec![0; r2.len() + 1],
-        block: Block::boxed(points),
-    };
-    let (ia, ib) = (a.index(), b.index());
-    let mut top = counter([a.len(), b.len()]);
-    let start = roots((ia, ib, metric), same, (0, r2.len()), &mut top);
-    let ControlFlow::Continue(frontier) = split_top(ia, ib, metric, start, chunks(), &mut top);
-    let parts = map_indices(frontier.len(), &|i| {
-        let pair = frontier[i];
-        let mut c = counter(part_points((a, b), &pair));
-        let _ = run(a.index(), b.index(), metric, vec![pair], &mut c);
-        c.diff
-    });
-    for part in parts {
-        for (t, p) in top.diff.iter_mut().zip(part) {
-            *t += p;
-        }
-    }
-    Ok(top.counts())
 }

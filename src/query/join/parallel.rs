@@ -7,11 +7,9 @@
 
 use super::bounds::Euclid;
 use super::knn::KnnTable;
-use super::knn_map::par_knn_map;
-use super::par_engines::{par_count, par_fold_pairs, par_knn, par_pairs, par_sparse};
 use super::radius::Boundary;
 use super::sparse::SparseDistances;
-use super::Joins;
+use super::{Join, Joins};
 use crate::query::{PointSet, QueryError};
 use core::ops::ControlFlow;
 
@@ -31,7 +29,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        par_knn(self, other, &Euclid, k, false)
+        Join(self, other, &Euclid, false).par_knn(k)
     }
 
     /// [`Joins::k_nearest_self`] on rayon's threads; the same table.
@@ -47,7 +45,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        par_knn(self, self, &Euclid, k, true)
+        Join(self, self, &Euclid, true).par_knn(k)
     }
 
     /// [`Joins::map_k_nearest_join`] on rayon's threads: the same values, `f` called from
@@ -70,7 +68,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        par_knn_map((self, other, &Euclid), k, false, f)
+        Join(self, other, &Euclid, false).par_map_knn(k, f)
     }
 
     /// [`Joins::map_k_nearest_self`] on rayon's threads: the same values, `f` called from
@@ -92,7 +90,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        par_knn_map((self, self, &Euclid), k, true, f)
+        Join(self, self, &Euclid, true).par_map_knn(k, f)
     }
 
     /// [`Joins::pairs_within`] on rayon's threads: calls `visit(s, t, d)` for every unordered
@@ -138,7 +136,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        par_pairs(self, self, &Euclid, true, r, boundary, visit)
+        Join(self, self, &Euclid, true).par_pairs(r, boundary, visit)
     }
 
     /// [`Joins::pairs_within_other`] on rayon's threads: calls `visit(s, t, d)` for every slot
@@ -172,7 +170,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        par_pairs(self, other, &Euclid, false, r, boundary, visit)
+        Join(self, other, &Euclid, false).par_pairs(r, boundary, visit)
     }
 
     /// The pairs of [`Joins::pairs_within`] folded on rayon's threads: each thread's share of
@@ -209,16 +207,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        par_fold_pairs(
-            self,
-            self,
-            &Euclid,
-            true,
-            (r, boundary),
-            identity,
-            fold,
-            reduce,
-        )
+        Join(self, self, &Euclid, true).par_fold((r, boundary), identity, fold, reduce)
     }
 
     /// The pairs of [`Joins::pairs_within_other`] folded on rayon's threads, as
@@ -248,16 +237,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        par_fold_pairs(
-            self,
-            other,
-            &Euclid,
-            false,
-            (r, boundary),
-            identity,
-            fold,
-            reduce,
-        )
+        Join(self, other, &Euclid, false).par_fold((r, boundary), identity, fold, reduce)
     }
 
     /// [`Joins::sparse_distance_matrix`] on rayon's threads; the same matrix.
@@ -282,7 +262,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        par_sparse(self, other, &Euclid, r, boundary)
+        Join(self, other, &Euclid, false).par_sparse(r, boundary)
     }
 
     /// [`Joins::count_pairs_within`] on rayon's threads; the same counts.
@@ -308,7 +288,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        par_count(self, self, &Euclid, true, radii, boundary)
+        Join(self, self, &Euclid, true).par_count(radii, boundary)
     }
 
     /// [`Joins::count_neighbors`] on rayon's threads; the same counts.
@@ -335,7 +315,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        par_count(self, other, &Euclid, false, radii, boundary)
+        Join(self, other, &Euclid, false).par_count(radii, boundary)
     }
 }
 

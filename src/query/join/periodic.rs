@@ -8,7 +8,7 @@
 //! distance, so it is reported (or counted) once whatever the radius, even one of half a period
 //! or more, where a ball would meet several images of the same point.
 
-use super::{count_of, knn, pairs_of, sparse_of, Boundary, KnnTable, SparseDistances};
+use super::{Boundary, Join, KnnTable, SparseDistances};
 use crate::query::{PointSet, QueryError, Torus};
 use core::ops::ControlFlow;
 
@@ -68,7 +68,7 @@ pub trait PeriodicJoins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        knn::knn_join(self, other, &torus.squared_euclidean(), k, false)
+        Join(self, other, &torus.squared_euclidean(), false).knn(k)
     }
 
     /// The `k` nearest other points to every point of this set under the minimum-image squared
@@ -90,7 +90,7 @@ pub trait PeriodicJoins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        knn::knn_join(self, self, &torus.squared_euclidean(), k, true)
+        Join(self, self, &torus.squared_euclidean(), true).knn(k)
     }
 
     /// Calls `visit(s, t, d)` for every unordered pair of distinct slots `s < t` within
@@ -113,15 +113,7 @@ pub trait PeriodicJoins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        pairs_of(
-            self,
-            self,
-            &torus.squared_euclidean(),
-            true,
-            r,
-            boundary,
-            visit,
-        )
+        Join(self, self, &torus.squared_euclidean(), true).pairs(r, boundary, visit)
     }
 
     /// Calls `visit(s, t, d)` for every slot `s` of this set and `t` of `other` within
@@ -157,8 +149,7 @@ pub trait PeriodicJoins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        let metric = torus.squared_euclidean();
-        pairs_of(self, other, &metric, false, r, boundary, visit)
+        Join(self, other, &torus.squared_euclidean(), false).pairs(r, boundary, visit)
     }
 
     /// For each radius of `radii` (non-decreasing), the number of unordered pairs of distinct
@@ -176,14 +167,7 @@ pub trait PeriodicJoins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        count_of(
-            self,
-            self,
-            &torus.squared_euclidean(),
-            true,
-            radii,
-            boundary,
-        )
+        Join(self, self, &torus.squared_euclidean(), true).count(radii, boundary)
     }
 
     /// For each radius of `radii` (non-decreasing), the number of pairs of a point of this set
@@ -212,8 +196,7 @@ pub trait PeriodicJoins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        let metric = torus.squared_euclidean();
-        count_of(self, other, &metric, false, radii, boundary)
+        Join(self, other, &torus.squared_euclidean(), false).count(radii, boundary)
     }
 
     /// Every pair of a point of this set (row) and of `other` (column) within minimum-image
@@ -240,7 +223,7 @@ pub trait PeriodicJoins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        sparse_of(self, other, &torus.squared_euclidean(), r, boundary)
+        Join(self, other, &torus.squared_euclidean(), false).sparse(r, boundary)
     }
 }
 

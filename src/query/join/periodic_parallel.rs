@@ -7,10 +7,9 @@
 //! counts and matrices equal the serial ones.
 
 use super::knn::KnnTable;
-use super::par_engines::{par_count, par_fold_pairs, par_knn, par_pairs, par_sparse};
 use super::radius::Boundary;
 use super::sparse::SparseDistances;
-use super::PeriodicJoins;
+use super::{Join, PeriodicJoins};
 use crate::query::{PointSet, QueryError, Torus};
 use core::ops::ControlFlow;
 
@@ -49,7 +48,7 @@ pub trait ParallelPeriodicJoins<const D: usize>: PeriodicJoins<D> + Sync {
     where
         Self: Sized,
     {
-        par_knn(self, other, &torus.squared_euclidean(), k, false)
+        Join(self, other, &torus.squared_euclidean(), false).par_knn(k)
     }
 
     /// [`PeriodicJoins::periodic_k_nearest_self`] on rayon's threads; the same table.
@@ -57,7 +56,7 @@ pub trait ParallelPeriodicJoins<const D: usize>: PeriodicJoins<D> + Sync {
     where
         Self: Sized,
     {
-        par_knn(self, self, &torus.squared_euclidean(), k, true)
+        Join(self, self, &torus.squared_euclidean(), true).par_knn(k)
     }
 
     /// [`PeriodicJoins::periodic_pairs_within`] on rayon's threads: `visit` is called from
@@ -77,8 +76,7 @@ pub trait ParallelPeriodicJoins<const D: usize>: PeriodicJoins<D> + Sync {
     where
         Self: Sized,
     {
-        let metric = torus.squared_euclidean();
-        par_pairs(self, self, &metric, true, r, boundary, visit)
+        Join(self, self, &torus.squared_euclidean(), true).par_pairs(r, boundary, visit)
     }
 
     /// [`PeriodicJoins::periodic_pairs_within_other`] on rayon's threads, `visit` called from
@@ -97,8 +95,7 @@ pub trait ParallelPeriodicJoins<const D: usize>: PeriodicJoins<D> + Sync {
     where
         Self: Sized,
     {
-        let metric = torus.squared_euclidean();
-        par_pairs(self, other, &metric, false, r, boundary, visit)
+        Join(self, other, &torus.squared_euclidean(), false).par_pairs(r, boundary, visit)
     }
 
     /// The pairs of [`PeriodicJoins::periodic_pairs_within`] folded on rayon's threads, as
@@ -119,12 +116,7 @@ pub trait ParallelPeriodicJoins<const D: usize>: PeriodicJoins<D> + Sync {
     where
         Self: Sized,
     {
-        let metric = torus.squared_euclidean();
-        par_fold_pairs(
-            self,
-            self,
-            &metric,
-            true,
+        Join(self, self, &torus.squared_euclidean(), true).par_fold(
             (r, boundary),
             identity,
             fold,
@@ -145,8 +137,7 @@ pub trait ParallelPeriodicJoins<const D: usize>: PeriodicJoins<D> + Sync {
     where
         Self: Sized,
     {
-        let metric = torus.squared_euclidean();
-        par_count(self, self, &metric, true, radii, boundary)
+        Join(self, self, &torus.squared_euclidean(), true).par_count(radii, boundary)
     }
 
     /// [`PeriodicJoins::periodic_count_neighbors`] on rayon's threads; the same counts.
@@ -163,8 +154,7 @@ pub trait ParallelPeriodicJoins<const D: usize>: PeriodicJoins<D> + Sync {
     where
         Self: Sized,
     {
-        let metric = torus.squared_euclidean();
-        par_count(self, other, &metric, false, radii, boundary)
+        Join(self, other, &torus.squared_euclidean(), false).par_count(radii, boundary)
     }
 
     /// [`PeriodicJoins::periodic_sparse_distance_matrix`] on rayon's threads; the same matrix.
@@ -181,7 +171,7 @@ pub trait ParallelPeriodicJoins<const D: usize>: PeriodicJoins<D> + Sync {
     where
         Self: Sized,
     {
-        par_sparse(self, other, &torus.squared_euclidean(), r, boundary)
+        Join(self, other, &torus.squared_euclidean(), false).par_sparse(r, boundary)
     }
 }
 
