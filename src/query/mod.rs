@@ -225,11 +225,24 @@ pub(crate) fn query_box<S: crate::Scalar, const D: usize>(
     Ok(b.to_f64())
 }
 
+/// `x` when it is neither negative nor NaN; otherwise the error `bad` makes of it, naming it.
+pub(crate) fn non_negative(
+    x: f64,
+    bad: impl FnOnce(FloatBits) -> QueryError,
+) -> Result<f64, QueryError> {
+    if x >= 0.0 {
+        Ok(x)
+    } else {
+        Err(bad(x.into()))
+    }
+}
+
 /// Checks a maximum distance: not negative, not NaN (infinity means no limit, -0.0 is 0).
 pub(crate) fn check_max(max: f64) -> Result<(), QueryError> {
-    if max >= 0.0 {
-        Ok(())
-    } else {
-        Err(QueryError::InvalidMaxDistance { value: max.into() })
-    }
+    non_negative(max, |value| QueryError::InvalidMaxDistance { value }).map(drop)
+}
+
+/// A radius, checked: not negative, not NaN ([`QueryError::InvalidRadius`] otherwise).
+pub(crate) fn check_radius(radius: f64) -> Result<f64, QueryError> {
+    non_negative(radius, |radius| QueryError::InvalidRadius { radius })
 }

@@ -14,25 +14,24 @@ use crate::geom::Aabb;
 impl<const D: usize> Torus<D> {
     /// The minimum-image squared Euclidean distance ([`MinImage`]).
     pub fn squared_euclidean(&self) -> MinImage<SquaredEuclidean, D> {
-        MinImage {
-            torus: *self,
-            metric: SquaredEuclidean,
-        }
+        self.min_image(SquaredEuclidean)
     }
 
     /// The minimum-image Manhattan distance ([`MinImage`]).
     pub fn manhattan(&self) -> MinImage<Manhattan, D> {
-        MinImage {
-            torus: *self,
-            metric: Manhattan,
-        }
+        self.min_image(Manhattan)
     }
 
     /// The minimum-image Chebyshev distance ([`MinImage`]).
     pub fn chebyshev(&self) -> MinImage<Chebyshev, D> {
+        self.min_image(Chebyshev)
+    }
+
+    /// `metric` on this torus.
+    fn min_image<M>(&self, metric: M) -> MinImage<M, D> {
         MinImage {
             torus: *self,
-            metric: Chebyshev,
+            metric,
         }
     }
 }

@@ -17,7 +17,7 @@
 
 use super::periodic::Torus;
 use super::region::{ball_relation, Region, Relation};
-use super::{query_point, QueryError};
+use super::{check_radius, query_point, QueryError};
 use crate::geom::Aabb;
 
 /// The closed ball of points at minimum-image Euclidean distance at most `radius` from `center`
@@ -49,11 +49,7 @@ impl<const D: usize> PeriodicBall<D> {
     /// [`QueryError::InvalidRadius`] for a negative or NaN radius.
     pub fn new(torus: Torus<D>, center: [f64; D], radius: f64) -> Result<Self, QueryError> {
         query_point(&center)?;
-        if radius.is_nan() || radius < 0.0 {
-            return Err(QueryError::InvalidRadius {
-                radius: radius.into(),
-            });
-        }
+        check_radius(radius)?;
         let mut c = center;
         for axis in (0..D).filter(|&a| torus.wraps()[a]) {
             c[axis] = torus.wrap_axis(axis, c[axis]);

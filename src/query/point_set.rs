@@ -18,7 +18,7 @@ use super::metric::{Metric, SquaredEuclidean};
 use super::nearest_iter::IndexNearestIter;
 use super::range::{for_each_in, for_each_until, scan_limit, IndexRegionIter, QueryStats};
 use super::region::{Ball, HalfSpace, Region};
-use super::{check_max, query_box, query_point, QueryError};
+use super::{check_max, non_negative, query_box, query_point, QueryError};
 use crate::error::ValidationError;
 use crate::geom::{Aabb, Scalar};
 use core::ops::ControlFlow;
@@ -586,9 +586,7 @@ pub trait PointSet<const D: usize> {
     ) -> Result<Vec<NeighborIn<'_, Self, D>>, QueryError> {
         let q = query_point(p)?;
         check_max(max)?;
-        if eps.is_nan() || eps < 0.0 {
-            return Err(QueryError::InvalidEpsilon { value: eps.into() });
-        }
+        non_negative(eps, |value| QueryError::InvalidEpsilon { value })?;
         let index = self.index();
         let found = if eps == 0.0 {
             k_nearest(index, &q, k, max, metric)

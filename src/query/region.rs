@@ -281,13 +281,7 @@ impl<const D: usize> Region<D> for Ball<D> {
     }
     fn validate(&self) -> Result<(), QueryError> {
         super::query_point(&self.center)?;
-        if self.radius >= 0.0 {
-            Ok(())
-        } else {
-            Err(QueryError::InvalidRadius {
-                radius: self.radius.into(),
-            })
-        }
+        super::check_radius(self.radius).map(drop)
     }
 }
 

@@ -6,7 +6,7 @@
 //! `d < r * r` ([`Boundary::Exclusive`]), with `r * r` rounded to `f64` (so a radius beyond
 //! about 1.3e154 takes in every pair, an infinite one too).
 
-use crate::query::QueryError;
+use crate::query::{check_radius, QueryError};
 
 /// Whether a pair at distance exactly `r` is within radius `r`.
 ///
@@ -53,11 +53,7 @@ impl Boundary {
 
 /// The squared radius of a valid radius: not negative, not NaN.
 pub(crate) fn squared_radius(r: f64) -> Result<f64, QueryError> {
-    if r >= 0.0 {
-        Ok(r * r)
-    } else {
-        Err(QueryError::InvalidRadius { radius: r.into() })
-    }
+    check_radius(r).map(|r| r * r)
 }
 
 /// The squared radii of a list of valid radii in non-decreasing order; the first bad radius, or
