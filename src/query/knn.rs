@@ -244,6 +244,10 @@ const SCAN: usize = 48;
 /// Nodes still to search: (lower bound, node, closed box), nearest on top.
 type Pending<N, const D: usize> = SmallVec<[(f64, N, Aabb<f64, D>); 64]>;
 
+/// A query as a search sees it: the point and metric that measure points, then those that
+/// bound boxes (the same for an ordinary search; see [`seeded`]).
+pub(super) type Query<'a, P, B, const D: usize> = ((&'a [f64; D], &'a P), (&'a [f64; D], &'a B));
+
 /// The `k` nearest points to `q` within distance `max` (inclusive) as (distance, index) pairs,
 /// sorted by distance then index. `q` finite, `max` not NaN.
 #[inline]
@@ -316,19 +320,19 @@ fn search<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
         images.search(index, q, metric, &mut best, (root, b), &cut);
         return best.finish();
     }
-    seeded(index, (q, metric), (q, metric), &mut best, (root, b), &cut);
+    let plain = (q, metric);
+    seeded(index, (plain, plain), &mut best, (root, b), &cut);
     best.finish()
 }
 
 /// One search of `index` into `best`, seeded by a walk down to the node around the query:
-/// points are measured from `qp` under `pm`, boxes bounded from `qb` under `bm` (the same
-/// point and metric for an ordinary search; an image of the query and its unwrapped bound in
-/// the image search).
+/// points are measured from the point under the metric of `q`'s first half, boxes bounded from
+/// those of its second (the same point and metric for an ordinary search; an image of the
+/// query and its unwrapped bound in the image search).
 #[inline(always)]
 pub(super) fn seeded<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
     index: &I,
-    (qp, pm): (&[f64; D], &P),
-    (qb, bm): (&[f64; D], &B),
+    q @ (p, (qb, bm)): Query<'_, P, B, D>,
     best: &mut Best,
     (root, b): (I::Node, Aabb<f64, D>),
     cut: &impl Fn(f64) -> f64,
@@ -363,7 +367,7 @@ pub(super) fn seeded<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: us
     let first = best.bound();
     // `bound`: what a candidate must not exceed; `prune`: what a node's box must not exceed
     // (the same for the exact search).
-    let mut bound = scan_run(best, points, seeded, (qp, pm), first);
+    let mut bound = scan_run(best, points, seeded, p, first);
     let mut prune = best.prune(cut);
     let mut stack: Pending<I::Node, D> = SmallVec::new();
     // Deepest first: the children of each path node beside the path, each searched in full
@@ -381,27 +385,18 @@ pub(super) fn seeded<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: us
             }
         });
         order_pushed(&mut stack, 0);
-        (bound, prune) = drain(
-            index,
-            &mut stack,
-            (qp, pm),
-            (qb, bm),
-            best,
-            cut,
-            (bound, prune),
-        );
+        (bound, prune) = drain(index, &mut stack, q, best, cut, (bound, prune));
     }
 }
 
 /// One search of `index` into `best` from its root, without a seeding walk (for a query image
-/// whose nearest box is rarely within the bound `best` already holds); `qp`, `pm`, `qb`, `bm`
-/// as in [`seeded`]. Kept out of line: it runs for few queries, and inlined beside [`seeded`]
+/// whose nearest box is rarely within the bound `best` already holds); `q` as in [`seeded`].
+/// Kept out of line: it runs for few queries, and inlined beside [`seeded`]
 /// it made the compiler call the index's child visitor out of line in both.
 #[inline(never)]
 pub(super) fn descend<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
     index: &I,
-    (qp, pm): (&[f64; D], &P),
-    (qb, bm): (&[f64; D], &B),
+    q @ (_, (qb, bm)): Query<'_, P, B, D>,
     best: &mut Best,
     (root, b): (I::Node, Aabb<f64, D>),
     cut: &impl Fn(f64) -> f64,
@@ -419,15 +414,7 @@ pub(super) fn descend<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: u
         root,
         &b,
     );
-    drain(
-        index,
-        &mut stack,
-        (qp, pm),
-        (qb, bm),
-        best,
-        cut,
-        (bound, prune),
-    );
+    drain(index, &mut stack, q, best, cut, (bound, prune));
 }
 
 /// Searches every node on `stack` in full, nearest first, scanning leaves (and nodes of at
@@ -436,8 +423,7 @@ pub(super) fn descend<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: u
 fn drain<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
     index: &I,
     stack: &mut Pending<I::Node, D>,
-    (qp, pm): (&[f64; D], &P),
-    (qb, bm): (&[f64; D], &B),
+    q @ (p, (qb, bm)): Query<'_, P, B, D>,
     best: &mut Best,
     cut: &impl Fn(f64) -> f64,
     (mut bound, mut prune): (f64, f64),
@@ -449,7 +435,7 @@ fn drain<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
         }
         let before = stack.len();
         if scans_whole(index, node, scan_limit::<D>(SCAN)) {
-            bound = scan_node(index, (node, &b), best, (qp, pm), (qb, bm), (bound, prune));
+            bound = scan_node(index, (node, &b), best, q, (bound, prune));
             prune = best.prune(cut);
             continue;
         }
@@ -458,7 +444,7 @@ fn drain<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
         });
         order_pushed(stack, before);
         if !internal {
-            bound = scan_run(best, points, index.run(node), (qp, pm), bound);
+            bound = scan_run(best, points, index.run(node), p, bound);
             prune = best.prune(cut);
         }
     }
@@ -485,8 +471,7 @@ fn scan_node<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
     index: &I,
     (node, b): (I::Node, &Aabb<f64, D>),
     best: &mut Best,
-    (qp, pm): (&[f64; D], &P),
-    (qb, bm): (&[f64; D], &B),
+    (p, (qb, bm)): Query<'_, P, B, D>,
     (mut bound, prune): (f64, f64),
 ) -> f64 {
     let points = index.points();
@@ -495,10 +480,10 @@ fn scan_node<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
     let mut runs = Runs::new();
     let out = Beyond(bm, qb, prune);
     if !for_each_kept_run(index, node, b, out, |run| runs.push(run)) {
-        return scan_run(best, points, index.run(node), (qp, pm), bound);
+        return scan_run(best, points, index.run(node), p, bound);
     }
     for run in &runs {
-        bound = scan_run(best, points, run.clone(), (qp, pm), bound);
+        bound = scan_run(best, points, run.clone(), p, bound);
     }
     bound
 }

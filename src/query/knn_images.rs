@@ -124,14 +124,8 @@ impl<const D: usize> Images<D> {
             metric,
             below: self.below,
         };
-        seeded(
-            index,
-            (q, &home),
-            (&self.home, &bounds),
-            best,
-            (root, b),
-            cut,
-        );
+        let from_home = ((q, &home), (&self.home, &bounds));
+        seeded(index, from_home, best, (root, b), cut);
         if self.shifts == [0; D] {
             return;
         }
@@ -187,7 +181,7 @@ impl<const D: usize> Images<D> {
         found.sort_by(|x, y| x.0.total_cmp(&y.0));
         for (lower, image) in &found {
             if *lower <= best.prune(cut) {
-                descend(index, (q, metric), (image, &bounds), best, (root, b), cut);
+                descend(index, ((q, metric), (image, &bounds)), best, (root, b), cut);
             }
         }
     }
