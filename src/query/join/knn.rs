@@ -138,7 +138,7 @@ pub(crate) fn parts<'t>(
 #[inline]
 pub(crate) fn fill<A, B, P, const D: usize>(
     search: &mut Search<<B::Index as SpatialIndex<D>>::Node, D>,
-    Join(a, b, metric, same): Join<'_, A, B, P>,
+    Join(a, b, metric, same, _): Join<'_, A, B, P, D>,
     part: Part<'_>,
     k: usize,
 ) where
@@ -228,14 +228,9 @@ pub(crate) fn in_slot_order<A: PointSet<D>, const D: usize>(
     }
 }
 
-impl<A, B, P> Join<'_, A, B, P> {
+impl<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, const D: usize> Join<'_, A, B, P, D> {
     /// The k-nearest table, serially.
-    pub(crate) fn knn<const D: usize>(self, k: usize) -> KnnTable
-    where
-        A: PointSet<D>,
-        B: PointSet<D>,
-        P: PairDistance<D>,
-    {
+    pub(crate) fn knn(self, k: usize) -> KnnTable {
         self.table(k, |parts, w| {
             let mut search = Search::new();
             for part in parts {
@@ -247,16 +242,8 @@ impl<A, B, P> Join<'_, A, B, P> {
     /// The table of the `k` nearest: its rows cut into the parts of the querying set's groups
     /// ([`parts`]), filled by `fill_parts(parts, width)` (`width` at least 1), then put into
     /// slot order.
-    pub(crate) fn table<const D: usize>(
-        self,
-        k: usize,
-        fill_parts: impl FnOnce(Vec<Part<'_>>, usize),
-    ) -> KnnTable
-    where
-        A: PointSet<D>,
-        B: PointSet<D>,
-    {
-        let Join(a, b, _, same) = self;
+    pub(crate) fn table(self, k: usize, fill_parts: impl FnOnce(Vec<Part<'_>>, usize)) -> KnnTable {
+        let Join(a, b, _, same, _) = self;
         let (rows, w) = (a.len(), width(k, b.len(), same));
         let (mut slots, mut distances) = (huge_pages::zeros(rows * w), huge_pages::zeros(rows * w));
         if w > 0 {
@@ -291,7 +278,7 @@ pub(crate) fn assert_copies_agree<P: PointSet<D>, const D: usize>(set: &P, k: us
         .into_iter()
         .zip(parts(&gs, k, &mut s2, &mut d2))
     {
-        fill(&mut search1, Join(set, set, &Euclid, true), p1, k);
+        fill(&mut search1, Join::new(set, set, &Euclid, true), p1, k);
         let sides = (
             set.index().points(),
             set.index(),

@@ -36,7 +36,7 @@ impl<N: Copy, const D: usize> Scratch<N, D> {
 /// in position order, onto `out`.
 fn map_group<A, B, P, T, const D: usize>(
     scratch: &mut Scratch<<B::Index as SpatialIndex<D>>::Node, D>,
-    join: Join<'_, A, B, P>,
+    join: Join<'_, A, B, P, D>,
     (group, w): (&Group, usize),
     f: &mut impl FnMut(usize, &[usize], &[f64]) -> T,
     out: &mut Vec<T>,
@@ -58,20 +58,15 @@ fn map_group<A, B, P, T, const D: usize>(
     }
 }
 
-impl<A, B, P> Join<'_, A, B, P> {
+impl<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, const D: usize> Join<'_, A, B, P, D> {
     /// `f(slot, neighbour slots, squared distances)` for every slot of the querying set, with
     /// its row of the `k`-nearest table, serially; the values in slot order.
-    pub(crate) fn map_knn<T, const D: usize>(
+    pub(crate) fn map_knn<T>(
         self,
         k: usize,
         mut f: impl FnMut(usize, &[usize], &[f64]) -> T,
-    ) -> Vec<T>
-    where
-        A: PointSet<D>,
-        B: PointSet<D>,
-        P: PairDistance<D>,
-    {
-        let Join(a, b, _, same) = self;
+    ) -> Vec<T> {
+        let Join(a, b, _, same, _) = self;
         let w = width(k, b.len(), same);
         if w == 0 {
             return (0..a.len()).map(|s| f(s, &[], &[])).collect();
@@ -89,18 +84,17 @@ impl<A, B, P> Join<'_, A, B, P> {
     /// [`Join::map_knn`] with the groups on rayon's threads; `f` is called from several threads
     /// at once, in no particular order.
     #[cfg(feature = "rayon")]
-    pub(crate) fn par_map_knn<T: Send, const D: usize>(
+    pub(crate) fn par_map_knn<T: Send>(
         self,
         k: usize,
         f: impl Fn(usize, &[usize], &[f64]) -> T + Sync,
     ) -> Vec<T>
     where
-        A: PointSet<D> + Sync,
-        B: PointSet<D> + Sync,
-        P: PairDistance<D>,
+        A: Sync,
+        B: Sync,
     {
         use crate::par_tasks::{chunks, map_indices, map_ranges};
-        let Join(a, b, _, same) = self;
+        let Join(a, b, _, same, _) = self;
         let w = width(k, b.len(), same);
         if w == 0 {
             return map_indices(a.len(), &|s| f(s, &[], &[]));

@@ -48,6 +48,7 @@ pub use sparse::{CsrDistances, SparseDistances};
 
 use super::{PointSet, QueryError};
 use bounds::{Euclid, PairDistance};
+use core::marker::PhantomData;
 use core::ops::ControlFlow;
 use pairs::{CountWithin, PairsWithin};
 
@@ -81,7 +82,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        Join(self, other, &Euclid, false).knn(k)
+        Join::new(self, other, &Euclid, false).knn(k)
     }
 
     /// The `k` nearest other points to every point of this set: row `s` is
@@ -104,7 +105,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        Join(self, self, &Euclid, true).knn(k)
+        Join::new(self, self, &Euclid, true).knn(k)
     }
 
     /// `f(s, neighbours, distances)` for every slot `s` of this set, with the row that
@@ -135,7 +136,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        Join(self, other, &Euclid, false).map_knn(k, f)
+        Join::new(self, other, &Euclid, false).map_knn(k, f)
     }
 
     /// [`Joins::map_k_nearest_join`] for the self-join: `f(s, neighbours, distances)` with the
@@ -158,7 +159,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        Join(self, self, &Euclid, true).map_knn(k, f)
+        Join::new(self, self, &Euclid, true).map_knn(k, f)
     }
 
     /// Calls `visit(s, t, d)` for every unordered pair of distinct slots `s < t` whose points
@@ -198,7 +199,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        Join(self, self, &Euclid, true).pairs(r, boundary, visit)
+        Join::new(self, self, &Euclid, true).pairs(r, boundary, visit)
     }
 
     /// Calls `visit(s, t, d)` for every slot `s` of this set and `t` of `other` whose points
@@ -231,7 +232,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        Join(self, other, &Euclid, false).pairs(r, boundary, visit)
+        Join::new(self, other, &Euclid, false).pairs(r, boundary, visit)
     }
 
     /// For each radius of `radii` (non-decreasing), the number of unordered pairs of distinct
@@ -257,7 +258,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        Join(self, self, &Euclid, true).count(radii, boundary)
+        Join::new(self, self, &Euclid, true).count(radii, boundary)
     }
 
     /// For each radius of `radii` (non-decreasing), the number of pairs of a point of this set
@@ -282,7 +283,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        Join(self, other, &Euclid, false).count(radii, boundary)
+        Join::new(self, other, &Euclid, false).count(radii, boundary)
     }
 
     /// Every pair of a point of this set (row) and a point of `other` (column) within `r`,
@@ -309,7 +310,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        Join(self, other, &Euclid, false).sparse(r, boundary)
+        Join::new(self, other, &Euclid, false).sparse(r, boundary)
     }
 }
 
@@ -319,36 +320,39 @@ impl<P: PointSet<D>, const D: usize> Joins<D> for P {}
 /// other set is the querying one (a self-join: unordered pairs once, no point its own
 /// neighbour). The engines, serial and parallel, are its methods, so that every front end
 /// ([`Joins`], [`PeriodicJoins`] and their parallel forms) names its sets and distance once.
-pub(crate) struct Join<'s, A, B, P>(
+/// The dimension is a parameter of the type (its last field only marks it), so that the bounds
+/// the engines need are stated once for each block of them.
+pub(crate) struct Join<'s, A, B, P, const D: usize>(
     pub(crate) &'s A,
     pub(crate) &'s B,
     pub(crate) &'s P,
     pub(crate) bool,
+    PhantomData<[(); D]>,
 );
 
-impl<A, B, P> Clone for Join<'_, A, B, P> {
+impl<A, B, P, const D: usize> Clone for Join<'_, A, B, P, D> {
     fn clone(&self) -> Self {
         *self
     }
 }
 
-impl<A, B, P> Copy for Join<'_, A, B, P> {}
+impl<A, B, P, const D: usize> Copy for Join<'_, A, B, P, D> {}
 
-impl<A, B, P> Join<'_, A, B, P> {
+impl<'s, A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, const D: usize> Join<'s, A, B, P, D> {
+    /// The join of `a` with `b` under `metric` (`same`: `b` is `a`).
+    fn new(a: &'s A, b: &'s B, metric: &'s P, same: bool) -> Self {
+        Join(a, b, metric, same, PhantomData)
+    }
+
     /// The pairs within `r` (under `boundary`) handed to `visit`, each unordered pair once in a
     /// self-join.
-    fn pairs<Br, const D: usize>(
+    fn pairs<Br>(
         self,
         r: f64,
         boundary: Boundary,
         visit: impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
-    ) -> Result<ControlFlow<Br>, QueryError>
-    where
-        A: PointSet<D>,
-        B: PointSet<D>,
-        P: PairDistance<D>,
-    {
-        let Join(a, b, metric, same) = self;
+    ) -> Result<ControlFlow<Br>, QueryError> {
+        let Join(a, b, metric, same, _) = self;
         let r2 = radius::squared_radius(r)?;
         let mut v = PairsWithin::new(self, (r2, boundary), [a.len(), b.len()], visit);
         let start = traverse::roots((a.index(), b.index(), metric), same, (), &mut v);
@@ -356,17 +360,8 @@ impl<A, B, P> Join<'_, A, B, P> {
     }
 
     /// The counts within each of `radii`.
-    fn count<const D: usize>(
-        self,
-        radii: &[f64],
-        boundary: Boundary,
-    ) -> Result<Vec<u64>, QueryError>
-    where
-        A: PointSet<D>,
-        B: PointSet<D>,
-        P: PairDistance<D>,
-    {
-        let Join(a, b, metric, same) = self;
+    fn count(self, radii: &[f64], boundary: Boundary) -> Result<Vec<u64>, QueryError> {
+        let Join(a, b, metric, same, _) = self;
         let r2 = radius::squared_radii(radii)?;
         if r2.is_empty() {
             return Ok(Vec::new());
@@ -379,16 +374,7 @@ impl<A, B, P> Join<'_, A, B, P> {
 
     /// The sparse distance matrix of the pairs within `r` (of a join that is not a self-join:
     /// every pair of a row and a column).
-    fn sparse<const D: usize>(
-        self,
-        r: f64,
-        boundary: Boundary,
-    ) -> Result<SparseDistances, QueryError>
-    where
-        A: PointSet<D>,
-        B: PointSet<D>,
-        P: PairDistance<D>,
-    {
+    fn sparse(self, r: f64, boundary: Boundary) -> Result<SparseDistances, QueryError> {
         let mut triples = Vec::new();
         let _ = self.pairs(r, boundary, |s, t, d| {
             triples.push((s, t, d));

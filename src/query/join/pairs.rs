@@ -43,7 +43,7 @@ impl<'s, A, B, P, F, const D: usize> PairsWithin<'s, A, B, P, F, D> {
     /// The pairs of `join` within `r2` (under `boundary`) handed to `visit`, the leaf kernel's
     /// caches sized for a traversal meeting `points` points of each side ([`Block::boxed`]).
     pub(crate) fn new(
-        Join(a, b, metric, same): Join<'s, A, B, P>,
+        Join(a, b, metric, same, _): Join<'s, A, B, P, D>,
         (r2, boundary): (f64, Boundary),
         points: [usize; 2],
         visit: F,
@@ -177,7 +177,7 @@ impl<'s, A, B, P, const D: usize> CountWithin<'s, A, B, P, D> {
     /// The counts of the pairs of `join` within each of the squared radii `r2` (under
     /// `boundary`), all 0, the kernel's caches sized as [`PairsWithin::new`] sizes them.
     pub(crate) fn new(
-        Join(a, b, metric, _): Join<'s, A, B, P>,
+        Join(a, b, metric, ..): Join<'s, A, B, P, D>,
         (r2, boundary): (&'s [f64], Boundary),
         points: [usize; 2],
     ) -> Self {

@@ -37,18 +37,14 @@ type Node<A, const D: usize> = <<A as PointSet<D>>::Index as SpatialIndex<D>>::N
 /// A node pair of the traversal of the indices of point sets `A` and `B`.
 type SetPair<A, B, T, const D: usize> = Pair<Node<A, D>, Node<B, D>, T, D>;
 
-impl<A, B, P> Join<'_, A, B, P>
+impl<A, B, P, const D: usize> Join<'_, A, B, P, D>
 where
-    A: Sync,
-    B: Sync,
+    A: PointSet<D> + Sync,
+    B: PointSet<D> + Sync,
+    P: PairDistance<D>,
 {
     /// The k-nearest table, the groups of the querying set on rayon's threads.
-    pub(crate) fn par_knn<const D: usize>(self, k: usize) -> KnnTable
-    where
-        A: PointSet<D>,
-        B: PointSet<D>,
-        P: PairDistance<D>,
-    {
+    pub(crate) fn par_knn(self, k: usize) -> KnnTable {
         self.table(k, |parts, w| {
             for_each_chunk(parts, chunks(), &|run| {
                 let mut search = Search::new();
@@ -61,33 +57,23 @@ where
 
     /// The node pairs the top of the traversal is split into from the root pair (state
     /// `state`), `visitor` taking the pairs met on the way.
-    fn split<T, V, const D: usize>(
+    fn split<T, V>(
         self,
         state: T,
         visitor: &mut V,
     ) -> Frontier<Node<A, D>, Node<B, D>, T, V::Break, D>
     where
-        A: PointSet<D>,
-        B: PointSet<D>,
-        P: PairDistance<D>,
         V: PairVisitor<A::Index, B::Index, T, D>,
     {
-        let Join(a, b, metric, same) = self;
+        let Join(a, b, metric, same, _) = self;
         let (ia, ib) = (a.index(), b.index());
         let start = roots((ia, ib, metric), same, state, visitor);
         split_top(ia, ib, metric, start, chunks(), visitor)
     }
 
     /// One part of a split traversal: the node pair `pair` and its descendants.
-    fn part<T, V, const D: usize>(
-        self,
-        pair: SetPair<A, B, T, D>,
-        visitor: &mut V,
-    ) -> ControlFlow<V::Break>
+    fn part<T, V>(self, pair: SetPair<A, B, T, D>, visitor: &mut V) -> ControlFlow<V::Break>
     where
-        A: PointSet<D>,
-        B: PointSet<D>,
-        P: PairDistance<D>,
         V: PairVisitor<A::Index, B::Index, T, D>,
     {
         run(self.0.index(), self.1.index(), self.2, vec![pair], visitor)
@@ -95,11 +81,7 @@ where
 
     /// The points of each side of a frontier pair: all that its part of the traversal can
     /// meet, to size the kernel's caches ([`Block::boxed`](super::scan::Block::boxed)).
-    fn part_points<T, const D: usize>(self, pair: &SetPair<A, B, T, D>) -> [usize; 2]
-    where
-        A: PointSet<D>,
-        B: PointSet<D>,
-    {
+    fn part_points<T>(self, pair: &SetPair<A, B, T, D>) -> [usize; 2] {
         [
             self.0.index().run(pair.0 .0).len(),
             self.1.index().run(pair.1 .0).len(),
@@ -109,17 +91,12 @@ where
     /// Every pair within `r` (under `boundary`) handed to `visit` from rayon's threads; the
     /// first break seen stops every thread (pairs being visited on other threads at that moment
     /// finish) and is returned.
-    pub(crate) fn par_pairs<Br: Send, const D: usize>(
+    pub(crate) fn par_pairs<Br: Send>(
         self,
         r: f64,
         boundary: Boundary,
         visit: impl Fn(usize, usize, f64) -> ControlFlow<Br> + Sync,
-    ) -> Result<ControlFlow<Br>, QueryError>
-    where
-        A: PointSet<D>,
-        B: PointSet<D>,
-        P: PairDistance<D>,
-    {
+    ) -> Result<ControlFlow<Br>, QueryError> {
         let within = (squared_radius(r)?, boundary);
         let all = [self.0.len(), self.1.len()];
         let frontier = match self.split((), &mut PairsWithin::new(self, within, all, &visit)) {
@@ -146,18 +123,13 @@ where
 
     /// Every pair within `r` (under `boundary`) folded by `fold` into accumulators made by
     /// `identity`, one per part of the traversal, then combined by `reduce`.
-    pub(crate) fn par_fold<T: Send, const D: usize>(
+    pub(crate) fn par_fold<T: Send>(
         self,
         (r, boundary): (f64, Boundary),
         identity: impl Fn() -> T + Sync + Send,
         fold: impl Fn(&mut T, usize, usize, f64) + Sync,
         reduce: impl Fn(T, T) -> T + Sync + Send,
-    ) -> Result<T, QueryError>
-    where
-        A: PointSet<D>,
-        B: PointSet<D>,
-        P: PairDistance<D>,
-    {
+    ) -> Result<T, QueryError> {
         let within = (squared_radius(r)?, boundary);
         let mut top = identity();
         let frontier = {
@@ -180,16 +152,11 @@ where
     }
 
     /// The sparse distance matrix of the pairs within `r` (of a join that is not a self-join).
-    pub(crate) fn par_sparse<const D: usize>(
+    pub(crate) fn par_sparse(
         self,
         r: f64,
         boundary: Boundary,
-    ) -> Result<SparseDistances, QueryError>
-    where
-        A: PointSet<D>,
-        B: PointSet<D>,
-        P: PairDistance<D>,
-    {
+    ) -> Result<SparseDistances, QueryError> {
         let triples = self.par_fold(
             (r, boundary),
             Vec::new,
@@ -207,16 +174,11 @@ where
 
     /// The counts within each of `radii`, the top of the traversal split into node pairs
     /// counted on rayon's threads.
-    pub(crate) fn par_count<const D: usize>(
+    pub(crate) fn par_count(
         self,
         radii: &[f64],
         boundary: Boundary,
-    ) -> Result<Vec<u64>, QueryError>
-    where
-        A: PointSet<D>,
-        B: PointSet<D>,
-        P: PairDistance<D>,
-    {
+    ) -> Result<Vec<u64>, QueryError> {
         let r2 = squared_radii(radii)?;
         if r2.is_empty() {
             return Ok(Vec::new());

@@ -29,7 +29,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        Join(self, other, &Euclid, false).par_knn(k)
+        Join::new(self, other, &Euclid, false).par_knn(k)
     }
 
     /// [`Joins::k_nearest_self`] on rayon's threads; the same table.
@@ -45,7 +45,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        Join(self, self, &Euclid, true).par_knn(k)
+        Join::new(self, self, &Euclid, true).par_knn(k)
     }
 
     /// [`Joins::map_k_nearest_join`] on rayon's threads: the same values, `f` called from
@@ -68,7 +68,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        Join(self, other, &Euclid, false).par_map_knn(k, f)
+        Join::new(self, other, &Euclid, false).par_map_knn(k, f)
     }
 
     /// [`Joins::map_k_nearest_self`] on rayon's threads: the same values, `f` called from
@@ -90,7 +90,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        Join(self, self, &Euclid, true).par_map_knn(k, f)
+        Join::new(self, self, &Euclid, true).par_map_knn(k, f)
     }
 
     /// [`Joins::pairs_within`] on rayon's threads: calls `visit(s, t, d)` for every unordered
@@ -136,7 +136,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        Join(self, self, &Euclid, true).par_pairs(r, boundary, visit)
+        Join::new(self, self, &Euclid, true).par_pairs(r, boundary, visit)
     }
 
     /// [`Joins::pairs_within_other`] on rayon's threads: calls `visit(s, t, d)` for every slot
@@ -170,7 +170,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        Join(self, other, &Euclid, false).par_pairs(r, boundary, visit)
+        Join::new(self, other, &Euclid, false).par_pairs(r, boundary, visit)
     }
 
     /// The pairs of [`Joins::pairs_within`] folded on rayon's threads: each thread's share of
@@ -207,7 +207,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        Join(self, self, &Euclid, true).par_fold((r, boundary), identity, fold, reduce)
+        Join::new(self, self, &Euclid, true).par_fold((r, boundary), identity, fold, reduce)
     }
 
     /// The pairs of [`Joins::pairs_within_other`] folded on rayon's threads, as
@@ -237,7 +237,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        Join(self, other, &Euclid, false).par_fold((r, boundary), identity, fold, reduce)
+        Join::new(self, other, &Euclid, false).par_fold((r, boundary), identity, fold, reduce)
     }
 
     /// [`Joins::sparse_distance_matrix`] on rayon's threads; the same matrix.
@@ -262,7 +262,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        Join(self, other, &Euclid, false).par_sparse(r, boundary)
+        Join::new(self, other, &Euclid, false).par_sparse(r, boundary)
     }
 
     /// [`Joins::count_pairs_within`] on rayon's threads; the same counts.
@@ -288,7 +288,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        Join(self, self, &Euclid, true).par_count(radii, boundary)
+        Join::new(self, self, &Euclid, true).par_count(radii, boundary)
     }
 
     /// [`Joins::count_neighbors`] on rayon's threads; the same counts.
@@ -315,7 +315,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     where
         Self: Sized,
     {
-        Join(self, other, &Euclid, false).par_count(radii, boundary)
+        Join::new(self, other, &Euclid, false).par_count(radii, boundary)
     }
 }
 

@@ -68,7 +68,7 @@ pub trait PeriodicJoins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        Join(self, other, &torus.squared_euclidean(), false).knn(k)
+        Join::new(self, other, &torus.squared_euclidean(), false).knn(k)
     }
 
     /// The `k` nearest other points to every point of this set under the minimum-image squared
@@ -90,7 +90,7 @@ pub trait PeriodicJoins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        Join(self, self, &torus.squared_euclidean(), true).knn(k)
+        Join::new(self, self, &torus.squared_euclidean(), true).knn(k)
     }
 
     /// Calls `visit(s, t, d)` for every unordered pair of distinct slots `s < t` within
@@ -113,7 +113,7 @@ pub trait PeriodicJoins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        Join(self, self, &torus.squared_euclidean(), true).pairs(r, boundary, visit)
+        Join::new(self, self, &torus.squared_euclidean(), true).pairs(r, boundary, visit)
     }
 
     /// Calls `visit(s, t, d)` for every slot `s` of this set and `t` of `other` within
@@ -149,7 +149,7 @@ pub trait PeriodicJoins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        Join(self, other, &torus.squared_euclidean(), false).pairs(r, boundary, visit)
+        Join::new(self, other, &torus.squared_euclidean(), false).pairs(r, boundary, visit)
     }
 
     /// For each radius of `radii` (non-decreasing), the number of unordered pairs of distinct
@@ -167,7 +167,7 @@ pub trait PeriodicJoins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        Join(self, self, &torus.squared_euclidean(), true).count(radii, boundary)
+        Join::new(self, self, &torus.squared_euclidean(), true).count(radii, boundary)
     }
 
     /// For each radius of `radii` (non-decreasing), the number of pairs of a point of this set
@@ -196,7 +196,7 @@ pub trait PeriodicJoins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        Join(self, other, &torus.squared_euclidean(), false).count(radii, boundary)
+        Join::new(self, other, &torus.squared_euclidean(), false).count(radii, boundary)
     }
 
     /// Every pair of a point of this set (row) and of `other` (column) within minimum-image
@@ -223,7 +223,7 @@ pub trait PeriodicJoins<const D: usize>: PointSet<D> {
     where
         Self: Sized,
     {
-        Join(self, other, &torus.squared_euclidean(), false).sparse(r, boundary)
+        Join::new(self, other, &torus.squared_euclidean(), false).sparse(r, boundary)
     }
 }
 

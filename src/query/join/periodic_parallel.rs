@@ -48,7 +48,7 @@ pub trait ParallelPeriodicJoins<const D: usize>: PeriodicJoins<D> + Sync {
     where
         Self: Sized,
     {
-        Join(self, other, &torus.squared_euclidean(), false).par_knn(k)
+        Join::new(self, other, &torus.squared_euclidean(), false).par_knn(k)
     }
 
     /// [`PeriodicJoins::periodic_k_nearest_self`] on rayon's threads; the same table.
@@ -56,7 +56,7 @@ pub trait ParallelPeriodicJoins<const D: usize>: PeriodicJoins<D> + Sync {
     where
         Self: Sized,
     {
-        Join(self, self, &torus.squared_euclidean(), true).par_knn(k)
+        Join::new(self, self, &torus.squared_euclidean(), true).par_knn(k)
     }
 
     /// [`PeriodicJoins::periodic_pairs_within`] on rayon's threads: `visit` is called from
@@ -76,7 +76,7 @@ pub trait ParallelPeriodicJoins<const D: usize>: PeriodicJoins<D> + Sync {
     where
         Self: Sized,
     {
-        Join(self, self, &torus.squared_euclidean(), true).par_pairs(r, boundary, visit)
+        Join::new(self, self, &torus.squared_euclidean(), true).par_pairs(r, boundary, visit)
     }
 
     /// [`PeriodicJoins::periodic_pairs_within_other`] on rayon's threads, `visit` called from
@@ -95,7 +95,7 @@ pub trait ParallelPeriodicJoins<const D: usize>: PeriodicJoins<D> + Sync {
     where
         Self: Sized,
     {
-        Join(self, other, &torus.squared_euclidean(), false).par_pairs(r, boundary, visit)
+        Join::new(self, other, &torus.squared_euclidean(), false).par_pairs(r, boundary, visit)
     }
 
     /// The pairs of [`PeriodicJoins::periodic_pairs_within`] folded on rayon's threads, as
@@ -116,7 +116,7 @@ pub trait ParallelPeriodicJoins<const D: usize>: PeriodicJoins<D> + Sync {
     where
         Self: Sized,
     {
-        Join(self, self, &torus.squared_euclidean(), true).par_fold(
+        Join::new(self, self, &torus.squared_euclidean(), true).par_fold(
             (r, boundary),
             identity,
             fold,
@@ -137,7 +137,7 @@ pub trait ParallelPeriodicJoins<const D: usize>: PeriodicJoins<D> + Sync {
     where
         Self: Sized,
     {
-        Join(self, self, &torus.squared_euclidean(), true).par_count(radii, boundary)
+        Join::new(self, self, &torus.squared_euclidean(), true).par_count(radii, boundary)
     }
 
     /// [`PeriodicJoins::periodic_count_neighbors`] on rayon's threads; the same counts.
@@ -154,7 +154,7 @@ pub trait ParallelPeriodicJoins<const D: usize>: PeriodicJoins<D> + Sync {
     where
         Self: Sized,
     {
-        Join(self, other, &torus.squared_euclidean(), false).par_count(radii, boundary)
+        Join::new(self, other, &torus.squared_euclidean(), false).par_count(radii, boundary)
     }
 
     /// [`PeriodicJoins::periodic_sparse_distance_matrix`] on rayon's threads; the same matrix.
@@ -171,7 +171,7 @@ pub trait ParallelPeriodicJoins<const D: usize>: PeriodicJoins<D> + Sync {
     where
         Self: Sized,
     {
-        Join(self, other, &torus.squared_euclidean(), false).par_sparse(r, boundary)
+        Join::new(self, other, &torus.squared_euclidean(), false).par_sparse(r, boundary)
     }
 }
 
