@@ -32,7 +32,8 @@ use crate::sort_network::{sort_by_network, WIDEST};
 const NET: usize = WIDEST;
 
 /// The candidates of one query point: entries and keys (see the module doc), the near ones at
-/// the front of the buffer, the far ones at its back.
+/// the front of the buffer, the far ones at its back. The default is an empty buffer.
+#[derive(Default)]
 pub(crate) struct Cands {
     keys: Vec<u64>,
     entries: Vec<(u64, usize)>,
@@ -51,20 +52,6 @@ pub(crate) struct Cands {
 }
 
 impl Cands {
-    /// An empty buffer.
-    pub(crate) fn new() -> Self {
-        Cands {
-            keys: Vec::new(),
-            entries: Vec::new(),
-            spare: Vec::new(),
-            low: 0,
-            front: 0,
-            back: 0,
-            room: 0,
-            k: 0,
-        }
-    }
-
     /// Empties the buffer, for a point keeping `k` (at least 1) of up to `room - 1` candidates
     /// held at once.
     #[inline(always)]
@@ -237,7 +224,7 @@ mod tests {
     #[test]
     fn keys_order_exactly_as_the_entries() {
         let mut rng = SmallRng::seed_from_u64(7);
-        let mut c = Cands::new();
+        let mut c = Cands::default();
         for round in 0..3000 {
             let k = [1, 3, 16, 17, 31, 32, 40][round % 7];
             let n = rng.gen_range(k..3 * k + 40);

@@ -72,7 +72,7 @@ impl<N: Copy, const D: usize> Search<N, D> {
             qs: Vec::new(),
             lists: Vec::new(),
             done: Vec::new(),
-            cands: Cands::new(),
+            cands: Cands::default(),
             pool: Pool::new(),
             last: Vec::new(),
             last_q: [0.0; D],

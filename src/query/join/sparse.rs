@@ -32,18 +32,13 @@ impl SparseDistances {
     /// The matrix of `triples` (row, column, distance), sorted here.
     pub(crate) fn new(shape: (usize, usize), mut triples: Vec<(usize, usize, f64)>) -> Self {
         triples.sort_unstable_by_key(|&(r, c, _)| (r, c));
-        let mut m = SparseDistances {
+        let ((row, col), distance) = triples.into_iter().map(|(r, c, d)| ((r, c), d)).unzip();
+        SparseDistances {
             shape,
-            row: Vec::with_capacity(triples.len()),
-            col: Vec::with_capacity(triples.len()),
-            distance: Vec::with_capacity(triples.len()),
-        };
-        for (r, c, d) in triples {
-            m.row.push(r);
-            m.col.push(c);
-            m.distance.push(d);
+            row,
+            col,
+            distance,
         }
-        m
     }
     /// The number of rows: the points of the first set.
     pub fn rows(&self) -> usize {
