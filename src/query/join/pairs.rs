@@ -28,15 +28,15 @@ use core::ops::{ControlFlow, Range};
 /// first, when `b` is `a` and `unordered`), handed to `visit(slot in a, slot in b, squared
 /// distance)`.
 pub(crate) struct PairsWithin<'s, A, B, P, F, const D: usize> {
-    pub(crate) metric: &'s P,
-    pub(crate) unordered: bool,
-    pub(crate) a: &'s A,
-    pub(crate) b: &'s B,
-    pub(crate) r2: f64,
-    pub(crate) boundary: Boundary,
-    pub(crate) visit: F,
+    metric: &'s P,
+    unordered: bool,
+    a: &'s A,
+    b: &'s B,
+    r2: f64,
+    boundary: Boundary,
+    visit: F,
     /// The leaf kernel's scratch.
-    pub(crate) block: Box<Block<D>>,
+    block: Box<Block<D>>,
 }
 
 impl<'s, A, B, P, F, const D: usize> PairsWithin<'s, A, B, P, F, D> {
@@ -163,14 +163,14 @@ where
 /// The number of pairs within each of the sorted squared radii `r2`, as differences: radius `i`
 /// counts `diff[0] + .. + diff[i]`.
 pub(crate) struct CountWithin<'s, A, B, P, const D: usize> {
-    pub(crate) metric: &'s P,
-    pub(crate) a: &'s A,
-    pub(crate) b: &'s B,
-    pub(crate) r2: &'s [f64],
-    pub(crate) boundary: Boundary,
+    metric: &'s P,
+    a: &'s A,
+    b: &'s B,
+    r2: &'s [f64],
+    boundary: Boundary,
     pub(crate) diff: Vec<i128>,
     /// The leaf kernel's scratch.
-    pub(crate) block: Box<Block<D>>,
+    block: Box<Block<D>>,
 }
 
 impl<'s, A, B, P, const D: usize> CountWithin<'s, A, B, P, D> {
