@@ -51,6 +51,7 @@ use bounds::{Euclid, PairDistance};
 use core::marker::PhantomData;
 use core::ops::ControlFlow;
 use pairs::{CountWithin, PairsWithin};
+use traverse::Dual;
 
 /// The joins of a [`PointSet`] with itself or with another one (implemented for every point
 /// set; in the prelude). Slots are the sets' [`PointSet::items`] positions; distances are
@@ -344,6 +345,11 @@ impl<'s, A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, const D: usize> Joi
         Join(a, b, metric, same, PhantomData)
     }
 
+    /// The dual-tree traversal of the two sets' indices.
+    fn dual(self) -> Dual<'s, A::Index, B::Index, P, D> {
+        Dual::new(self.0.index(), self.1.index(), self.2)
+    }
+
     /// The pairs within `r` (under `boundary`) handed to `visit`, each unordered pair once in a
     /// self-join.
     fn pairs<Br>(
@@ -352,23 +358,25 @@ impl<'s, A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, const D: usize> Joi
         boundary: Boundary,
         visit: impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
     ) -> Result<ControlFlow<Br>, QueryError> {
-        let Join(a, b, metric, same, _) = self;
+        let Join(a, b, _, same, _) = self;
         let r2 = radius::squared_radius(r)?;
         let mut v = PairsWithin::new(self, (r2, boundary), [a.len(), b.len()], visit);
-        let start = traverse::roots((a.index(), b.index(), metric), same, (), &mut v);
-        Ok(traverse::run(a.index(), b.index(), metric, start, &mut v))
+        let dual = self.dual();
+        let start = dual.roots(same, (), &mut v);
+        Ok(dual.run(start, &mut v))
     }
 
     /// The counts within each of `radii`.
     fn count(self, radii: &[f64], boundary: Boundary) -> Result<Vec<u64>, QueryError> {
-        let Join(a, b, metric, same, _) = self;
+        let Join(a, b, _, same, _) = self;
         let r2 = radius::squared_radii(radii)?;
         if r2.is_empty() {
             return Ok(Vec::new());
         }
         let mut v = CountWithin::new(self, (&r2, boundary), [a.len(), b.len()]);
-        let start = traverse::roots((a.index(), b.index(), metric), same, (0, r2.len()), &mut v);
-        let _ = traverse::run(a.index(), b.index(), metric, start, &mut v);
+        let dual = self.dual();
+        let start = dual.roots(same, (0, r2.len()), &mut v);
+        let _ = dual.run(start, &mut v);
         Ok(v.counts())
     }
 

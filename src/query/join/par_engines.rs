@@ -6,7 +6,7 @@
 //!   threads in runs of consecutive groups; each run reuses one [`Search`] for all its groups
 //!   and writes their rows of one table directly.
 //! - The radius joins split the top of the dual-tree traversal (Gray and Moore, 2001) into at
-//!   least 16 independent node pairs per thread ([`split_top`]) and traverse each on a thread:
+//!   least 16 independent node pairs per thread ([`Dual::split_top`](super::traverse::Dual::split_top)) and traverse each on a thread:
 //!   the counts of the parts are summed, the pairs of the sparse matrix concatenated and sorted,
 //!   the pairs of the visitors handed over as found (with one shared flag that stops every
 //!   thread at the first break), or folded into one accumulator per part and reduced.
@@ -22,7 +22,7 @@ use super::knn_group::Search;
 use super::pairs::{CountWithin, PairsWithin};
 use super::radius::{squared_radii, squared_radius, Boundary};
 use super::sparse::SparseDistances;
-use super::traverse::{roots, run, split_top, Frontier, Pair, PairVisitor};
+use super::traverse::{Frontier, Pair, PairVisitor};
 use super::Join;
 use crate::par_tasks::{chunks, for_each_chunk, for_each_index, lock, map_indices};
 use crate::query::{PointSet, QueryError, SpatialIndex};
@@ -65,10 +65,9 @@ where
     where
         V: PairVisitor<A::Index, B::Index, T, D>,
     {
-        let Join(a, b, metric, same, _) = self;
-        let (ia, ib) = (a.index(), b.index());
-        let start = roots((ia, ib, metric), same, state, visitor);
-        split_top(ia, ib, metric, start, chunks(), visitor)
+        let dual = self.dual();
+        let start = dual.roots(self.3, state, visitor);
+        dual.split_top(start, chunks(), visitor)
     }
 
     /// One part of a split traversal: the node pair `pair` and its descendants.
@@ -76,7 +75,7 @@ where
     where
         V: PairVisitor<A::Index, B::Index, T, D>,
     {
-        run(self.0.index(), self.1.index(), self.2, vec![pair], visitor)
+        self.dual().run(vec![pair], visitor)
     }
 
     /// The points of each side of a frontier pair: all that its part of the traversal can

@@ -12,11 +12,13 @@
 //! leaves (or of nodes small enough to scan, whose runs are contiguous) is handed to the caller
 //! with both runs. A self-join starts from the root paired with itself, so each unordered pair
 //! of points lies in exactly one node pair handed over. The stack holds at most about
-//! `2^(2D)` entries per level: its depth never grows with recursion.
+//! `2^(2D)` entries per level: its depth never grows with recursion. The steps are the methods
+//! of [`Dual`] (the two indices and their distance).
 
 use super::bounds::PairDistance;
 use crate::geom::Aabb;
 use crate::query::index::{scan_limit, scans_whole, SpatialIndex};
+use core::marker::PhantomData;
 use core::ops::{ControlFlow, Range};
 use smallvec::SmallVec;
 
@@ -90,169 +92,157 @@ pub(crate) trait PairVisitor<A: SpatialIndex<D>, B: SpatialIndex<D>, T, const D:
     ) -> ControlFlow<Self::Break>;
 }
 
-/// Classifies the node pair of `sa` and `sb` (`same`: one node with itself) by its boxes'
-/// distance range and number of point pairs, and pushes it on `stack` unless the visitor skips
-/// it: only pairs left to look at are held.
-#[inline(always)]
-fn offer<A, B, T, V, P, const D: usize>(
-    (a, b, metric): (&A, &B, &P),
-    (sa, sb, same): (Side<A::Node, D>, Side<B::Node, D>, bool),
-    state: &T,
-    visitor: &mut V,
-    stack: &mut Vec<Pair<A::Node, B::Node, T, D>>,
-) where
-    A: SpatialIndex<D>,
-    B: SpatialIndex<D>,
-    V: PairVisitor<A, B, T, D>,
-    P: PairDistance<D>,
-{
-    let (near, far) = metric.box_box(&sa.1, &sb.1);
-    let (na, nb) = (a.count(sa.0) as u64, b.count(sb.0) as u64);
-    let pairs = if same {
-        na * na.saturating_sub(1) / 2
-    } else {
-        na * nb
-    };
-    if let Step::Split(s) = visitor.classify(state, near, far, pairs) {
-        stack.push((sa, sb, same, s));
-    }
-}
-
-/// Expands one classified node pair: hands a pair of nodes to scan to the visitor, or
-/// classifies the pairs of its children ([`offer`]) and pushes those left to look at on
-/// `stack`. `same`: `b` is `a`'s node paired with itself in the same tree. `kids`: the buffers
-/// of both sides' children, kept by the caller from pair to pair.
-pub(crate) fn step<A, B, T, V, P, const D: usize>(
-    a: &A,
-    b: &B,
-    metric: &P,
-    pair: Pair<A::Node, B::Node, T, D>,
-    visitor: &mut V,
-    stack: &mut Vec<Pair<A::Node, B::Node, T, D>>,
-    (ca, cb): &mut (Kids<A::Node, D>, Kids<B::Node, D>),
-) -> ControlFlow<V::Break>
-where
-    A: SpatialIndex<D>,
-    B: SpatialIndex<D>,
-    V: PairVisitor<A, B, T, D>,
-    P: PairDistance<D>,
-{
-    let (sa, sb, same, state) = pair;
-    let ab = (a, b, metric);
-    ca.clear();
-    cb.clear();
-    push_children(a, &sa, SCAN_RADIUS, |c| ca.push(c));
-    if same {
-        // One node with itself: the unordered pairs of its children, each child with itself.
-        if ca.is_empty() {
-            return visitor.leaves(&state, (a.run(sa.0), &sa.1), (b.run(sb.0), &sb.1), true);
-        }
-        // The same tree on both sides: the children's handles are both A's and B's.
-        push_children(b, &sb, SCAN_RADIUS, |c| cb.push(c));
-        for i in (0..ca.len()).rev() {
-            for j in (i..cb.len()).rev() {
-                offer(ab, (ca[i], cb[j], i == j), &state, visitor, stack);
-            }
-        }
-        return ControlFlow::Continue(());
-    }
-    // Split the side with more points; look at `b`'s children only when they may be needed.
-    if ca.is_empty() || a.count(sa.0) < b.count(sb.0) {
-        push_children(b, &sb, SCAN_RADIUS, |c| cb.push(c));
-        if !cb.is_empty() {
-            for &c in cb.iter().rev() {
-                offer(ab, (sa, c, false), &state, visitor, stack);
-            }
-            return ControlFlow::Continue(());
-        }
-        if ca.is_empty() {
-            return visitor.leaves(&state, (a.run(sa.0), &sa.1), (b.run(sb.0), &sb.1), false);
-        }
-    }
-    for &c in ca.iter().rev() {
-        offer(ab, (c, sb, false), &state, visitor, stack);
-    }
-    ControlFlow::Continue(())
-}
-
-/// Runs the traversal from the classified pairs `start` to the end, or until the visitor breaks.
-pub(crate) fn run<A, B, T, V, P, const D: usize>(
-    a: &A,
-    b: &B,
-    metric: &P,
-    start: Vec<Pair<A::Node, B::Node, T, D>>,
-    visitor: &mut V,
-) -> ControlFlow<V::Break>
-where
-    A: SpatialIndex<D>,
-    B: SpatialIndex<D>,
-    V: PairVisitor<A, B, T, D>,
-    P: PairDistance<D>,
-{
-    let mut stack = start;
-    stack.reverse();
-    let mut kids = (SmallVec::new(), SmallVec::new());
-    while let Some(pair) = stack.pop() {
-        step(a, b, metric, pair, visitor, &mut stack, &mut kids)?;
-    }
-    ControlFlow::Continue(())
-}
-
-/// The root pair of `a` and `b` (`same`: `b` is `a`) classified by `visitor` from `state`:
-/// nothing when either is empty or the visitor skips it.
-pub(crate) fn roots<A, B, T, V, P, const D: usize>(
-    (a, b, metric): (&A, &B, &P),
-    same: bool,
-    state: T,
-    visitor: &mut V,
-) -> Vec<Pair<A::Node, B::Node, T, D>>
-where
-    A: SpatialIndex<D>,
-    B: SpatialIndex<D>,
-    V: PairVisitor<A, B, T, D>,
-    P: PairDistance<D>,
-{
-    let mut out = Vec::new();
-    if let (Some(ra), Some(rb)) = (a.root(), b.root()) {
-        offer((a, b, metric), (ra, rb, same), &state, visitor, &mut out);
-    }
-    out
-}
-
 /// The node pairs a traversal's top is split into, or the visitor's break met on the way.
 #[cfg(feature = "rayon")]
 pub(crate) type Frontier<A, B, T, Br, const D: usize> = ControlFlow<Br, Vec<Pair<A, B, T, D>>>;
 
-/// Splits the traversal's top into at least `want` independent node pairs (fewer when the trees
-/// are small), in traversal order: the pairs a parallel join hands to separate threads. Pairs
-/// the visitor skips, and leaf pairs met on the way, are given to `visitor`, whose break ends
-/// the split and is returned.
-#[cfg(feature = "rayon")]
-pub(crate) fn split_top<A, B, T, V, P, const D: usize>(
-    a: &A,
-    b: &B,
-    metric: &P,
-    start: Vec<Pair<A::Node, B::Node, T, D>>,
-    want: usize,
-    visitor: &mut V,
-) -> Frontier<A::Node, B::Node, T, V::Break, D>
-where
-    A: SpatialIndex<D>,
-    B: SpatialIndex<D>,
-    V: PairVisitor<A, B, T, D>,
-    P: PairDistance<D>,
-{
-    let mut frontier = start;
-    let mut kids = (SmallVec::new(), SmallVec::new());
-    while !frontier.is_empty() && frontier.len() < want {
-        let mut next = Vec::new();
-        for pair in frontier {
-            let mut out = Vec::new();
-            step(a, b, metric, pair, visitor, &mut out, &mut kids)?;
-            out.reverse();
-            next.extend(out);
-        }
-        frontier = next;
+/// The two indices of a dual-tree traversal and the distance between their points: the
+/// traversal's steps are its methods. The dimension is a parameter of the type (the last field
+/// only marks it), so that their bounds are stated once.
+pub(crate) struct Dual<'a, A, B, P, const D: usize>(&'a A, &'a B, &'a P, PhantomData<[(); D]>);
+
+impl<A, B, P, const D: usize> Clone for Dual<'_, A, B, P, D> {
+    fn clone(&self) -> Self {
+        *self
     }
-    ControlFlow::Continue(frontier)
+}
+
+impl<A, B, P, const D: usize> Copy for Dual<'_, A, B, P, D> {}
+
+impl<'a, A: SpatialIndex<D>, B: SpatialIndex<D>, P: PairDistance<D>, const D: usize>
+    Dual<'a, A, B, P, D>
+{
+    /// The traversal of `a` against `b` under `metric`.
+    pub(crate) fn new(a: &'a A, b: &'a B, metric: &'a P) -> Self {
+        Dual(a, b, metric, PhantomData)
+    }
+
+    /// Classifies the node pair of `sa` and `sb` (`same`: one node with itself) by its boxes'
+    /// distance range and number of point pairs, and pushes it on `stack` unless the visitor
+    /// skips it: only pairs left to look at are held.
+    #[inline(always)]
+    fn offer<T, V: PairVisitor<A, B, T, D>>(
+        self,
+        (sa, sb, same): (Side<A::Node, D>, Side<B::Node, D>, bool),
+        state: &T,
+        visitor: &mut V,
+        stack: &mut Vec<Pair<A::Node, B::Node, T, D>>,
+    ) {
+        let Dual(a, b, metric, _) = self;
+        let (near, far) = metric.box_box(&sa.1, &sb.1);
+        let (na, nb) = (a.count(sa.0) as u64, b.count(sb.0) as u64);
+        let pairs = if same {
+            na * na.saturating_sub(1) / 2
+        } else {
+            na * nb
+        };
+        if let Step::Split(s) = visitor.classify(state, near, far, pairs) {
+            stack.push((sa, sb, same, s));
+        }
+    }
+
+    /// Expands one classified node pair: hands a pair of nodes to scan to the visitor, or
+    /// classifies the pairs of its children ([`Dual::offer`]) and pushes those left to look at on
+    /// `stack`. `same`: `b` is `a`'s node paired with itself in the same tree. `kids`: the buffers
+    /// of both sides' children, kept by the caller from pair to pair.
+    fn step<T, V: PairVisitor<A, B, T, D>>(
+        self,
+        (sa, sb, same, state): Pair<A::Node, B::Node, T, D>,
+        visitor: &mut V,
+        stack: &mut Vec<Pair<A::Node, B::Node, T, D>>,
+        (ca, cb): &mut (Kids<A::Node, D>, Kids<B::Node, D>),
+    ) -> ControlFlow<V::Break> {
+        let Dual(a, b, ..) = self;
+        ca.clear();
+        cb.clear();
+        push_children(a, &sa, SCAN_RADIUS, |c| ca.push(c));
+        if same {
+            // One node with itself: the unordered pairs of its children, each child with itself.
+            if ca.is_empty() {
+                return visitor.leaves(&state, (a.run(sa.0), &sa.1), (b.run(sb.0), &sb.1), true);
+            }
+            // The same tree on both sides: the children's handles are both A's and B's.
+            push_children(b, &sb, SCAN_RADIUS, |c| cb.push(c));
+            for i in (0..ca.len()).rev() {
+                for j in (i..cb.len()).rev() {
+                    self.offer((ca[i], cb[j], i == j), &state, visitor, stack);
+                }
+            }
+            return ControlFlow::Continue(());
+        }
+        // Split the side with more points; look at `b`'s children only when they may be needed.
+        if ca.is_empty() || a.count(sa.0) < b.count(sb.0) {
+            push_children(b, &sb, SCAN_RADIUS, |c| cb.push(c));
+            if !cb.is_empty() {
+                for &c in cb.iter().rev() {
+                    self.offer((sa, c, false), &state, visitor, stack);
+                }
+                return ControlFlow::Continue(());
+            }
+            if ca.is_empty() {
+                return visitor.leaves(&state, (a.run(sa.0), &sa.1), (b.run(sb.0), &sb.1), false);
+            }
+        }
+        for &c in ca.iter().rev() {
+            self.offer((c, sb, false), &state, visitor, stack);
+        }
+        ControlFlow::Continue(())
+    }
+
+    /// Runs the traversal from the classified pairs `start` to the end, or until the visitor
+    /// breaks.
+    pub(crate) fn run<T, V: PairVisitor<A, B, T, D>>(
+        self,
+        start: Vec<Pair<A::Node, B::Node, T, D>>,
+        visitor: &mut V,
+    ) -> ControlFlow<V::Break> {
+        let mut stack = start;
+        stack.reverse();
+        let mut kids = (SmallVec::new(), SmallVec::new());
+        while let Some(pair) = stack.pop() {
+            self.step(pair, visitor, &mut stack, &mut kids)?;
+        }
+        ControlFlow::Continue(())
+    }
+
+    /// The root pair of `a` and `b` (`same`: `b` is `a`) classified by `visitor` from `state`:
+    /// nothing when either is empty or the visitor skips it.
+    pub(crate) fn roots<T, V: PairVisitor<A, B, T, D>>(
+        self,
+        same: bool,
+        state: T,
+        visitor: &mut V,
+    ) -> Vec<Pair<A::Node, B::Node, T, D>> {
+        let mut out = Vec::new();
+        if let (Some(ra), Some(rb)) = (self.0.root(), self.1.root()) {
+            self.offer((ra, rb, same), &state, visitor, &mut out);
+        }
+        out
+    }
+
+    /// Splits the traversal's top into at least `want` independent node pairs (fewer when the trees
+    /// are small), in traversal order: the pairs a parallel join hands to separate threads. Pairs
+    /// the visitor skips, and leaf pairs met on the way, are given to `visitor`, whose break ends
+    /// the split and is returned.
+    #[cfg(feature = "rayon")]
+    pub(crate) fn split_top<T, V: PairVisitor<A, B, T, D>>(
+        self,
+        start: Vec<Pair<A::Node, B::Node, T, D>>,
+        want: usize,
+        visitor: &mut V,
+    ) -> Frontier<A::Node, B::Node, T, V::Break, D> {
+        let mut frontier = start;
+        let mut kids = (SmallVec::new(), SmallVec::new());
+        while !frontier.is_empty() && frontier.len() < want {
+            let mut next = Vec::new();
+            for pair in frontier {
+                let mut out = Vec::new();
+                self.step(pair, visitor, &mut out, &mut kids)?;
+                out.reverse();
+                next.extend(out);
+            }
+            frontier = next;
+        }
+        ControlFlow::Continue(frontier)
+    }
 }
