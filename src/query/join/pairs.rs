@@ -87,29 +87,19 @@ where
         (rb, bb): (Range<usize>, &Aabb<f64, D>),
         same: bool,
     ) -> ControlFlow<Br> {
-        let this = self;
-        let (a, b) = (this.a, this.b);
+        let (a, b, unordered) = (self.a, self.b, self.unordered);
         let (ia, ib) = (a.index(), b.index());
         let to_slots = (SlotView::of(a), SlotView::of(b));
         let (runs, test) = (
             ((ia.points(), ra, ba), (ib.points(), rb, bb)),
-            (same, this.metric, this.r2, this.boundary),
+            (same, self.metric, self.r2, self.boundary),
         );
+        let (block, visit) = (&mut self.block, &mut self.visit);
         if let (SlotView::Same, SlotView::Same) = to_slots {
             // The common case (two point trees, or one with itself) without a look-up per pair.
-            scan(
-                &mut this.block,
-                runs,
-                test,
-                in_order(this.unordered, &mut this.visit),
-            )
+            scan(block, runs, test, in_order(unordered, visit))
         } else {
-            scan(
-                &mut this.block,
-                runs,
-                test,
-                in_slots(to_slots, this.unordered, &mut this.visit),
-            )
+            scan(block, runs, test, in_slots(to_slots, unordered, visit))
         }
     }
 }
@@ -228,12 +218,11 @@ where
         far: f64,
         pairs: u64,
     ) -> Step<(usize, usize)> {
-        let c = self;
-        let lo = c.first_admitting(lo..hi, near);
-        let all = c.first_admitting(lo..hi, far);
+        let lo = self.first_admitting(lo..hi, near);
+        let all = self.first_admitting(lo..hi, far);
         if all < hi {
-            c.diff[all] += i128::from(pairs);
-            c.diff[hi] -= i128::from(pairs);
+            self.diff[all] += i128::from(pairs);
+            self.diff[hi] -= i128::from(pairs);
         }
         if lo == all {
             Step::Skip
@@ -249,17 +238,16 @@ where
         (rb, bb): (Range<usize>, &Aabb<f64, D>),
         same: bool,
     ) -> ControlFlow<Self::Break> {
-        let c = self;
-        let (pa, pb) = (c.a.index().points(), c.b.index().points());
+        let (pa, pb) = (self.a.index().points(), self.b.index().points());
         scan_counts(
-            &mut c.block,
+            &mut self.block,
             (pa, ra, ba),
             (pb, rb, bb),
             same,
-            c.metric,
-            (c.r2, lo, hi),
-            c.boundary,
-            &mut c.diff,
+            self.metric,
+            (self.r2, lo, hi),
+            self.boundary,
+            &mut self.diff,
         );
         ControlFlow::Continue(())
     }
