@@ -381,7 +381,7 @@ pub(super) fn seeded<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: us
         let (node, nb) = path[level];
         index.for_each_child_unless(node, &nb, Beyond(bm, qb, prune), |child, cb| {
             if child != inner {
-                push_nearer(index, points, &mut stack, 0, qb, bm, prune, child, cb);
+                push_nearer(index, points, &mut stack, 0, (qb, bm), prune, child, cb);
             }
         });
         order_pushed(&mut stack, 0);
@@ -391,29 +391,19 @@ pub(super) fn seeded<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: us
 
 /// One search of `index` into `best` from its root, without a seeding walk (for a query image
 /// whose nearest box is rarely within the bound `best` already holds); `q` as in [`seeded`].
-/// Kept out of line: it runs for few queries, and inlined beside [`seeded`]
-/// it made the compiler call the index's child visitor out of line in both.
+/// Kept out of line: it runs for few queries, and inlined beside [`seeded`] it made the
+/// compiler call the index's child visitor out of line in both.
 #[inline(never)]
 pub(super) fn descend<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
     index: &I,
-    q @ (_, (qb, bm)): Query<'_, P, B, D>,
+    q @ (_, bq): Query<'_, P, B, D>,
     best: &mut Best,
     (root, b): (I::Node, Aabb<f64, D>),
     cut: &impl Fn(f64) -> f64,
 ) {
     let (bound, prune) = (best.bound(), best.prune(cut));
     let mut stack: Pending<I::Node, D> = SmallVec::new();
-    push_nearer(
-        index,
-        index.points(),
-        &mut stack,
-        0,
-        qb,
-        bm,
-        prune,
-        root,
-        &b,
-    );
+    push_nearer(index, index.points(), &mut stack, 0, bq, prune, root, &b);
     drain(index, &mut stack, q, best, cut, (bound, prune));
 }
 
@@ -440,7 +430,7 @@ fn drain<I: SpatialIndex<D>, P: Metric<D>, B: Metric<D>, const D: usize>(
             continue;
         }
         let internal = index.for_each_child_unless(node, &b, Beyond(bm, qb, prune), |child, cb| {
-            push_nearer(index, points, stack, before, qb, bm, prune, child, cb);
+            push_nearer(index, points, stack, before, (qb, bm), prune, child, cb);
         });
         order_pushed(stack, before);
         if !internal {
@@ -547,8 +537,7 @@ fn push_nearer<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
     points: &[[I::Scalar; D]],
     stack: &mut Pending<I::Node, D>,
     before: usize,
-    q: &[f64; D],
-    metric: &M,
+    (q, metric): (&[f64; D], &M),
     bound: f64,
     child: I::Node,
     cb: &Aabb<f64, D>,
