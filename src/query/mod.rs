@@ -187,12 +187,11 @@ pub(crate) fn place_point<S: crate::Scalar, const D: usize>(
     p: &[S; D],
     domain: &crate::Aabb<f64, D>,
 ) -> Result<Location<[f64; D]>, QueryError> {
-    Ok(
-        match crate::geom::check_point(p, domain).map_err(query_fault)? {
-            crate::geom::Checked::Inside(p) => Location::Inside(p),
-            crate::geom::Checked::Outside(axis, _) => Location::Outside { axis },
-        },
-    )
+    let checked = crate::geom::check_point(p, domain).map_err(query_fault)?;
+    Ok(match checked {
+        crate::geom::Checked::Inside(p) => Location::Inside(p),
+        crate::geom::Checked::Outside(axis, _) => Location::Outside { axis },
+    })
 }
 
 /// The query error for a coordinate failing the point check on `axis`.
@@ -214,11 +213,8 @@ pub(crate) fn query_box<S: crate::Scalar, const D: usize>(
 ) -> Result<crate::Aabb<f64, D>, QueryError> {
     for axis in 0..D {
         for c in [b.min[axis], b.max[axis]] {
-            match c.integer_value() {
-                Some(value) if !c.converts_exactly() => {
-                    return Err(QueryError::Inexact { axis, value });
-                }
-                _ => {}
+            if let Some(value) = c.integer_value().filter(|_| !c.converts_exactly()) {
+                return Err(QueryError::Inexact { axis, value });
             }
         }
     }

@@ -134,10 +134,8 @@ impl<const D: usize> Region<D> for Aabb<f64, D> {
         inside
     }
     fn validate(&self) -> Result<(), QueryError> {
-        match (0..D).find(|&a| self.min[a].is_nan() || self.max[a].is_nan()) {
-            Some(axis) => Err(QueryError::NanBound { axis }),
-            None => Ok(()),
-        }
+        let nan = (0..D).find(|&a| self.min[a].is_nan() || self.max[a].is_nan());
+        nan.map_or(Ok(()), |axis| Err(QueryError::NanBound { axis }))
     }
 }
 
