@@ -59,8 +59,8 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
         self.agree_query(
             bad,
             point_bytes::<S, D>(),
-            |w| {
-                w.point(&queries[bad.unwrap_or(0)]);
+            |i, w| {
+                w.point(&queries[i]);
             },
             |r| query_point(&r.point::<S, D>()).expect_err("refused on its rank"),
         )?;
@@ -156,36 +156,16 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
     /// The same on every rank: [`DistError::Query`] naming the first bad box (a NaN bound,
     /// an inexact integer corner) of the lowest rank with one; [`DistError::MessageTooLarge`].
     pub fn in_box_batch(&self, boxes: &[Aabb<S, D>]) -> Result<Answers<S, T, D>, DistError> {
-        let check = |b: &Aabb<S, D>| query_box(b).and_then(|f| f.validate().map(|()| f));
-        let bad = boxes.iter().position(|b| check(b).is_err());
-        self.agree_query(
-            bad,
+        self.range_batch(
+            boxes,
             2 * point_bytes::<S, D>(),
-            |w| {
-                let b = &boxes[bad.unwrap_or(0)];
+            |b| query_box(b).and_then(|f| f.validate().map(|()| f)),
+            |b, w| {
                 w.point(&b.min).point(&b.max);
             },
-            |r| {
-                let b = Aabb {
-                    min: r.point::<S, D>(),
-                    max: r.point::<S, D>(),
-                };
-                check(&b).expect_err("refused on its rank")
-            },
-        )?;
-        let regions: Vec<Aabb<f64, D>> = boxes.iter().map(|b| check(b).expect("checked")).collect();
-        self.range_round(
-            &regions,
-            2 * point_bytes::<S, D>(),
-            |q, w| {
-                w.point(&boxes[q].min).point(&boxes[q].max);
-            },
-            |r| {
-                let b = Aabb {
-                    min: r.point::<S, D>(),
-                    max: r.point::<S, D>(),
-                };
-                (check(&b).expect("checked on its rank"), None)
+            |r| Aabb {
+                min: r.point(),
+                max: r.point(),
             },
             |_| None,
         )
@@ -200,47 +180,42 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
     /// centre, a negative or NaN radius) of the lowest rank with one;
     /// [`DistError::MessageTooLarge`].
     pub fn in_ball_batch(&self, balls: &[([S; D], f64)]) -> Result<Answers<S, T, D>, DistError> {
-        let check = |(c, r): &([S; D], f64)| Ball::new(query_point(c)?, *r);
-        let bad = balls.iter().position(|b| check(b).is_err());
-        let bytes = 8 + point_bytes::<S, D>();
-        let write = |b: &([S; D], f64), w: &mut Writer<'_>| {
-            w.put(&b.1).point(&b.0);
-        };
-        let read = |r: &mut Reader<'_>| {
-            let radius = r.get::<f64>();
-            (r.point::<S, D>(), radius)
-        };
-        self.agree_query(
-            bad,
-            bytes,
-            |w| write(&balls[bad.unwrap_or(0)], w),
-            |r| check(&read(r)).expect_err("refused on its rank"),
-        )?;
-        let regions: Vec<Ball<D>> = balls.iter().map(|b| check(b).expect("checked")).collect();
-        self.range_round(
-            &regions,
-            bytes,
-            |q, w| write(&balls[q], w),
+        self.range_batch(
+            balls,
+            8 + point_bytes::<S, D>(),
+            |(c, r)| Ball::new(query_point(c)?, *r),
+            |b, w| {
+                w.put(&b.1).point(&b.0);
+            },
             |r| {
-                let b = check(&read(r)).expect("checked on its rank");
-                let center = b.center;
-                (b, Some(center))
+                let radius = r.get::<f64>();
+                (r.point(), radius)
             },
             |b| Some(b.center),
         )
     }
 
-    /// One round of range queries: each region to every non-empty rank whose box it does not
-    /// miss; `read` rebuilds a region there (with the centre to measure distances from, which
-    /// `center_of` gives for a region answered on its own rank).
-    fn range_round<R: Region<D>>(
+    /// A batch of range queries: `check` turns each query into its region or refuses it (the
+    /// refusal agreed on by every rank), then one round sends each region to every non-empty
+    /// rank whose box it does not miss, as `write` puts it (`bytes` long) and `read` takes it
+    /// back; `center_of` gives the centre to measure distances from, if any.
+    fn range_batch<Q, R: Region<D> + core::fmt::Debug>(
         &self,
-        regions: &[R],
+        queries: &[Q],
         bytes: usize,
-        write: impl Fn(usize, &mut Writer<'_>),
-        read: impl Fn(&mut Reader<'_>) -> (R, Option<[f64; D]>),
+        check: impl Fn(&Q) -> Result<R, QueryError>,
+        write: impl Fn(&Q, &mut Writer<'_>),
+        read: impl Fn(&mut Reader<'_>) -> Q,
         center_of: impl Fn(&R) -> Option<[f64; D]>,
     ) -> Result<Answers<S, T, D>, DistError> {
+        let bad = queries.iter().position(|q| check(q).is_err());
+        self.agree_query(
+            bad,
+            bytes,
+            |i, w| write(&queries[i], w),
+            |r| check(&read(r)).expect_err("refused on its rank"),
+        )?;
+        let regions: Vec<R> = queries.iter().map(|q| check(q).expect("checked")).collect();
         let ranks = self.nonempty_ranks();
         let sends: Vec<(usize, usize)> = regions
             .iter()
@@ -254,7 +229,8 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
             })
             .collect();
         let points = self.local.points();
-        let search = |region: &R, center: Option<[f64; D]>, hits: &mut Vec<(f64, usize)>| {
+        let search = |region: &R, hits: &mut Vec<(f64, usize)>| {
+            let center = center_of(region);
             let _ = for_each_in(&self.local, region, scan_limit::<D>(), true, |i| {
                 let d = center.map_or(0.0, |c| {
                     SquaredEuclidean.distance(&c, &points[i].map(Scalar::to_f64))
@@ -265,16 +241,15 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
         let mut found = self.round(
             &sends,
             bytes,
-            write,
+            |q, w| write(&queries[q], w),
             (
                 |r: &mut Reader<'_>, hits: &mut Vec<(f64, usize)>| {
-                    let (region, center) = read(r);
-                    search(&region, center, hits);
+                    search(&check(&read(r)).expect("checked on its rank"), hits);
                 },
-                |q, hits: &mut Vec<(f64, usize)>| search(&regions[q], center_of(&regions[q]), hits),
+                |q, hits: &mut Vec<(f64, usize)>| search(&regions[q], hits),
             ),
             None,
-            regions.len(),
+            queries.len(),
         )?;
         for f in &mut found {
             f.sort_by_key(|n| n.slot);
@@ -290,13 +265,13 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
     }
 
     /// The agreement on a batch: if a rank has a bad query (`bad`, its position), the lowest
-    /// such rank sends it (`write`, `bytes` long) and every rank rebuilds the same error from
-    /// it (`error`).
+    /// such rank sends it (`write` puts the query at that position, `bytes` long) and every
+    /// rank rebuilds the same error from it (`error`).
     fn agree_query(
         &self,
         bad: Option<usize>,
         bytes: usize,
-        write: impl Fn(&mut Writer<'_>),
+        write: impl Fn(usize, &mut Writer<'_>),
         error: impl Fn(&mut Reader<'_>) -> QueryError,
     ) -> Result<(), DistError> {
         let Some(rank) = comm::lowest_failing(&self.comm, bad.is_some()) else {
@@ -306,7 +281,7 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
         if let Some(index) = bad {
             let mut writer = w.writer(0);
             writer.put(&(index as u64));
-            write(&mut writer);
+            write(index, &mut writer);
         }
         comm::broadcast(&self.comm, rank, &mut w.words);
         let mut r = w.reader(0);
