@@ -169,9 +169,8 @@ impl BalanceWorkload {
             .map(|i| (runs[0][i].0, median(runs.iter().map(|p| p[i].1).collect())))
             .collect();
         let sent = sum_over(comm, stats.sent);
-        let mut most = 0u64;
         let mine = forest.leaves().len() as u64;
-        comm.all_reduce_into(&mine, &mut most, mpi::collective::SystemOperation::max());
+        let most = max_over(comm, mine);
         let checksum = checksum(comm, forest.leaves());
         let ghost = if self.ghost {
             comm.barrier();

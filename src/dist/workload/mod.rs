@@ -99,18 +99,21 @@ fn check_count(what: &'static str, value: u64, min: u64, max: u64) -> Result<(),
     }
 }
 
-/// The largest `x` over the ranks (collective).
-fn max_over(comm: &impl Communicator, x: f64) -> f64 {
-    let mut m = 0.0;
-    comm.all_reduce_into(&x, &mut m, SystemOperation::max());
+/// `x` reduced over the ranks by `op` (collective).
+fn over<T: Equivalence + Default>(comm: &impl Communicator, x: T, op: SystemOperation) -> T {
+    let mut m = T::default();
+    comm.all_reduce_into(&x, &mut m, op);
     m
+}
+
+/// The largest `x` over the ranks (collective).
+fn max_over<T: Equivalence + Default>(comm: &impl Communicator, x: T) -> T {
+    over(comm, x, SystemOperation::max())
 }
 
 /// The sum of `x` over the ranks (collective).
 fn sum_over(comm: &impl Communicator, x: u64) -> u64 {
-    let mut m = 0u64;
-    comm.all_reduce_into(&x, &mut m, SystemOperation::sum());
-    m
+    over(comm, x, SystemOperation::sum())
 }
 
 /// The median of `v` (the upper one of an even count); 0 for none.

@@ -4,7 +4,7 @@
 //! and the checksums are the same at every rank count. [`PointsReport`] holds what rank 0
 //! prints.
 
-use super::{max_over, phase_list, sum_over, WorkloadError};
+use super::{max_over, over, phase_list, sum_over, WorkloadError};
 use crate::dist::{DistError, DistPointTree, Partition, MAX_TOTAL};
 use crate::query::PointSet;
 use mpi::collective::SystemOperation;
@@ -98,13 +98,6 @@ fn point(i: u64, clustered: bool) -> [f64; 2] {
     [centre[0] + 0.02 * (a - 0.5), centre[1] + 0.02 * (b - 0.5)]
 }
 
-/// The XOR of `x` over the ranks (collective).
-fn xor_over(comm: &impl Communicator, x: u64) -> u64 {
-    let mut m = 0u64;
-    comm.all_reduce_into(&x, &mut m, SystemOperation::bitwise_xor());
-    m
-}
-
 impl PointsWorkload {
     /// Checks the settings: 1 to [`MAX_TOTAL`] points, at most 2^40 queries, 1 to 2^20
     /// neighbours.
@@ -149,7 +142,7 @@ impl PointsWorkload {
             for (s, item) in tree.local().items().iter().enumerate() {
                 sum ^= mix((first + s as u64) ^ mix(*item));
             }
-            let build_sum = xor_over(comm, sum);
+            let build_sum = over(comm, sum, SystemOperation::bitwise_xor());
             comm.barrier();
             let t1 = mpi::time();
             let answers = tree.k_nearest_batch(&queries, self.k)?;
@@ -168,7 +161,7 @@ impl PointsWorkload {
                 len: tree.len(),
                 build_sum,
                 found: sum_over(comm, found),
-                knn_sum: xor_over(comm, sum),
+                knn_sum: over(comm, sum, SystemOperation::bitwise_xor()),
                 build_s,
                 phases,
                 knn_s,
