@@ -149,11 +149,7 @@ impl<S: Scalar + Pod, const D: usize> DistPointTreeBuilder<S, D> {
         }
         let mut global = Aabb::empty();
         for w in all.chunks(per) {
-            let f = |a: usize| f64::from_bits(w[1 + a]);
-            global.add_box(&Aabb {
-                min: core::array::from_fn(f),
-                max: core::array::from_fn(|a| f(D + a)),
-            });
+            global.add_box(&box_from_words(&w[1..]));
         }
         let (geometry, domain) = settle(root, global, total as usize);
         let offset: u64 = counts[..rank].iter().sum();
@@ -236,15 +232,10 @@ impl<S: Scalar + Pod, const D: usize> DistPointTreeBuilder<S, D> {
             bucket_size,
             max_depth.unwrap_or(Cell::<D>::MAX_LEVEL),
         );
-        let mut mine = b.min.to_vec();
-        mine.extend(b.max);
-        let words: Vec<u64> = mine.iter().map(|x| x.to_bits()).collect();
+        let words: Vec<u64> = b.min.iter().chain(&b.max).map(|x| x.to_bits()).collect();
         let boxes = comm::all_gather(&comm, &words)
             .chunks(2 * D)
-            .map(|w| Aabb {
-                min: core::array::from_fn(|a| f64::from_bits(w[a])),
-                max: core::array::from_fn(|a| f64::from_bits(w[D + a])),
-            })
+            .map(box_from_words)
             .collect();
         clock.lap("local tree");
         Ok(DistPointTree {
@@ -410,6 +401,14 @@ fn even_out<S: Scalar + Pod, T: Pod, const D: usize>(
     out_items.extend_from_slice(&items[keep]);
     take(before..recv.len(), &mut out_points, &mut out_items);
     Ok((out_points, out_items))
+}
+
+/// The box whose corners' coordinates `words` holds as bits, the minimum corner's first.
+fn box_from_words<const D: usize>(words: &[u64]) -> Aabb<f64, D> {
+    Aabb {
+        min: core::array::from_fn(|a| f64::from_bits(words[a])),
+        max: core::array::from_fn(|a| f64::from_bits(words[D + a])),
+    }
 }
 
 /// Wall-clock phase times.
