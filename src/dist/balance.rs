@@ -21,7 +21,7 @@
 //! the loop has no depth and ends, since every round splits a leaf.
 
 use super::comm;
-use super::exchange::{exchange_cells, layer_ancestor, layer_directions, layer_ranks, KeyRanges};
+use super::exchange::{exchange_cells, layer_ancestor, layer_directions, layer_sends, KeyRanges};
 use super::forest::span;
 use super::{DistError, DistForest};
 use crate::geom::Cell;
@@ -101,23 +101,15 @@ impl<const D: usize> DistForest<D> {
         let (mut exchange_s, mut fixup_s) = (0.0, 0.0);
         loop {
             let t = Instant::now();
-            let mut outgoing: Vec<Vec<Cell<D>>> = vec![Vec::new(); size];
-            let mut to: SmallVec<[usize; 8]> = SmallVec::new();
-            for c in &fresh {
-                to.clear();
-                layer_ranks(c, &directions, &ranges, (me, mine), &mut to);
-                for &r in &to {
-                    outgoing[r].push(*c);
-                }
-            }
-            let count: usize = outgoing.iter().map(Vec::len).sum();
+            let sends = layer_sends(&fresh, &directions, &ranges, me, size);
+            let count: usize = sends.iter().map(Vec::len).sum();
             if comm::all_sum(comm, &[count as u64])[0] == 0 {
                 exchange_s += t.elapsed().as_secs_f64();
                 break;
             }
             rounds += 1;
             sent += count as u64;
-            let cells = match exchange_cells(comm, &outgoing) {
+            let cells = match exchange_cells(comm, &fresh, &sends) {
                 Ok((cells, _)) => cells,
                 Err(e) => {
                     self.leaves = own_leaves(&tree, mine, built);

@@ -17,7 +17,6 @@ use super::forest::{root_end, span};
 use super::{DistError, Partition};
 use crate::geom::{Cell, Connectivity, Direction};
 use mpi::traits::Communicator;
-use smallvec::SmallVec;
 
 /// The Morton keys each non-empty rank owns: consecutive, from 0 to the root's end.
 pub(crate) struct KeyRanges {
@@ -70,33 +69,37 @@ pub(crate) fn layer_directions<const D: usize>(connectivity: Connectivity) -> Ve
     Direction::all::<D>(connectivity).collect()
 }
 
-/// The ranks other than `me` (owning `mine`) that the insulation layer of `cell` meets, added
-/// to `out` once each.
-#[inline]
-pub(crate) fn layer_ranks<const D: usize>(
-    cell: &Cell<D>,
+/// For each of the `size` ranks, the positions in `cells` of those whose insulation layer (the
+/// same-size cells in `directions`) meets its range, in order; none for `me`.
+pub(crate) fn layer_sends<const D: usize>(
+    cells: &[Cell<D>],
     directions: &[Direction],
     ranges: &KeyRanges,
-    (me, mine): (usize, (u128, u128)),
-    out: &mut SmallVec<[usize; 8]>,
-) {
-    // Fast path: the smallest ancestor holding the whole layer lies in this rank's range.
-    let (lo, hi) = span(&layer_ancestor(cell));
-    if lo >= mine.0 && hi <= mine.1 {
-        return;
-    }
-    for &d in directions {
-        let Some(n) = cell.neighbor(d) else { continue };
-        let (lo, hi) = span(&n);
+    me: usize,
+    size: usize,
+) -> Vec<Vec<usize>> {
+    let mine = ranges.of(me);
+    let mut sends = vec![Vec::new(); size];
+    for (i, cell) in cells.iter().enumerate() {
+        // Fast path: the smallest ancestor holding the whole layer lies in this rank's range.
+        let (lo, hi) = span(&layer_ancestor(cell));
         if lo >= mine.0 && hi <= mine.1 {
             continue;
         }
-        ranges.meeting(lo, hi, |r| {
-            if r != me && !out.contains(&r) {
-                out.push(r);
+        for &d in directions {
+            let Some(n) = cell.neighbor(d) else { continue };
+            let (lo, hi) = span(&n);
+            if lo >= mine.0 && hi <= mine.1 {
+                continue;
             }
-        });
+            ranges.meeting(lo, hi, |r| {
+                if r != me && sends[r].last() != Some(&i) {
+                    sends[r].push(i);
+                }
+            });
+        }
     }
+    sends
 }
 
 /// The smallest ancestor of `cell` (the root at most) whose cell holds every
@@ -114,23 +117,22 @@ pub(crate) fn layer_ancestor<const D: usize>(cell: &Cell<D>) -> Cell<D> {
     cell.ancestor(level.saturating_sub(up.min(level as u32) as u8))
 }
 
-/// Sends `outgoing[r]` to rank r (collective) and returns the cells received, from rank 0
-/// first, with how many came from each rank.
+/// Sends `cells[i]` for each `i` of `sends[r]` to rank r (collective) and returns the cells
+/// received, from rank 0 first, with how many came from each rank.
 ///
 /// # Errors
 /// [`DistError::MessageTooLarge`].
 pub(crate) fn exchange_cells<const D: usize>(
     comm: &impl Communicator,
-    outgoing: &[Vec<Cell<D>>],
+    cells: &[Cell<D>],
+    sends: &[Vec<usize>],
 ) -> Result<(Vec<Cell<D>>, Vec<usize>), DistError> {
-    let mut words = Vec::with_capacity(2 * outgoing.iter().map(Vec::len).sum::<usize>());
-    for cells in outgoing {
-        for c in cells {
-            words.push(c.aligned_key());
-            words.push(c.level() as u64);
-        }
+    let mut words = Vec::with_capacity(2 * sends.iter().map(Vec::len).sum::<usize>());
+    for &i in sends.iter().flatten() {
+        words.push(cells[i].aligned_key());
+        words.push(cells[i].level() as u64);
     }
-    let counts: Vec<usize> = outgoing.iter().map(|c| 2 * c.len()).collect();
+    let counts: Vec<usize> = sends.iter().map(|c| 2 * c.len()).collect();
     let (recv, recv_counts) = comm::exchange(comm, &words, &counts)?;
     let cells = recv
         .chunks_exact(2)

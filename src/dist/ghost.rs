@@ -10,12 +10,11 @@
 //! for r exactly when it touches one of the cells that came from r. No second exchange.
 
 use super::comm;
-use super::exchange::{exchange_cells, layer_directions, layer_ranks, KeyRanges};
+use super::exchange::{exchange_cells, layer_directions, layer_sends, KeyRanges};
 use super::forest::span;
 use super::{DistError, DistForest};
 use crate::geom::{Cell, Connectivity, Direction};
 use mpi::traits::Communicator;
-use smallvec::SmallVec;
 
 /// The ghost layer of one rank: the remote leaves adjacent to its own, by owner, and its own
 /// leaves adjacent to remote ones (the mirrors), by the rank that sees them.
@@ -103,20 +102,9 @@ impl<const D: usize> DistForest<D> {
         assert_eq!(size, self.partition.ranks(), "the forest's communicator");
         super::balance::agree_options(comm, connectivity.into())?;
         let ranges = KeyRanges::new::<D>(&self.partition);
-        let mine = ranges.of(me);
         let directions = layer_directions::<D>(connectivity);
-        let mut outgoing: Vec<Vec<Cell<D>>> = vec![Vec::new(); size];
-        let mut sent_index: Vec<Vec<usize>> = vec![Vec::new(); size];
-        let mut to: SmallVec<[usize; 8]> = SmallVec::new();
-        for (i, c) in self.leaves.iter().enumerate() {
-            to.clear();
-            layer_ranks(c, &directions, &ranges, (me, mine), &mut to);
-            for &r in &to {
-                outgoing[r].push(*c);
-                sent_index[r].push(i);
-            }
-        }
-        let (cells, counts) = exchange_cells(comm, &outgoing)?;
+        let sent_index = layer_sends(&self.leaves, &directions, &ranges, me, size);
+        let (cells, counts) = exchange_cells(comm, &self.leaves, &sent_index)?;
         let mut ghosts = Vec::new();
         let mut ghost_first = vec![0];
         let mut mirror_lists = Vec::new();
