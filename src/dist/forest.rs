@@ -71,15 +71,10 @@ impl<const D: usize> DistForest<D> {
             let (index, problem) = local.unwrap_or((0, LeafProblem::Gap));
             let mut w = vec![index as u64, problem as u64];
             comm::broadcast(comm, rank, &mut w);
-            let problem = if w[1] == LeafProblem::Overlap as u64 {
-                LeafProblem::Overlap
-            } else {
-                LeafProblem::Gap
-            };
             return Err(DistError::Leaves {
                 rank,
                 index: w[0] as usize,
-                problem,
+                problem: [LeafProblem::Overlap, LeafProblem::Gap][w[1] as usize],
             });
         }
         // Each rank's run: its count, first key, and last key covered (its end minus one).
@@ -94,12 +89,7 @@ impl<const D: usize> DistForest<D> {
             if run[0] == 0 {
                 continue;
             }
-            let problem = match (run[1] as u128).cmp(&at) {
-                core::cmp::Ordering::Less => Some(LeafProblem::Overlap),
-                core::cmp::Ordering::Greater => Some(LeafProblem::Gap),
-                core::cmp::Ordering::Equal => None,
-            };
-            if let Some(problem) = problem {
+            if let Some(problem) = problem_at(run[1] as u128, at) {
                 return Err(DistError::Leaves {
                     rank: r,
                     index: 0,
@@ -225,11 +215,16 @@ impl<const D: usize> DistForest<D> {
 /// The first leaf of a rank's run that does not start where the one before it ends.
 fn first_break<const D: usize>(leaves: &[Cell<D>]) -> Option<(usize, LeafProblem)> {
     leaves.windows(2).enumerate().find_map(|(i, w)| {
-        let (end, next) = (span(&w[0]).1, w[1].aligned_key() as u128);
-        match next.cmp(&end) {
-            core::cmp::Ordering::Less => Some((i + 1, LeafProblem::Overlap)),
-            core::cmp::Ordering::Greater => Some((i + 1, LeafProblem::Gap)),
-            core::cmp::Ordering::Equal => None,
-        }
+        problem_at(w[1].aligned_key() as u128, span(&w[0]).1).map(|p| (i + 1, p))
     })
+}
+
+/// The problem of a leaf starting at key `start` after leaves ending at `end`: none when it
+/// starts right there.
+fn problem_at(start: u128, end: u128) -> Option<LeafProblem> {
+    match start.cmp(&end) {
+        core::cmp::Ordering::Less => Some(LeafProblem::Overlap),
+        core::cmp::Ordering::Greater => Some(LeafProblem::Gap),
+        core::cmp::Ordering::Equal => None,
+    }
 }
