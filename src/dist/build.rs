@@ -175,13 +175,7 @@ impl<S: Scalar + Pod, const D: usize> DistPointTreeBuilder<S, D> {
         }
         let bytes = 8 + point_bytes::<S, D>() + core::mem::size_of::<T>();
         let mut words = Words::with_records(n, bytes);
-        let mut at: Vec<usize> = send_counts
-            .iter()
-            .scan(0, |s, &c| {
-                *s += c;
-                Some(*s - c)
-            })
-            .collect();
+        let mut at = comm::starts(&send_counts);
         for (i, &p) in packed.iter().enumerate() {
             let d = dest(p);
             words.writer(at[d]).put(&p).point(&points[i]).put(&items[i]);

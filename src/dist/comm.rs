@@ -66,16 +66,19 @@ pub(crate) fn all_gather_var(comm: &impl Communicator, mine: &[u64]) -> (Vec<u64
 
 /// MPI counts and displacements for parts of `counts` words (each sum checked by the caller).
 fn counts_displs(counts: &[usize]) -> (Vec<Count>, Vec<Count>) {
-    let mut at = 0usize;
-    let displs = counts
+    let mpi = |v: &[usize]| v.iter().map(|&c| c as Count).collect();
+    (mpi(counts), mpi(&starts(counts)))
+}
+
+/// Where each of consecutive parts `counts` long starts (the sums of the counts before it).
+pub(crate) fn starts(counts: &[usize]) -> Vec<usize> {
+    counts
         .iter()
-        .map(|&c| {
-            let d = at;
-            at += c;
-            d as Count
+        .scan(0, |at, &c| {
+            *at += c;
+            Some(*at - c)
         })
-        .collect();
-    (counts.iter().map(|&c| c as Count).collect(), displs)
+        .collect()
 }
 
 /// The all-to-all exchange: `send` holds the words for rank 0, then rank 1, ..., `send_counts`
