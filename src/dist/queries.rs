@@ -112,11 +112,9 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
         let radius: Vec<f64> = found
             .iter()
             .map(|f| {
-                if f.len() == k {
-                    f[k - 1].distance
-                } else {
-                    f64::INFINITY
-                }
+                f.last()
+                    .filter(|_| f.len() == k)
+                    .map_or(f64::INFINITY, |n| n.distance)
             })
             .collect();
         let second: Vec<(usize, usize)> = first
@@ -316,15 +314,11 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
         let key = |q: usize| keys.map_or(0, |k| k[q]);
         // By rank, then in Morton order of the queries: each rank searches its tree in that
         // order, so that consecutive searches walk the same nodes and points (in cache).
-        let mut order: Vec<(usize, usize)> =
-            sends.iter().copied().filter(|&(r, _)| r != me).collect();
-        order.sort_by_key(|&(r, q)| (r, key(q)));
-        let mut mine: Vec<usize> = sends
-            .iter()
-            .filter(|&&(r, _)| r == me)
-            .map(|&(_, q)| q)
-            .collect();
-        mine.sort_by_key(|&q| key(q));
+        let (mut mine, mut order): (Vec<(usize, usize)>, Vec<_>) =
+            sends.iter().partition(|&&(r, _)| r == me);
+        for list in [&mut mine, &mut order] {
+            list.sort_by_key(|&(r, q)| (r, key(q)));
+        }
         let mut requests = Words::with_records(order.len(), 8 + bytes);
         let mut counts = vec![0usize; ranks];
         for (i, &(r, q)) in order.iter().enumerate() {
@@ -371,7 +365,7 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
         drop(out);
         let back = Words::from_words(back, reply_bytes);
         let mut found: Answers<S, T, D> = vec![Vec::new(); queries];
-        for q in mine {
+        for (_, q) in mine {
             hits.clear();
             local(q, &mut hits);
             found[q].extend(hits.iter().map(|&(distance, s)| DistNeighbor {
@@ -384,15 +378,12 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
         for i in 0..back.len() {
             let mut r = back.reader(i);
             let q = r.get::<u64>() as usize;
-            let slot = r.get::<u64>();
-            let distance = r.get::<f64>();
-            let point = r.point::<S, D>();
-            let item = r.get::<T>();
+            // The fields are read in the order written, the order they were packed in.
             found[q].push(DistNeighbor {
-                point,
-                item,
-                distance,
-                slot,
+                slot: r.get(),
+                distance: r.get(),
+                point: r.point(),
+                item: r.get(),
             });
         }
         Ok(found)
