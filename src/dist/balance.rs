@@ -75,10 +75,6 @@ impl<const D: usize> DistForest<D> {
         agree_options(comm, options)?;
         let ranges = KeyRanges::new::<D>(&self.partition);
         let mine = ranges.of(me);
-        let own = |c: &Cell<D>| {
-            let k = c.aligned_key() as u128;
-            k >= mine.0 && k < mine.1
-        };
         let directions = layer_directions::<D>(options.connectivity);
         let mut phases: Vec<(&'static str, f64)> = Vec::new();
         let clock = Instant::now();
@@ -127,7 +123,7 @@ impl<const D: usize> DistForest<D> {
             fresh.clear();
             for &v in &split {
                 let cell = tree.cell(v);
-                if own(&cell) {
+                if (mine.0..mine.1).contains(&(cell.aligned_key() as u128)) {
                     for (i, child) in tree.children(v).enumerate() {
                         if tree.is_leaf(child) {
                             fresh.push(cell.child(i));
