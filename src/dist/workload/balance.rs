@@ -186,7 +186,7 @@ impl BalanceWorkload {
             None
         };
         let after = sum_over(comm, mine);
-        let serial = if self.check {
+        let serial = self.check.then(|| {
             let mut verdict = vec![0u64, 0];
             if rank == 0 {
                 let mut tree = fractal_tree::<D>(self.level);
@@ -196,10 +196,8 @@ impl BalanceWorkload {
                 verdict = vec![leaves.len() as u64, same as u64];
             }
             super::super::comm::broadcast(comm, 0, &mut verdict);
-            Some((verdict[0], verdict[1] == 1))
-        } else {
-            None
-        };
+            (verdict[0], verdict[1] == 1)
+        });
         Ok(BalanceReport {
             work: *self,
             ranks: size,
