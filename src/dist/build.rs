@@ -182,11 +182,8 @@ impl<S: Scalar + Pod, const D: usize> DistPointTreeBuilder<S, D> {
             at[d] += 1;
         }
         drop((points, items, packed));
-        let per = words.per;
-        let word_counts: Vec<usize> = send_counts.iter().map(|c| c * per).collect();
-        let (recv, _) = comm::exchange(&comm, &words.words, &word_counts)?;
-        drop(words);
-        let recv = Words::from_words(recv, bytes);
+        let (recv, _) = words.exchange(&comm, &send_counts)?;
+        let per = recv.per;
         clock.lap("exchange");
 
         let m = recv.len();
@@ -374,13 +371,10 @@ fn even_out<S: Scalar + Pod, T: Pod, const D: usize>(
             words.writer(w).point(&points[i]).put(&items[i]);
             w += 1;
         }
-        counts[r] = part(r).len() * words.per;
+        counts[r] = part(r).len();
     }
-    let per = words.per;
-    let (recv, from) = comm::exchange(comm, &words.words, &counts)?;
-    drop(words);
-    let recv = Words::from_words(recv, bytes);
-    let before: usize = from[..rank].iter().sum::<usize>() / per;
+    let (recv, from) = words.exchange(comm, &counts)?;
+    let before: usize = from[..rank].iter().sum();
     let mut out_points = Vec::with_capacity(keep.len() + recv.len());
     let mut out_items = Vec::with_capacity(keep.len() + recv.len());
     let take = |js: core::ops::Range<usize>, points: &mut Vec<[S; D]>, items: &mut Vec<T>| {

@@ -139,12 +139,21 @@ impl Words {
         }
     }
 
-    /// Received words holding records of `bytes` bytes each.
-    pub(crate) fn from_words(words: Vec<u64>, bytes: usize) -> Self {
-        Words {
-            words,
-            per: bytes.div_ceil(8).max(1),
-        }
+    /// The all-to-all exchange of records ([`exchange`]): `counts[r]` records, in order, go to
+    /// rank r; returns the records received, from rank 0 first, and how many came from each
+    /// rank. These records' memory is given back before the received ones are read.
+    ///
+    /// # Errors
+    /// [`DistError::MessageTooLarge`].
+    pub(crate) fn exchange(
+        self,
+        comm: &impl Communicator,
+        counts: &[usize],
+    ) -> Result<(Words, Vec<usize>), DistError> {
+        let per = self.per;
+        let counts: Vec<usize> = counts.iter().map(|c| c * per).collect();
+        let (words, from) = exchange(comm, &self.words, &counts)?;
+        Ok((Words { words, per }, from.iter().map(|w| w / per).collect()))
     }
 
     /// The number of records.

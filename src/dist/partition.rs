@@ -271,12 +271,10 @@ impl Partition {
             .map(|r| {
                 let lo = targets[r].max(mine.start);
                 let hi = targets[r + 1].min(mine.end);
-                hi.saturating_sub(lo) as usize * words.per
+                hi.saturating_sub(lo) as usize
             })
             .collect();
-        let per = words.per;
-        let (recv, _) = comm::exchange(comm, &words.words, &counts)?;
-        Ok(Words { words: recv, per })
+        Ok(words.exchange(comm, &counts)?.0)
     }
 
     /// Checks the invariants: positions from 0, non-decreasing; keys non-decreasing.

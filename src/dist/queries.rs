@@ -325,12 +325,9 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
             let mut w = requests.writer(i);
             w.put(&(q as u64));
             write(q, &mut w);
-            counts[r] += requests.per;
+            counts[r] += 1;
         }
-        let (incoming, from) = comm::exchange(&self.comm, &requests.words, &counts)?;
-        let per = requests.per;
-        drop(requests);
-        let incoming = Words::from_words(incoming, 8 + bytes);
+        let (incoming, from) = requests.exchange(&self.comm, &counts)?;
         // Answer in the order received: grouped by the sending rank.
         let first = self.first_slot();
         let reply_bytes = 24 + point_bytes::<S, D>() + core::mem::size_of::<T>();
@@ -338,8 +335,8 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
         let mut reply_counts = vec![0usize; ranks];
         let mut hits = Vec::new();
         let mut j = 0;
-        for (source, &words) in from.iter().enumerate() {
-            for _ in 0..words / per {
+        for (source, &n) in from.iter().enumerate() {
+            for _ in 0..n {
                 let mut r = incoming.reader(j);
                 let q = r.get::<u64>();
                 hits.clear();
@@ -359,11 +356,8 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
                 .point(&points[s])
                 .put(&items[s]);
         }
-        let counts: Vec<usize> = reply_counts.iter().map(|c| c * out.per).collect();
         drop((replies, incoming));
-        let (back, _) = comm::exchange(&self.comm, &out.words, &counts)?;
-        drop(out);
-        let back = Words::from_words(back, reply_bytes);
+        let (back, _) = out.exchange(&self.comm, &reply_counts)?;
         let mut found: Answers<S, T, D> = vec![Vec::new(); queries];
         for (_, q) in mine {
             hits.clear();
