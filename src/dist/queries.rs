@@ -101,14 +101,18 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
             .filter(|_| k > 0)
             .filter_map(|q| home[q].map(|r| (r, q)))
             .collect();
-        let mut found = self.round(
-            &first,
-            bytes,
-            |q, w| write(q, f64::INFINITY, w),
-            (answer, |q, hits| search(&q64[q], k, f64::INFINITY, hits)),
-            Some(&keys),
-            queries.len(),
-        )?;
+        // A round of requests, each query's searches bounded by its radius.
+        let round = |sends: &[(usize, usize)], radius: &[f64]| {
+            self.round(
+                sends,
+                bytes,
+                |q, w| write(q, radius[q], w),
+                (answer, |q, hits| search(&q64[q], k, radius[q], hits)),
+                Some(&keys),
+                queries.len(),
+            )
+        };
+        let mut found = round(&first, &vec![f64::INFINITY; queries.len()])?;
         let radius: Vec<f64> = found
             .iter()
             .map(|f| {
@@ -128,14 +132,7 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
                     .map(move |r| (r, q))
             })
             .collect();
-        let more = self.round(
-            &second,
-            bytes,
-            |q, w| write(q, radius[q], w),
-            (answer, |q, hits| search(&q64[q], k, radius[q], hits)),
-            Some(&keys),
-            queries.len(),
-        )?;
+        let more = round(&second, &radius)?;
         for (f, m) in found.iter_mut().zip(more) {
             if m.is_empty() {
                 continue; // one rank's answer, already sorted
