@@ -72,14 +72,6 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
         let keys: Vec<u64> = q64.iter().map(|q| geometry.key(q)).collect();
         let bound = |q: usize, r: usize| SquaredEuclidean.box_distance(&q64[q], &self.boxes[r]);
         let ranks = self.nonempty_ranks();
-        let home: Vec<Option<usize>> = (0..queries.len())
-            .map(|q| {
-                ranks
-                    .iter()
-                    .copied()
-                    .min_by(|&a, &b| bound(q, a).total_cmp(&bound(q, b)).then(a.cmp(&b)))
-            })
-            .collect();
         let bytes = 16 + point_bytes::<S, D>();
         let write = |q: usize, radius: f64, w: &mut Writer<'_>| {
             w.put(&(k as u64)).put(&radius).point(&queries[q]);
@@ -97,9 +89,16 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
                 search(&q, k, max, hits);
             }
         };
+        // Each query to its home rank, the one whose box is nearest.
         let first: Vec<(usize, usize)> = (0..queries.len())
             .filter(|_| k > 0)
-            .filter_map(|q| home[q].map(|r| (r, q)))
+            .filter_map(|q| {
+                ranks
+                    .iter()
+                    .copied()
+                    .min_by(|&a, &b| bound(q, a).total_cmp(&bound(q, b)).then(a.cmp(&b)))
+                    .map(|r| (r, q))
+            })
             .collect();
         // A round of requests, each query's searches bounded by its radius.
         let round = |sends: &[(usize, usize)], radius: &[f64]| {
