@@ -194,6 +194,15 @@ impl Writer<'_> {
         self.at += b.len();
         self
     }
+
+    /// Appends a point, coordinate by coordinate.
+    #[inline]
+    pub(crate) fn point<S: Pod, const D: usize>(&mut self, p: &[S; D]) -> &mut Self {
+        for c in p {
+            self.put(c);
+        }
+        self
+    }
 }
 
 /// Reads the fields of one record in turn.
@@ -211,28 +220,15 @@ impl Reader<'_> {
         self.at += n;
         v
     }
-}
 
-/// The bytes of a point of `D` coordinates of type `S`.
-pub(crate) const fn point_bytes<S, const D: usize>() -> usize {
-    D * core::mem::size_of::<S>()
-}
-
-impl Writer<'_> {
-    /// Appends a point, coordinate by coordinate.
-    #[inline]
-    pub(crate) fn point<S: Pod, const D: usize>(&mut self, p: &[S; D]) -> &mut Self {
-        for c in p {
-            self.put(c);
-        }
-        self
-    }
-}
-
-impl Reader<'_> {
     /// The next point.
     #[inline]
     pub(crate) fn point<S: Pod, const D: usize>(&mut self) -> [S; D] {
         core::array::from_fn(|_| self.get())
     }
+}
+
+/// The bytes of a point of `D` coordinates of type `S`.
+pub(crate) const fn point_bytes<S, const D: usize>() -> usize {
+    D * core::mem::size_of::<S>()
 }
