@@ -132,9 +132,7 @@ impl<S: Scalar, T, const D: usize> DistPointTree<S, T, D> {
             }
             previous_last = w[2];
         }
-        let b = Aabb::around(pts);
-        let ours = &self.boxes[rank];
-        if !pts.is_empty() && (b.min != ours.min || b.max != ours.max) {
+        if !pts.is_empty() && Aabb::around(pts) != self.boxes[rank] {
             return fail(format!("rank {rank}'s box differs from its points' bounds"));
         }
         Ok(())
