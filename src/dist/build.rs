@@ -241,7 +241,6 @@ impl<S: Scalar + Pod, const D: usize> DistPointTreeBuilder<S, D> {
     /// Checks that every rank has rank 0's settings, then the settings themselves (the same
     /// result on every rank); returns the root box, if given, in `f64`.
     fn agree_settings(&self, comm: &impl Communicator) -> Result<Option<Aabb<f64, D>>, DistError> {
-        let (rank, _) = comm::rank_size(comm);
         let (root, bucket_size, max_depth) = self.inner.settings();
         let mut mine = vec![
             bucket_size as u64,
@@ -253,8 +252,8 @@ impl<S: Scalar + Pod, const D: usize> DistPointTreeBuilder<S, D> {
             mine.extend([lo.to_bits(), hi.to_bits()]);
         }
         let all = comm::all_gather(comm, &mine);
-        let differ = all[rank * mine.len()..(rank + 1) * mine.len()] != all[..mine.len()];
-        if let Some(rank) = comm::lowest_failing(comm, differ) {
+        // Every rank has every rank's settings: the lowest differing rank is the same on each.
+        if let Some(rank) = all.chunks(mine.len()).position(|w| w != &all[..mine.len()]) {
             return Err(DistError::SettingsDiffer { rank });
         }
         self.inner
