@@ -116,12 +116,10 @@ impl Error {
 impl core::fmt::Display for Error {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
-            Error::NonFiniteCoordinate { index, axis, value } => {
-                write!(
-                    f,
-                    "point {index}: coordinate {value} on axis {axis} is not finite"
-                )
-            }
+            Error::NonFiniteCoordinate { index, axis, value } => write!(
+                f,
+                "point {index}: coordinate {value} on axis {axis} is not finite"
+            ),
             Error::InexactCoordinate { index, axis, value } => write!(
                 f,
                 "point {index}: coordinate {value} on axis {axis} {INEXACT}"
@@ -142,13 +140,11 @@ impl core::fmt::Display for Error {
                 f,
                 "maximum depth {requested} exceeds {limit}, the deepest level of this dimension"
             ),
-            Error::TooManyPoints { len } => {
-                write!(
-                    f,
-                    "{len} points exceed the {} a tree can index",
-                    u32::MAX - 1
-                )
-            }
+            Error::TooManyPoints { len } => write!(
+                f,
+                "{len} points exceed the {} a tree can index",
+                u32::MAX - 1
+            ),
         }
     }
 }

@@ -102,12 +102,10 @@ impl core::fmt::Display for DistError {
             DistError::SettingsDiffer { rank } => {
                 write!(f, "rank {rank}: the build settings differ from rank 0's")
             }
-            DistError::TooManyPoints { len, limit } => {
-                write!(
-                    f,
-                    "{len} points in total exceed the {limit} a distributed tree holds"
-                )
-            }
+            DistError::TooManyPoints { len, limit } => write!(
+                f,
+                "{len} points in total exceed the {limit} a distributed tree holds"
+            ),
             DistError::MessageTooLarge { rank, words, limit } => write!(
                 f,
                 "rank {rank}: {words} words in one exchange exceed MPI's count limit {limit}"

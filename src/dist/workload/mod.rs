@@ -62,9 +62,7 @@ pub enum WorkloadError {
 impl core::fmt::Display for WorkloadError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
-            WorkloadError::Dimension { dim } => {
-                write!(f, "dim {dim}: expected 2, 3 or 4")
-            }
+            WorkloadError::Dimension { dim } => write!(f, "dim {dim}: expected 2, 3 or 4"),
             WorkloadError::Level {
                 level,
                 dim,
