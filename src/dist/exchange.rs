@@ -29,9 +29,7 @@ impl KeyRanges {
     /// The ranges of a forest's partition: a non-empty rank owns the keys from its first key up
     /// to the next non-empty rank's.
     pub(crate) fn new<const D: usize>(partition: &Partition) -> Self {
-        let rank: Vec<usize> = (0..partition.ranks())
-            .filter(|&r| partition.count(r) > 0)
-            .collect();
+        let rank = partition.nonempty_ranks();
         let begin: Vec<u128> = rank
             .iter()
             .map(|&r| partition.first_keys()[r] as u128)

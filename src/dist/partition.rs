@@ -110,6 +110,11 @@ impl Partition {
         self.first[rank + 1] - self.first[rank]
     }
 
+    /// The ranks holding elements, in order.
+    pub(crate) fn nonempty_ranks(&self) -> Vec<usize> {
+        (0..self.ranks()).filter(|&r| self.count(r) > 0).collect()
+    }
+
     /// Each rank's first global position, and the total last (p4est's
     /// `global_first_quadrant`).
     pub fn firsts(&self) -> &[u64] {

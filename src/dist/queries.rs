@@ -71,7 +71,7 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
         let geometry = self.local.geometry();
         let keys: Vec<u64> = q64.iter().map(|q| geometry.key(q)).collect();
         let bound = |q: usize, r: usize| SquaredEuclidean.box_distance(&q64[q], &self.boxes[r]);
-        let ranks = self.nonempty_ranks();
+        let ranks = self.partition.nonempty_ranks();
         let bytes = 16 + point_bytes::<S, D>();
         let write = |q: usize, radius: f64, w: &mut Writer<'_>| {
             w.put(&(k as u64)).put(&radius).point(&queries[q]);
@@ -210,7 +210,7 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
             |r| check(&read(r)).expect_err("refused on its rank"),
         )?;
         let regions: Vec<R> = queries.iter().map(|q| check(q).expect("checked")).collect();
-        let ranks = self.nonempty_ranks();
+        let ranks = self.partition.nonempty_ranks();
         let sends: Vec<(usize, usize)> = regions
             .iter()
             .enumerate()
@@ -249,13 +249,6 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
             f.sort_by_key(|n| n.slot);
         }
         Ok(found)
-    }
-
-    /// The ranks holding points.
-    fn nonempty_ranks(&self) -> Vec<usize> {
-        (0..self.partition.ranks())
-            .filter(|&r| self.partition.count(r) > 0)
-            .collect()
     }
 
     /// The agreement on a batch: if a rank has a bad query (`bad`, its position), the lowest
