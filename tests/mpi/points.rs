@@ -72,7 +72,8 @@ where
         "{counts:?}"
     );
 
-    for k in [1, 4, 13] {
+    // k = 0 (empty answers) and more than the union holds (every point) too
+    for k in [0, 1, 4, 13, union.len() + 2] {
         let answers = t.k_nearest_batch(&case.points, k).unwrap();
         assert_eq!(answers.len(), case.points.len());
         for (q, got) in case.points.iter().zip(&answers) {
