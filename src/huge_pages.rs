@@ -103,6 +103,89 @@ pub(crate) fn zeros<T: Copy + Default>(n: usize) -> Vec<T> {
     v
 }
 
+/// Buffers whose pages are mapped ahead on another thread ([`while_populating`]) when their
+/// spare capacity adds up to at least this: below it the thread costs more than the faults.
+#[cfg_attr(
+    not(all(target_os = "linux", feature = "huge-pages")),
+    allow(dead_code)
+)]
+const POPULATE_MIN_BYTES: usize = 64 << 20;
+
+/// The whole allocation of `v` (its elements and its spare capacity) as a range of addresses,
+/// for [`while_populating`].
+#[inline]
+pub(crate) fn allocation<T>(v: &Vec<T>) -> core::ops::Range<usize> {
+    let start = v.as_ptr() as usize;
+    start..start + v.capacity() * core::mem::size_of::<T>()
+}
+
+/// Runs `work` on this thread while another asks the kernel to map the pages of `ranges`
+/// (`madvise(MADV_POPULATE_WRITE)`, Linux 5.14 and later), so that the first writes to fresh
+/// buffers do not stop `work` at a page fault each: on a machine with a second core the kernel
+/// zeroes the pages there. The ranges are mapped a slice of each in turn (a 64th of every
+/// range, then the next), since `work` writes them side by side. They must lie in allocations
+/// that outlive this call and that `work` does not free or grow; nothing in them is read or
+/// written (pages already present keep their contents, new ones come in zeroed, as a first
+/// write would have them). Without a second core, below [`POPULATE_MIN_BYTES`], on other
+/// systems or with the feature off, it just runs `work`; a kernel that refuses the advice
+/// leaves the faults to the first writes, as before.
+pub(crate) fn while_populating<R>(
+    ranges: &[core::ops::Range<usize>],
+    work: impl FnOnce() -> R,
+) -> R {
+    #[cfg(all(target_os = "linux", feature = "huge-pages"))]
+    {
+        const SLICES: usize = 64;
+        let bytes: usize = ranges.iter().map(|r| r.len()).sum();
+        let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
+        if bytes >= POPULATE_MIN_BYTES && cores >= 2 {
+            return std::thread::scope(|scope| {
+                scope.spawn(|| {
+                    for slice in 0..SLICES {
+                        for r in ranges {
+                            let at = |s: usize| r.start + r.len() / SLICES * s;
+                            let end = if slice + 1 == SLICES {
+                                r.end
+                            } else {
+                                at(slice + 1)
+                            };
+                            populate(at(slice)..end);
+                        }
+                    }
+                });
+                work()
+            });
+        }
+    }
+    #[cfg(not(all(target_os = "linux", feature = "huge-pages")))]
+    let _ = ranges;
+    work()
+}
+
+/// Maps the whole base pages of `range` writable now (see [`while_populating`]).
+#[cfg(all(target_os = "linux", feature = "huge-pages"))]
+fn populate(range: core::ops::Range<usize>) {
+    const PAGE: usize = 4096;
+    let start = range.start.next_multiple_of(PAGE);
+    let end = range.end / PAGE * PAGE;
+    if end <= start {
+        return;
+    }
+    // SAFETY: `MADV_POPULATE_WRITE` faults the pages of the range in as a write would, without
+    // writing: it changes neither the contents a program can read (present pages keep theirs,
+    // new ones are the zero pages a first write would get) nor the protection, and a refusal
+    // (an older kernel) is an error code we may ignore. The range is page-aligned and inside an
+    // allocation that the caller of `while_populating` keeps mapped until this returns.
+    #[allow(unsafe_code)]
+    unsafe {
+        libc::madvise(
+            start as *mut libc::c_void,
+            end - start,
+            libc::MADV_POPULATE_WRITE,
+        );
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -126,5 +209,34 @@ mod tests {
         advise(&mut v);
         v.resize(MIN_BYTES + 100, 9);
         assert_eq!((&v[..4], v[MIN_BYTES + 99]), (&[1, 2, 3, 9][..], 9));
+    }
+
+    /// The mapping ahead: two buffers above the threshold (one partly written before, whose
+    /// contents must stay; one from an offset, unaligned start) filled while another thread maps
+    /// them, and a range below the threshold, which maps nothing.
+    #[test]
+    fn buffers_mapped_ahead_hold_what_is_written() {
+        let n = POPULATE_MIN_BYTES / 8 + 4099;
+        let value = |i: usize| (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+        let mut a: Vec<u64> = with_capacity(n);
+        a.extend((0..1000).map(value));
+        let mut b: Vec<u8> = Vec::with_capacity(3 * HUGE_PAGE + 77);
+        b.push(5);
+        let ranges = [allocation(&a), allocation(&b)];
+        let first = ranges[1].start + 1;
+        let written = while_populating(&[ranges[0].clone(), first..ranges[1].end], || {
+            a.extend((1000..n).map(value));
+            b.resize(3 * HUGE_PAGE + 77, 6);
+            a.len() + b.len()
+        });
+        assert_eq!(written, n + 3 * HUGE_PAGE + 77);
+        assert!(a.iter().enumerate().all(|(i, &x)| x == value(i)));
+        assert!(b[0] == 5 && b[1..].iter().all(|&x| x == 6));
+        let mut small = vec![1u32; 10];
+        let sum = while_populating(&[allocation(&small)], || {
+            small.push(2);
+            small.iter().sum::<u32>()
+        });
+        assert_eq!(sum, 12);
     }
 }

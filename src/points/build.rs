@@ -24,6 +24,7 @@ use super::PointTree;
 use crate::error::Error;
 use crate::geom::RootGeometry;
 use crate::geom::{Aabb, Cell, Dim, Scalar};
+use crate::huge_pages;
 use crate::prefetch::{prefetch, LOOKAHEAD};
 use crate::tree::{NodeId, Tree};
 
@@ -199,18 +200,35 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
         let bounds = self.scan(root.as_ref(), 0..n, &point)?;
         let (geometry, domain) = settle(root, bounds, n);
         let bits = index_bits(n);
-        let mut packed: Vec<u64> = crate::huge_pages::with_capacity(n);
-        geometry.keys_into(n, &point, |i, key| packed.push(pack(key, i, bits)));
-        super::radix::sort_keyed(&mut packed);
-        let mut points = crate::huge_pages::with_capacity(n);
-        let mut items = crate::huge_pages::with_capacity(n);
+        // Fresh buffers are mapped ahead on another core while this one fills them (a page
+        // fault per page otherwise): the keys and the sort's buffer while the keys are made
+        // and sorted, then the points and items while they are gathered.
+        let mut packed: Vec<u64> = huge_pages::with_capacity(n);
+        let mut buffer = super::radix::sort_buffer(n);
+        let fresh = [
+            huge_pages::allocation(&packed),
+            huge_pages::allocation(&buffer),
+        ];
+        huge_pages::while_populating(&fresh, || {
+            geometry.keys_into(n, &point, |i, key| packed.push(pack(key, i, bits)));
+            super::radix::sort_keyed_in(&mut packed, &mut buffer);
+        });
+        drop(buffer);
+        let mut points = huge_pages::with_capacity(n);
+        let mut items = huge_pages::with_capacity(n);
+        let fresh = [
+            huge_pages::allocation(&points),
+            huge_pages::allocation(&items),
+        ];
         // The gather reads the input in Morton order, at random for scattered points: ask for
         // the records ahead so that their cache misses overlap.
-        for (j, &k) in packed.iter().enumerate() {
-            let (p, item) = take(unpack_index(k, bits), later_index(&packed, j, bits));
-            points.push(p);
-            items.push(item);
-        }
+        huge_pages::while_populating(&fresh, || {
+            for (j, &k) in packed.iter().enumerate() {
+                let (p, item) = take(unpack_index(k, bits), later_index(&packed, j, bits));
+                points.push(p);
+                items.push(item);
+            }
+        });
         Ok(self.assemble(geometry, domain, packed, bits, points, items))
     }
 

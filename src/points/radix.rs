@@ -68,12 +68,25 @@ impl Packed for u64 {
 
 /// Sorts `pairs` by key, then index (a `u64` by value).
 pub(crate) fn sort_keyed<P: Packed>(pairs: &mut [P]) {
+    sort_keyed_in(pairs, &mut sort_buffer(pairs.len()));
+}
+
+/// The buffer [`sort_keyed_in`] needs for `n` pairs: empty when a comparison sort does it.
+pub(crate) fn sort_buffer<P: Packed>(n: usize) -> Vec<P> {
+    if n <= SMALL {
+        Vec::new()
+    } else {
+        crate::huge_pages::zeros::<P>(n)
+    }
+}
+
+/// [`sort_keyed`] with the buffer from [`sort_buffer`]`(pairs.len())`.
+pub(crate) fn sort_keyed_in<P: Packed>(pairs: &mut [P], buffer: &mut [P]) {
     if pairs.len() <= SMALL {
         sort_short(pairs);
-        return;
+    } else {
+        sort_run(pairs, buffer, 56, true);
     }
-    let mut buffer = crate::huge_pages::zeros::<P>(pairs.len());
-    sort_run(pairs, &mut buffer, 56, true);
 }
 
 /// [`sort_keyed`] with the runs after the first byte that differs sorted in parallel.
