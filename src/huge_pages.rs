@@ -140,7 +140,8 @@ pub(crate) fn while_populating<R>(
         let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
         if bytes >= POPULATE_MIN_BYTES && cores >= 2 {
             return std::thread::scope(|scope| {
-                scope.spawn(|| {
+                // A thread the system will not start maps nothing: the first writes fault.
+                let _ = std::thread::Builder::new().spawn_scoped(scope, || {
                     for slice in 0..SLICES {
                         for r in ranges {
                             let at = |s: usize| r.start + r.len() / SLICES * s;
