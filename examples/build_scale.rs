@@ -6,6 +6,7 @@
 //! ```text
 //! cargo run --release --example build_scale -- --n 100000000 --runs 3
 //! cargo run --release --features rayon --example build_scale -- --n 100000000 --runs 3 --par
+//! cargo run --release --example build_scale -- --n 100000000 --runs 3 --map-ahead
 //! ```
 
 use orthtree::points::PointTreeBuilder;
@@ -20,7 +21,7 @@ mod cli;
 use cli::{Cli, CliError};
 
 const USAGE: &str = "\
-usage: build_scale [--n N] [--runs R] [--par] [--seed S]
+usage: build_scale [--n N] [--runs R] [--par | --map-ahead] [--seed S]
 
 Builds the point octree of N uniform random points (f64, u32 items) R times and prints the
 time per point of each build, their median, the peak resident memory and a digest of the tree.
@@ -30,6 +31,8 @@ options:
               in memory are refused
   --runs R    builds, 1 to 1000 (default 3)
   --par       the parallel build (`par_build`, needs the `rayon` feature)
+  --map-ahead the serial build with its fresh buffers mapped on a second thread
+              (`PointTreeBuilder::map_pages_ahead`)
   --seed S    the seed of the points (default 1)
   -h, --help  this text
 ";
@@ -42,6 +45,7 @@ struct Args {
     n: usize,
     runs: usize,
     par: bool,
+    map_ahead: bool,
     seed: u64,
 }
 
@@ -50,6 +54,7 @@ fn parse(cli: &mut Cli) -> Result<Args, CliError> {
         n: 1_000_000,
         runs: 3,
         par: false,
+        map_ahead: false,
         seed: 1,
     };
     while let Some(flag) = cli.next_arg()? {
@@ -57,9 +62,15 @@ fn parse(cli: &mut Cli) -> Result<Args, CliError> {
             "--n" => args.n = cli.number("--n", 1, 4_000_000_000)?,
             "--runs" => args.runs = cli.number("--runs", 1, 1000)?,
             "--par" => args.par = true,
+            "--map-ahead" => args.map_ahead = true,
             "--seed" => args.seed = cli.number("--seed", 0, u64::MAX)?,
             other => return Err(CliError::unknown(other)),
         }
+    }
+    if args.par && args.map_ahead {
+        return Err(CliError::new(
+            "--map-ahead is for the serial build; `par_build` keeps both cores busy",
+        ));
     }
     if args.par && !cfg!(feature = "rayon") {
         return Err(CliError::new(
@@ -122,6 +133,7 @@ fn main() {
             par_build(&entries)
         } else {
             PointTreeBuilder::new()
+                .map_pages_ahead(args.map_ahead)
                 .build(&entries)
                 .expect("finite points")
         };
@@ -154,7 +166,11 @@ fn main() {
     }
     costs.sort_by(f64::total_cmp);
     let median = costs[costs.len() / 2];
-    let mode = if args.par { "par_build" } else { "build" };
+    let mode = match (args.par, args.map_ahead) {
+        (true, _) => "par_build",
+        (false, true) => "build, pages mapped ahead",
+        (false, false) => "build",
+    };
     say_raw!("n {} {mode}: median {median:.1} ns/point", args.n);
     match (before, peak_kib()) {
         (Some(input), Some(peak)) => say!(

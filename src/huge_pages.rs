@@ -27,8 +27,16 @@
 //! 98.6-155.3 (three). On the day before, on a host with AVX-512, the same advice on the build had
 //! measured no change at 10^8 (180-195 ns/point against 180-253).
 //!
-//! The advice is the one `unsafe` call here (see [`advise`]); an advised Vec stays an ordinary
-//! Vec: it is read, written, grown and freed as before.
+//! Mapping ahead ([`while_populating`], for `PointTreeBuilder::map_pages_ahead`): even in
+//! 2 MiB pages, the kernel zeroes every fresh page on its first write, and on a virtual machine
+//! whose host hands memory back (a balloon device) the host maps it again too: at 10^8 points
+//! half of a cold serial build's time (51-86 of 132-170 ns/point) was the kernel's. Asking for
+//! the pages with `MADV_POPULATE_WRITE` on a second thread while the build fills them moves that
+//! work off the build's thread: 76-79 ns/point, the same peak memory (`build_scale --runs 1
+//! [--map-ahead]`, three alternated rounds).
+//!
+//! The advice and the mapping are the two `unsafe` calls here (see [`advise`] and `populate`);
+//! an advised Vec stays an ordinary Vec: it is read, written, grown and freed as before.
 
 /// Buffers smaller than this are left alone: they span few whole 2 MiB pages.
 #[cfg_attr(
