@@ -39,10 +39,14 @@ use crate::tree::{BalanceOptions, NodeId, Tree};
 pub(crate) use build::settle;
 #[cfg(feature = "serde")]
 pub(crate) use dynamic::DynamicParts;
+#[cfg(feature = "serde")]
+pub(crate) use raw::check_bucket;
 #[cfg(any(feature = "saved", feature = "serde"))]
-pub(crate) use raw::{check_bucket, checked_root};
+pub(crate) use raw::checked_root;
+#[cfg(feature = "saved")]
+pub(crate) use raw::PointTreeArrays;
 #[cfg(any(feature = "saved", feature = "serde"))]
-pub(crate) use raw::{PointTreeArrays, PointTreeParts};
+pub(crate) use raw::PointTreeParts;
 pub(crate) use runs::Runs;
 #[cfg(feature = "mpi")]
 pub(crate) use {
