@@ -331,7 +331,7 @@ fn read_sections<S: SavedScalar, T: Pod, const D: usize>(
 /// offset.
 fn section<V: Pod>(src: &mut impl Source, at: &mut u64, len: usize) -> Result<Vec<V>, SavedError> {
     let mut values: Vec<V> = bytemuck::zeroed_vec(len);
-    // None for a zero-sized type, which `bytemuck` does not cast.
+    // Nothing to read for a zero-sized type (which `bytemuck` does not cast).
     let dst: &mut [u8] = match core::mem::size_of::<V>() {
         0 => &mut [],
         _ => bytemuck::cast_slice_mut(&mut values),
