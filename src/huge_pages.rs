@@ -112,7 +112,7 @@ pub(crate) fn zeros<T: Copy + Default>(n: usize) -> Vec<T> {
 }
 
 /// Buffers whose pages are mapped ahead on another thread ([`while_populating`]) when their
-/// spare capacity adds up to at least this: below it the thread costs more than the faults.
+/// ranges add up to at least this: below it the thread costs more than the faults.
 #[cfg_attr(
     not(all(target_os = "linux", feature = "huge-pages")),
     allow(dead_code)
@@ -152,13 +152,12 @@ pub(crate) fn while_populating<R>(
                 let _ = std::thread::Builder::new().spawn_scoped(scope, || {
                     for slice in 0..SLICES {
                         for r in ranges {
-                            let at = |s: usize| r.start + r.len() / SLICES * s;
-                            let end = if slice + 1 == SLICES {
-                                r.end
-                            } else {
-                                at(slice + 1)
+                            // where slice `s` of `r` starts; the last one ends at `r.end`
+                            let cut = |s| match s {
+                                SLICES => r.end,
+                                _ => r.start + r.len() / SLICES * s,
                             };
-                            populate(at(slice)..end);
+                            populate(cut(slice)..cut(slice + 1));
                         }
                     }
                 });
