@@ -16,7 +16,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::periodic::Torus;
-use super::region::{ball_relation, Region, Relation};
+use super::region::{range_relation, Region, Relation};
 use super::{check_radius, query_point, QueryError};
 use crate::geom::Aabb;
 
@@ -87,7 +87,7 @@ impl<const D: usize> Region<D> for PeriodicBall<D> {
             near += n * n;
             far += f * f;
         }
-        ball_relation(near, far, r2)
+        range_relation(near, far, r2)
     }
     #[inline]
     fn contains(&self, p: &[f64; D]) -> bool {

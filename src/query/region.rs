@@ -239,7 +239,7 @@ impl<const D: usize> Region<D> for Ball<D> {
             near += n * n;
             far += f * f;
         }
-        ball_relation(near, far, r2)
+        range_relation(near, far, r2)
     }
     /// The nearest squared offset of [`Ball::classify`](Region::classify), summed in the
     /// same order: the same answer for half the work.
@@ -362,13 +362,7 @@ impl<const D: usize> Region<D> for HalfSpace<D> {
             low += x.min(y);
             high += x.max(y);
         }
-        if low > offset {
-            Relation::Outside
-        } else if high <= offset {
-            Relation::Inside
-        } else {
-            Relation::Crossing
-        }
+        range_relation(low, high, offset)
     }
     #[inline]
     fn contains(&self, p: &[f64; D]) -> bool {
@@ -390,13 +384,14 @@ impl<const D: usize> Region<D> for HalfSpace<D> {
     }
 }
 
-/// Where a box lies with respect to a ball of squared radius `r2`, given the least (`near`) and
-/// greatest (`far`) squared distance from the ball's centre to the box.
+/// Where a box lies with respect to the region of the points whose value (a ball's squared
+/// distance from its centre, a half-space's scaled dot product) is at most `bound`, given the
+/// least (`low`) and greatest (`high`) value over the box.
 #[inline]
-pub(crate) fn ball_relation(near: f64, far: f64, r2: f64) -> Relation {
-    if near > r2 {
+pub(crate) fn range_relation(low: f64, high: f64, bound: f64) -> Relation {
+    if low > bound {
         Relation::Outside
-    } else if far <= r2 {
+    } else if high <= bound {
         Relation::Inside
     } else {
         Relation::Crossing
