@@ -16,17 +16,14 @@ use super::range::{for_each_in, scan_limit};
 use super::{BatchError, PointSet, QueryError, Region};
 use crate::par_tasks::map_indices;
 
-/// Runs `answer` on every query in parallel; the first error in batch order wins.
+/// Runs `answer` on every query in parallel, in the order given; the first error in batch
+/// order wins, as for the k-nearest batch ([`in_query_order`] with the identity order).
 fn run_batch<Q: Sync, A: Send>(
     queries: &[Q],
     answer: impl Fn(&Q) -> Result<A, QueryError> + Sync,
 ) -> Result<Vec<A>, BatchError> {
-    let answers = map_indices(queries.len(), &|i| answer(&queries[i]));
-    answers
-        .into_iter()
-        .enumerate()
-        .map(|(index, a)| a.map_err(|error| BatchError { index, error }))
-        .collect()
+    let order: Vec<usize> = (0..queries.len()).collect();
+    in_query_order(&order, map_indices(queries.len(), &|i| answer(&queries[i])))
 }
 
 /// The batch forms of [`PointSet`]'s queries, on rayon's threads, for every point set that can
