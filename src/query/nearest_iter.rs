@@ -72,14 +72,13 @@ impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> IndexNearestIter<'a, 
         check_max(max)?;
         let mut heap = BinaryHeap::new();
         if let Some((root, b)) = index.root() {
-            let key = metric.box_distance(&q, &b);
-            if key <= max {
-                heap.push(Entry {
-                    key,
-                    node: Some((root, b)),
-                    index: 0,
-                });
-            }
+            offer(
+                &mut heap,
+                max,
+                metric.box_distance(&q, &b),
+                Some((root, b)),
+                0,
+            );
         }
         Ok(IndexNearestIter {
             index,
@@ -104,28 +103,24 @@ impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> Iterator
             };
             let (heap, metric, q, max) = (&mut self.heap, &self.metric, &self.q, self.max);
             let internal = self.index.for_each_child_in(node, &bbox, |child, b| {
-                let key = metric.box_distance(q, b);
-                if key <= max {
-                    heap.push(Entry {
-                        key,
-                        node: Some((child, *b)),
-                        index: 0,
-                    });
-                }
+                offer(heap, max, metric.box_distance(q, b), Some((child, *b)), 0);
             });
             if !internal {
                 let points = self.index.points();
                 for i in self.index.run(node) {
                     let key = metric.distance(q, &points[i].map(Scalar::to_f64));
-                    if key <= max {
-                        heap.push(Entry {
-                            key,
-                            node: None,
-                            index: i,
-                        });
-                    }
+                    offer(heap, max, key, None, i);
                 }
             }
         }
+    }
+}
+
+/// Queues a node (`node: Some`) or the point at `index` at distance `key`, unless it lies
+/// beyond `max`.
+#[inline(always)]
+fn offer<N>(heap: &mut BinaryHeap<Entry<N>>, max: f64, key: f64, node: Option<N>, index: usize) {
+    if key <= max {
+        heap.push(Entry { key, node, index });
     }
 }
