@@ -50,13 +50,11 @@ impl<const D: usize> PeriodicBall<D> {
     pub fn new(torus: Torus<D>, center: [f64; D], radius: f64) -> Result<Self, QueryError> {
         query_point(&center)?;
         check_radius(radius)?;
-        let mut c = center;
-        for axis in (0..D).filter(|&a| torus.wraps()[a]) {
-            c[axis] = torus.wrap_axis(axis, c[axis]);
-        }
+        // Every coordinate is finite now: wrapping cannot fail.
+        let center = torus.wrap(&center).expect("a finite centre wraps");
         Ok(PeriodicBall {
             torus,
-            center: c,
+            center,
             radius,
         })
     }
