@@ -70,21 +70,21 @@ where
         dual.split_top(start, chunks(), visitor)
     }
 
-    /// One part of a split traversal: the node pair `pair` and its descendants.
-    fn part<T, V>(self, pair: SetPair<A, B, T, D>, visitor: &mut V) -> ControlFlow<V::Break>
+    /// One part of a split traversal: the node pair `pair` and its descendants, taken by the
+    /// visitor `visitor(points)` makes from the points of each side of the pair (all that the
+    /// part can meet, to size the kernel's caches: [`Block::boxed`](super::scan::Block::boxed));
+    /// the part's end and the visitor.
+    fn part<T, V>(
+        self,
+        pair: SetPair<A, B, T, D>,
+        visitor: impl FnOnce([usize; 2]) -> V,
+    ) -> (ControlFlow<V::Break>, V)
     where
         V: PairVisitor<A::Index, B::Index, T, D>,
     {
-        self.dual().run(vec![pair], visitor)
-    }
-
-    /// The points of each side of a frontier pair: all that its part of the traversal can
-    /// meet, to size the kernel's caches ([`Block::boxed`](super::scan::Block::boxed)).
-    fn part_points<T>(self, pair: &SetPair<A, B, T, D>) -> [usize; 2] {
-        [
-            self.0.index().run(pair.0 .0).len(),
-            self.1.index().run(pair.1 .0).len(),
-        ]
+        let (ia, ib) = (self.0.index(), self.1.index());
+        let mut v = visitor([ia.run(pair.0 .0).len(), ib.run(pair.1 .0).len()]);
+        (self.dual().run(vec![pair], &mut v), v)
     }
 
     /// Every pair within `r` (under `boundary`) handed to `visit` from rayon's threads; the
@@ -108,9 +108,9 @@ where
             if stopped.load(Ordering::Relaxed) {
                 return;
             }
-            let (pair, each) = (frontier[i], until_stopped(&visit, &stopped));
-            let mut v = PairsWithin::new(self, within, self.part_points(&pair), each);
-            if let ControlFlow::Break(Some(br)) = self.part(pair, &mut v) {
+            let each = until_stopped(&visit, &stopped);
+            let (flow, _) = self.part(frontier[i], |n| PairsWithin::new(self, within, n, each));
+            if let ControlFlow::Break(Some(br)) = flow {
                 // The first break is kept; a later one (from a part that had not yet seen the
                 // flag) is dropped.
                 lock(&found).get_or_insert(br);
@@ -139,12 +139,9 @@ where
             f
         };
         let accs = map_indices(frontier.len(), &|i| {
-            let pair = frontier[i];
             let mut acc = identity();
             let each = folding(&fold, &mut acc);
-            let mut v = PairsWithin::new(self, within, self.part_points(&pair), each);
-            let _ = self.part(pair, &mut v);
-            drop(v);
+            let _ = self.part(frontier[i], |n| PairsWithin::new(self, within, n, each));
             acc
         });
         Ok(accs.into_iter().fold(top, reduce))
@@ -185,10 +182,8 @@ where
         let mut top = CountWithin::new(self, (&r2, boundary), [self.0.len(), self.1.len()]);
         let ControlFlow::Continue(frontier) = self.split((0, r2.len()), &mut top);
         let parts = map_indices(frontier.len(), &|i| {
-            let pair = frontier[i];
-            let mut c = CountWithin::new(self, (&r2, boundary), self.part_points(&pair));
-            let _ = self.part(pair, &mut c);
-            c.diff
+            let counts = |n| CountWithin::new(self, (&r2, boundary), n);
+            self.part(frontier[i], counts).1.diff
         });
         for part in parts {
             for (t, p) in top.diff.iter_mut().zip(part) {
