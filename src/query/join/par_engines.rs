@@ -131,13 +131,10 @@ where
     ) -> Result<T, QueryError> {
         let within = (squared_radius(r)?, boundary);
         let mut top = identity();
-        let frontier = {
-            let each = folding(&fold, &mut top);
-            let all = [self.0.len(), self.1.len()];
-            let ControlFlow::Continue(f) =
-                self.split((), &mut PairsWithin::new(self, within, all, each));
-            f
-        };
+        let all = [self.0.len(), self.1.len()];
+        let each = folding(&fold, &mut top);
+        let ControlFlow::Continue(frontier) =
+            self.split((), &mut PairsWithin::new(self, within, all, each));
         let accs = map_indices(frontier.len(), &|i| {
             let mut acc = identity();
             let each = folding(&fold, &mut acc);
@@ -179,12 +176,10 @@ where
         if r2.is_empty() {
             return Ok(Vec::new());
         }
-        let mut top = CountWithin::new(self, (&r2, boundary), [self.0.len(), self.1.len()]);
+        let counts = |n| CountWithin::new(self, (&r2, boundary), n);
+        let mut top = counts([self.0.len(), self.1.len()]);
         let ControlFlow::Continue(frontier) = self.split((0, r2.len()), &mut top);
-        let parts = map_indices(frontier.len(), &|i| {
-            let counts = |n| CountWithin::new(self, (&r2, boundary), n);
-            self.part(frontier[i], counts).1.diff
-        });
+        let parts = map_indices(frontier.len(), &|i| self.part(frontier[i], counts).1.diff);
         for part in parts {
             for (t, p) in top.diff.iter_mut().zip(part) {
                 *t += p;
