@@ -14,48 +14,36 @@ use super::knn_group::Search;
 use super::Join;
 use crate::query::{PointSet, SpatialIndex};
 
-/// One thread's buffers: the group searcher and one group's rows (slots and distances).
-pub(crate) struct Scratch<N, const D: usize> {
-    search: Search<N, D>,
-    slots: Vec<usize>,
-    distances: Vec<f64>,
-}
-
-impl<N: Copy, const D: usize> Scratch<N, D> {
-    pub(crate) fn new() -> Self {
-        Scratch {
-            search: Search::new(),
-            slots: Vec::new(),
-            distances: Vec::new(),
-        }
-    }
-}
-
-/// Searches `group` of the querying set in the other (`w` neighbours per point, at least 1)
-/// and pushes `f(slot in a, neighbour slots in b, squared distances)` for each of its points,
-/// in position order, onto `out`.
-fn map_group<A, B, P, T, const D: usize>(
-    scratch: &mut Scratch<<B::Index as SpatialIndex<D>>::Node, D>,
+/// Searches `groups` of the querying set in the other (`w` neighbours per point, at least 1),
+/// one after the other with one group searcher and one group's rows (slots and distances),
+/// and gives `f(slot in a, neighbour slots in b, squared distances)` for each of their points,
+/// in group order and position order within a group.
+fn map_groups<A, B, P, T, const D: usize>(
     join: Join<'_, A, B, P, D>,
-    (group, w): (&Group, usize),
-    f: &mut impl FnMut(usize, &[usize], &[f64]) -> T,
-    out: &mut Vec<T>,
-) where
+    (groups, w): (&[Group], usize),
+    mut f: impl FnMut(usize, &[usize], &[f64]) -> T,
+) -> Vec<T>
+where
     A: PointSet<D>,
     B: PointSet<D>,
     P: PairDistance<D>,
 {
-    let n = group.len() * w;
-    scratch.slots.resize(n, 0);
-    scratch.distances.resize(n, 0.0);
-    let (slots, distances) = (&mut scratch.slots[..n], &mut scratch.distances[..n]);
-    let part = (group, &mut *slots, &mut *distances);
-    fill(&mut scratch.search, join, part, w);
+    let mut search = Search::new();
+    let (mut slots, mut distances) = (Vec::new(), Vec::new());
+    let mut out = Vec::with_capacity(groups.iter().map(Group::len).sum());
     let (a, qa) = (join.0, join.0.index().payloads());
-    let rows = slots.chunks(w).zip(distances.chunks(w));
-    for (i, (s, d)) in group.clone().zip(rows) {
-        out.push(f(a.slot_of(i, &qa[i]), s, d));
+    for group in groups {
+        let n = group.len() * w;
+        slots.resize(n, 0);
+        distances.resize(n, 0.0);
+        let (slots, distances) = (&mut slots[..n], &mut distances[..n]);
+        fill(&mut search, join, (group, &mut *slots, &mut *distances), w);
+        let rows = slots.chunks(w).zip(distances.chunks(w));
+        for (i, (s, d)) in group.clone().zip(rows) {
+            out.push(f(a.slot_of(i, &qa[i]), s, d));
+        }
     }
+    out
 }
 
 impl<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, const D: usize> Join<'_, A, B, P, D> {
@@ -72,11 +60,7 @@ impl<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, const D: usize> Join<'_
             return (0..a.len()).map(|s| f(s, &[], &[])).collect();
         }
         let gs = groups(a.index());
-        let mut out = Vec::with_capacity(a.len());
-        let mut scratch = Scratch::new();
-        for g in &gs {
-            map_group(&mut scratch, self, (g, w), &mut f, &mut out);
-        }
+        let mut out = map_groups(self, (&gs, w), f);
         in_slot_order(a, &gs, |x, y| out.swap(x, y));
         out
     }
@@ -102,11 +86,7 @@ impl<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, const D: usize> Join<'_
         let gs = groups(a.index());
         // Runs of consecutive groups, one scratch space a run, the values concatenated in order.
         let runs = map_ranges(gs.len(), chunks(), &|run| {
-            let (mut scratch, mut values) = (Scratch::new(), Vec::new());
-            for g in &gs[run] {
-                map_group(&mut scratch, self, (g, w), &mut &f, &mut values);
-            }
-            values
+            map_groups(self, (&gs[run], w), &f)
         });
         let mut out: Vec<T> = Vec::with_capacity(a.len());
         for run in runs {
