@@ -231,12 +231,16 @@ pub(crate) fn in_slot_order<A: PointSet<D>, const D: usize>(
 impl<A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, const D: usize> Join<'_, A, B, P, D> {
     /// The k-nearest table, serially.
     pub(crate) fn knn(self, k: usize) -> KnnTable {
-        self.table(k, |parts, w| {
-            let mut search = Search::new();
-            for part in parts {
-                fill(&mut search, self, part, w);
-            }
-        })
+        self.table(k, |parts, w| self.fill_parts(parts, w))
+    }
+
+    /// Fills `parts` (`w` neighbours per point, at least 1) one after the other with one group
+    /// searcher: the serial table's work, and that of each run of the parallel one.
+    pub(crate) fn fill_parts(self, parts: Vec<Part<'_>>, w: usize) {
+        let mut search = Search::new();
+        for part in parts {
+            fill(&mut search, self, part, w);
+        }
     }
 
     /// The table of the `k` nearest: its rows cut into the parts of the querying set's groups

@@ -3,8 +3,9 @@
 //! serial engines, the work split into independent parts run on rayon's threads.
 //!
 //! - The k-nearest joins hand the querying tree's groups (see [`knn`](super::knn)) to the
-//!   threads in runs of consecutive groups; each run reuses one [`Search`] for all its groups
-//!   and writes their rows of one table directly.
+//!   threads in runs of consecutive groups; each run reuses one
+//!   [`Search`](super::knn_group::Search) for all its groups, as the serial table does
+//!   ([`Join::fill_parts`]), and writes their rows of one table directly.
 //! - The radius joins split the top of the dual-tree traversal (Gray and Moore, 2001) into at
 //!   least 16 independent node pairs per thread ([`Dual::split_top`](super::traverse::Dual::split_top)) and traverse each on a thread:
 //!   the counts of the parts are summed, the pairs of the sparse matrix concatenated and sorted,
@@ -17,8 +18,7 @@
 //! engines' closures.
 
 use super::bounds::PairDistance;
-use super::knn::{fill, KnnTable};
-use super::knn_group::Search;
+use super::knn::KnnTable;
 use super::pairs::{CountWithin, PairsWithin};
 use super::radius::{squared_radii, squared_radius, Boundary};
 use super::sparse::SparseDistances;
@@ -46,12 +46,7 @@ where
     /// The k-nearest table, the groups of the querying set on rayon's threads.
     pub(crate) fn par_knn(self, k: usize) -> KnnTable {
         self.table(k, |parts, w| {
-            for_each_chunk(parts, chunks(), &|run| {
-                let mut search = Search::new();
-                for part in run {
-                    fill(&mut search, self, part, w);
-                }
-            });
+            for_each_chunk(parts, chunks(), &|run| self.fill_parts(run, w));
         })
     }
 
