@@ -21,9 +21,9 @@
 //! Disk: the runs (the points, items and keys, once) beside the output, removed as they are
 //! merged.
 
-use super::header::{header_len, padded, Header};
+use super::header::{padded, sections_start, write_section, Header};
 use super::runs::{io, merge, Layout, Spill};
-use super::{SavedScalar, ALIGN};
+use super::SavedScalar;
 use crate::geom::{Aabb, Cell, FloatBits, RootGeometry};
 use crate::points::DEFAULT_BUCKET_SIZE;
 use crate::Error;
@@ -401,11 +401,10 @@ impl ExternalBuild {
         out: &Path,
     ) -> Result<(u64, u64), ExternalError> {
         let fail = io(out);
-        let head = padded(header_len::<D>()).expect("a short header");
+        let head = sections_start::<D>();
         let point_bytes = n * Layout::<S, T, D>::POINT as u64;
         let items_at = padded(head + point_bytes).expect("in range");
         let item_bytes = n * Layout::<S, T, D>::ITEM as u64;
-        let nodes_at = padded(items_at + item_bytes).expect("in range");
         let file = File::create(out).map_err(&fail)?;
         let mut points = BufWriter::with_capacity(buffer, file);
         points.seek(SeekFrom::Start(head)).map_err(&fail)?;
@@ -423,14 +422,9 @@ impl ExternalBuild {
         })?;
         topology.finish();
         let raw = topology.tree.raw_parts();
-        let zeros = [0u8; ALIGN as usize];
-        points
-            .write_all(&zeros[..(items_at - head - point_bytes) as usize])
-            .map_err(&fail)?;
+        write_section(&mut points, head + point_bytes, &[]).map_err(&fail)?;
         points.flush().map_err(&fail)?;
-        items
-            .write_all(&zeros[..(nodes_at - items_at - item_bytes) as usize])
-            .map_err(&fail)?;
+        let mut at = write_section(&mut items, items_at + item_bytes, &[]).map_err(&fail)?;
         let (half_lo, half_side) = geometry.halves();
         let header = Header::<D> {
             max_depth,
@@ -447,7 +441,6 @@ impl ExternalBuild {
             domain,
             live_blocks: raw.live_blocks.to_vec(),
         };
-        let mut at = nodes_at;
         let sections: [&[u8]; 5] = [
             bytemuck::cast_slice(topology.runs.ends()),
             bytemuck::cast_slice(raw.first_child),
@@ -456,11 +449,7 @@ impl ExternalBuild {
             &[],
         ];
         for s in sections {
-            items.write_all(s).map_err(&fail)?;
-            at += s.len() as u64;
-            let pad = padded(at).expect("in range") - at;
-            items.write_all(&zeros[..pad as usize]).map_err(&fail)?;
-            at += pad;
+            at = write_section(&mut items, at, s).map_err(&fail)?;
         }
         items.seek(SeekFrom::Start(0)).map_err(&fail)?;
         items.write_all(&header.encode::<S>()).map_err(&fail)?;

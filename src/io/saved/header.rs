@@ -6,6 +6,7 @@
 use super::{SavedError, SavedScalar};
 use crate::geom::{Aabb, Cell, Connectivity, Dim};
 use crate::tree::BalanceOptions;
+use std::io::Write;
 
 /// The first 8 bytes of every saved tree.
 pub const MAGIC: [u8; 8] = *b"ORTHTREE";
@@ -51,6 +52,21 @@ pub(super) fn header_len<const D: usize>() -> u64 {
 /// `x` rounded up to a multiple of [`ALIGN`] (`None` on overflow).
 pub(super) fn padded(x: u64) -> Option<u64> {
     x.checked_add(ALIGN - 1).map(|y| y / ALIGN * ALIGN)
+}
+
+/// Where the first section starts: the header's length, padded.
+pub(super) fn sections_start<const D: usize>() -> u64 {
+    padded(header_len::<D>()).expect("a short header")
+}
+
+/// Writes `bytes` at offset `at` of `out`, then zeros up to the next multiple of [`ALIGN`];
+/// the offset after them.
+pub(super) fn write_section(out: &mut impl Write, at: u64, bytes: &[u8]) -> std::io::Result<u64> {
+    out.write_all(bytes)?;
+    let end = at + bytes.len() as u64;
+    let next = padded(end).expect("in range");
+    out.write_all(&[0u8; ALIGN as usize][..(next - end) as usize])?;
+    Ok(next)
 }
 
 fn balance_code(b: Option<BalanceOptions>) -> (u8, u8) {
@@ -189,7 +205,7 @@ impl<const D: usize> Header<D> {
         for _ in 0..levels::<D>() {
             live_blocks.push(u32::from_le_bytes(r.take("live blocks")?));
         }
-        while r.at < padded(header_len::<D>()).expect("a short header") {
+        while r.at < sections_start::<D>() {
             r.zero("header padding")?;
         }
         Ok(Header {
@@ -228,13 +244,26 @@ impl<const D: usize> Header<D> {
         ]
     }
 
+    /// Each section's start and the end of its bytes (before its padding), for lengths checked
+    /// by [`Header::check_length`] or of a tree in memory; then the file's length.
+    pub(super) fn spans<S>(&self) -> ([(u64, u64); 7], u64) {
+        let mut end = sections_start::<D>();
+        let spans = self.sections::<S>().map(|(_, len)| {
+            let start = end;
+            let stop = start + len.expect("checked against the length");
+            end = padded(stop).expect("checked");
+            (start, stop)
+        });
+        (spans, end)
+    }
+
     /// The total length of a file with this header, checked against `available` bytes.
     ///
     /// # Errors
     /// [`SavedError::Truncated`] naming the first section the bytes end in (or whose length
     /// overflows), [`SavedError::Trailing`] when bytes follow the last.
     pub(super) fn check_length<S>(&self, available: u64) -> Result<u64, SavedError> {
-        let mut end = padded(header_len::<D>()).expect("a short header");
+        let mut end = sections_start::<D>();
         for (name, len) in self.sections::<S>() {
             let start = end;
             end = len

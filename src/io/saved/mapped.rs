@@ -22,7 +22,7 @@
 //! check rules out. [`MappedTree::to_tree`] copies into an owned tree with the loader's full
 //! check.
 
-use super::header::{padded, Header};
+use super::header::Header;
 use super::{read_header, PointTreeView, SavedError, SavedScalar};
 use crate::geom::{Aabb, Cell, Dim, RootGeometry};
 use crate::{PointTree, Scalar};
@@ -85,14 +85,8 @@ impl<S: SavedScalar, T: Pod, const D: usize> MappedTree<S, T, D> {
         #[allow(unsafe_code)]
         let map = unsafe { Mmap::map(&file) }.map_err(SavedError::Io)?;
         let header = read_header::<S, T, D>(&map, map.len() as u64)?;
-        let mut at = [0usize; 5];
-        let mut end = padded(super::header::header_len::<D>()).expect("a short header");
-        for (k, (_, len)) in header.sections::<S>().into_iter().enumerate() {
-            if k < 5 {
-                at[k] = end as usize;
-            }
-            end = padded(end + len.expect("checked against the length")).expect("checked");
-        }
+        let (spans, _) = header.spans::<S>();
+        let at = core::array::from_fn(|k| spans[k].0 as usize);
         let geometry = RootGeometry::try_from_halves(header.half_lo, header.half_side)
             .map_err(|_| corrupt("root geometry", 0))?;
         Ok(MappedTree {

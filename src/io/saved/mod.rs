@@ -84,7 +84,7 @@ use crate::points::{PointTreeArrays, PointTreeParts};
 use crate::tree::raw::OwnedRawTree;
 use crate::{PointTree, Scalar};
 use bytemuck::Pod;
-use header::{padded, Header};
+use header::{padded, sections_start, write_section, Header};
 use std::io::{Read, Write};
 
 /// A coordinate type the format stores: a [`Scalar`] that is plain data, with its code in the
@@ -144,12 +144,7 @@ fn header_of<S: SavedScalar, T: Pod, const D: usize>(
 /// assert_eq!(saved_len(&tree), bytes.len() as u64);
 /// ```
 pub fn saved_len<S: SavedScalar, T: Pod, const D: usize>(tree: &PointTree<S, T, D>) -> u64 {
-    let h = header_of(&tree.view());
-    let mut end = padded(header::header_len::<D>()).expect("a short header");
-    for (_, len) in h.sections::<S>() {
-        end = padded(end + len.expect("a tree in memory has a length")).expect("in range");
-    }
-    end
+    header_of(&tree.view()).spans::<S>().1
 }
 
 /// Writes `tree` in the saved format (see the module doc) to `out`, array by array.
@@ -188,11 +183,7 @@ pub fn write_point_tree<S: SavedScalar, T: Pod, const D: usize>(
         bytemuck::cast_slice(v.tree.free_blocks),
     ];
     for s in sections {
-        out.write_all(s)?;
-        at += s.len() as u64;
-        let pad = padded(at).expect("in range") - at;
-        out.write_all(&[0u8; ALIGN as usize][..pad as usize])?;
-        at += pad;
+        at = write_section(&mut out, at, s)?;
     }
     Ok(())
 }
@@ -251,7 +242,7 @@ pub fn read_point_tree<S: SavedScalar, T: Pod, const D: usize>(
     bytes: &[u8],
 ) -> Result<PointTree<S, T, D>, SavedError> {
     let header = read_header::<S, T, D>(bytes, bytes.len() as u64)?;
-    let at = padded(header::header_len::<D>()).expect("a short header") as usize;
+    let at = sections_start::<D>() as usize;
     read_sections(header, &mut SliceSource { bytes, at })
 }
 
@@ -269,7 +260,7 @@ pub fn read_point_tree_file<S: SavedScalar, T: Pod, const D: usize>(
 ) -> Result<PointTree<S, T, D>, SavedError> {
     let mut file = std::fs::File::open(path).map_err(SavedError::Io)?;
     let available = file.metadata().map_err(SavedError::Io)?.len();
-    let want = padded(header::header_len::<D>()).expect("a short header");
+    let want = sections_start::<D>();
     let mut head = vec![0u8; want.min(available) as usize];
     file.read_exact(&mut head).map_err(SavedError::Io)?;
     let header = read_header::<S, T, D>(&head, available)?;
@@ -297,7 +288,7 @@ fn read_sections<S: SavedScalar, T: Pod, const D: usize>(
 ) -> Result<PointTree<S, T, D>, SavedError> {
     let n = header.points as usize;
     let slots = header.slots as usize;
-    let mut at = padded(header::header_len::<D>()).expect("a short header");
+    let mut at = sections_start::<D>();
     let points = section(src, &mut at, n)?;
     let items = section(src, &mut at, n)?;
     let run_ends = section(src, &mut at, slots)?;

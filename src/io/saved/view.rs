@@ -28,7 +28,7 @@
 //! for the coordinate or item type, that section is copied instead
 //! ([`PointTreeView::is_borrowed`] tells).
 
-use super::header::{header_len, padded, Header};
+use super::header::{padded, Header};
 use super::{read_header, SavedError, SavedScalar};
 use crate::error::{Invariant, ValidationError};
 use crate::geom::{Aabb, RootGeometry};
@@ -292,18 +292,17 @@ fn sections<'b, S: SavedScalar, const D: usize>(
     header: &Header<D>,
     bytes: &'b [u8],
 ) -> Result<[&'b [u8]; 7], SavedError> {
-    let mut out: [&[u8]; 7] = [&[]; 7];
-    let mut at = padded(header_len::<D>()).expect("a short header") as usize;
-    for (k, (_, len)) in header.sections::<S>().into_iter().enumerate() {
-        let len = len.expect("checked against the length") as usize;
-        out[k] = &bytes[at..at + len];
-        let end = padded((at + len) as u64).expect("checked") as usize;
-        if let Some(i) = bytes[at + len..end].iter().position(|&b| b != 0) {
+    let (spans, _) = header.spans::<S>();
+    for &(_, stop) in &spans {
+        let end = padded(stop).expect("checked");
+        if let Some(i) = bytes[stop as usize..end as usize]
+            .iter()
+            .position(|&b| b != 0)
+        {
             return Err(SavedError::Padding {
-                offset: (at + len + i) as u64,
+                offset: stop + i as u64,
             });
         }
-        at = end;
     }
-    Ok(out)
+    Ok(spans.map(|(start, stop)| &bytes[start as usize..stop as usize]))
 }
