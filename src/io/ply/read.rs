@@ -34,94 +34,101 @@ pub fn read<S: Scalar>(input: impl Read) -> Result<Cloud<S>, PlyError> {
         frame: header.frame.unwrap_or(Frame::IDENTITY),
     };
     let mut values = vec![0.0f64; header.properties.len()];
-    match header.encoding {
-        Encoding::Ascii => read_ascii(&mut reader, &header, &columns, &mut values, &mut cloud)?,
-        Encoding::BinaryLittleEndian | Encoding::BinaryBigEndian => {
-            read_binary(&mut reader, &header, &columns, &mut values, &mut cloud)?
-        }
-    }
-    Ok(cloud)
-}
-
-fn read_ascii<S: Scalar>(
-    reader: &mut impl BufRead,
-    header: &Header,
-    columns: &Columns,
-    values: &mut [f64],
-    cloud: &mut Cloud<S>,
-) -> Result<(), PlyError> {
+    let ascii = header.encoding == Encoding::Ascii;
+    let mut buf = Vec::new();
     let mut offset = header.bytes;
-    let mut line = Vec::new();
     for vertex in 0..header.count {
-        line.clear();
-        let n = reader
-            .by_ref()
-            .take(MAX_LINE_BYTES as u64)
-            .read_until(b'\n', &mut line)?;
-        let line_no = header.lines + 1 + vertex as usize;
-        if n == 0 {
-            return Err(PlyError::Truncated {
-                vertex,
-                count: header.count,
-                offset,
-            });
-        }
-        offset += n as u64;
-        // A line that cannot be split into fields, blamed on its first.
-        let whole_line = |text: &str| PlyError::BadValue {
-            line: line_no,
-            field: 1,
-            property: header.properties[0].0.clone(),
-            text: text.into(),
+        let at = (vertex, offset);
+        offset += if ascii {
+            read_line(&mut reader, &header, at, &mut buf, &mut values)?
+        } else {
+            read_record(&mut reader, &header, at, &mut buf, &mut values)?
         };
-        if n == MAX_LINE_BYTES && line.last() != Some(&b'\n') {
-            return Err(whole_line(&format!(
-                "(a line longer than {MAX_LINE_BYTES} bytes)"
-            )));
-        }
-        let text = core::str::from_utf8(&line).map_err(|_| whole_line("(not ASCII)"))?;
-        let mut found = 0;
-        for (field, word) in text.split_ascii_whitespace().enumerate() {
-            found = field + 1;
-            if field >= values.len() {
-                continue;
-            }
-            let (name, kind) = &header.properties[field];
-            values[field] = parse(word, *kind).ok_or_else(|| PlyError::BadValue {
-                line: line_no,
-                field: field + 1,
-                property: name.clone(),
-                text: quote(word),
+        columns
+            .push(&values, &mut cloud)
+            .map_err(|i| PlyError::Inexact {
+                vertex,
+                property: header.properties[i].0.clone(),
+                value: values[i],
             })?;
-        }
-        if found != values.len() {
-            return Err(PlyError::FieldCount {
-                line: line_no,
-                found,
-                expected: values.len(),
-            });
-        }
-        columns.push(values, cloud).map_err(|i| PlyError::Inexact {
-            vertex,
-            property: header.properties[i].0.clone(),
-            value: values[i],
-        })?;
     }
-    // Only white space may follow.
+    // Only white space may follow an ASCII body, nothing a binary one.
     loop {
-        let buf = reader.fill_buf()?;
-        if buf.is_empty() {
-            return Ok(());
+        let rest = reader.fill_buf()?;
+        if rest.is_empty() {
+            return Ok(cloud);
         }
-        if let Some(p) = buf.iter().position(|b| !b.is_ascii_whitespace()) {
+        if let Some(p) = rest
+            .iter()
+            .position(|b| !(ascii && b.is_ascii_whitespace()))
+        {
             return Err(PlyError::TrailingData {
                 offset: offset + p as u64,
             });
         }
-        let n = buf.len();
+        let n = rest.len();
         offset += n as u64;
         reader.consume(n);
     }
+}
+
+/// Reads vertex `vertex`'s ASCII line, which starts at byte `offset`, into `values`; the
+/// bytes read.
+fn read_line(
+    reader: &mut impl BufRead,
+    header: &Header,
+    (vertex, offset): (u64, u64),
+    line: &mut Vec<u8>,
+    values: &mut [f64],
+) -> Result<u64, PlyError> {
+    line.clear();
+    let n = reader
+        .by_ref()
+        .take(MAX_LINE_BYTES as u64)
+        .read_until(b'\n', line)?;
+    let line_no = header.lines + 1 + vertex as usize;
+    if n == 0 {
+        return Err(PlyError::Truncated {
+            vertex,
+            count: header.count,
+            offset,
+        });
+    }
+    // A line that cannot be split into fields, blamed on its first.
+    let whole_line = |text: &str| PlyError::BadValue {
+        line: line_no,
+        field: 1,
+        property: header.properties[0].0.clone(),
+        text: text.into(),
+    };
+    if n == MAX_LINE_BYTES && line.last() != Some(&b'\n') {
+        return Err(whole_line(&format!(
+            "(a line longer than {MAX_LINE_BYTES} bytes)"
+        )));
+    }
+    let text = core::str::from_utf8(line).map_err(|_| whole_line("(not ASCII)"))?;
+    let mut found = 0;
+    for (field, word) in text.split_ascii_whitespace().enumerate() {
+        found = field + 1;
+        if field >= values.len() {
+            continue;
+        }
+        let (name, kind) = &header.properties[field];
+        values[field] = parse(word, *kind).ok_or_else(|| PlyError::BadValue {
+            line: line_no,
+            field: field + 1,
+            property: name.clone(),
+            text: quote(word),
+        })?;
+    }
+    if found != values.len() {
+        return Err(PlyError::FieldCount {
+            line: line_no,
+            found,
+            expected: values.len(),
+        });
+    }
+    Ok(n as u64)
 }
 
 /// An ASCII value of type `kind`, or `None` when malformed or out of range.
@@ -144,42 +151,32 @@ fn parse(word: &str, kind: Kind) -> Option<f64> {
     }
 }
 
-fn read_binary<S: Scalar>(
+/// Reads vertex `vertex`'s binary record, which starts at byte `offset`, into `values`; the
+/// bytes read.
+fn read_record(
     reader: &mut impl BufRead,
     header: &Header,
-    columns: &Columns,
+    (vertex, offset): (u64, u64),
+    record: &mut Vec<u8>,
     values: &mut [f64],
-    cloud: &mut Cloud<S>,
-) -> Result<(), PlyError> {
+) -> Result<u64, PlyError> {
     let stride: usize = header.properties.iter().map(|(_, k)| k.size()).sum();
-    let little = header.encoding == Encoding::BinaryLittleEndian;
-    let mut record = vec![0u8; stride];
-    let mut offset = header.bytes;
-    for vertex in 0..header.count {
-        let got = read_full(reader, &mut record)?;
-        if got < stride {
-            return Err(PlyError::Truncated {
-                vertex,
-                count: header.count,
-                offset: offset + got as u64,
-            });
-        }
-        offset += stride as u64;
-        let mut at = 0;
-        for (i, (_, kind)) in header.properties.iter().enumerate() {
-            values[i] = decode(&record[at..at + kind.size()], *kind, little);
-            at += kind.size();
-        }
-        columns.push(values, cloud).map_err(|i| PlyError::Inexact {
+    record.resize(stride, 0);
+    let got = read_full(reader, record)?;
+    if got < stride {
+        return Err(PlyError::Truncated {
             vertex,
-            property: header.properties[i].0.clone(),
-            value: values[i],
-        })?;
+            count: header.count,
+            offset: offset + got as u64,
+        });
     }
-    if !reader.fill_buf()?.is_empty() {
-        return Err(PlyError::TrailingData { offset });
+    let little = header.encoding == Encoding::BinaryLittleEndian;
+    let mut at = 0;
+    for (i, (_, kind)) in header.properties.iter().enumerate() {
+        values[i] = decode(&record[at..at + kind.size()], *kind, little);
+        at += kind.size();
     }
-    Ok(())
+    Ok(stride as u64)
 }
 
 /// A binary value of type `kind` from its bytes.
