@@ -29,7 +29,7 @@
 //! ```
 
 use super::limits::{LimitError, Limits};
-use super::pbm::nonempty_extent;
+use super::pbm::{nonempty_extent, packed_byte, unpack_row};
 use crate::image::{ImageError, ImageTree, RowBuilder};
 use core::fmt;
 use std::io::{BufRead, BufReader, BufWriter, Cursor, Seek, Write};
@@ -197,15 +197,11 @@ fn read_from<R: BufRead + Seek>(input: R, limits: Limits) -> Result<ImageTree, P
         threshold(data, channels, &mut words);
         let samples = data.len() / channels;
         bits.clear();
-        bits.extend((0..samples.div_ceil(8)).map(|i| (words[i / 8] >> (8 * (i % 8))) as u8));
-        bits.iter_mut().for_each(|x| *x = x.reverse_bits());
+        bits.extend((0..samples.div_ceil(8)).map(|i| packed_byte(&words, i)));
         ::png::expand_interlaced_row(&mut image, stride, &bits, &info, 1);
     }
     for row in image.chunks_exact(stride) {
-        words.fill(0);
-        for (i, &byte) in row.iter().enumerate() {
-            words[i / 8] |= u64::from(byte.reverse_bits()) << (8 * (i % 8));
-        }
+        unpack_row(row, &mut words);
         b.push_row(&words).map_err(PngError::Image)?;
     }
     b.finish().map_err(PngError::Image)
@@ -233,17 +229,12 @@ pub fn write_to(tree: &ImageTree, depth: PngDepth, out: impl Write) -> Result<()
     tree.for_each_row(|_, words| -> Result<(), std::io::Error> {
         line.clear();
         match depth {
-            PngDepth::One => line.extend(
-                (0..(w as usize).div_ceil(8))
-                    .map(|i| !((words[i / 8] >> (8 * (i % 8))) as u8).reverse_bits()),
-            ),
-            PngDepth::Eight => line.extend((0..w as usize).map(|x| {
-                if (words[x / 64] >> (x % 64)) & 1 == 1 {
-                    0
-                } else {
-                    255
-                }
-            })),
+            PngDepth::One => {
+                line.extend((0..(w as usize).div_ceil(8)).map(|i| !packed_byte(words, i)))
+            }
+            PngDepth::Eight => {
+                line.extend((0..w as usize).map(|x| 255 * (!(words[x / 64] >> (x % 64)) & 1) as u8))
+            }
         }
         stream.write_all(&line)
     })

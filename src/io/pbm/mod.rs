@@ -269,10 +269,7 @@ fn read_raw(c: &mut Cursor<'_>, [w, h]: [u32; 2], budget: u64) -> Result<ImageTr
     let mut b = builder([w, h], budget)?;
     let mut words = vec![0u64; b.row_words()];
     for row in raster.chunks_exact(row_bytes) {
-        words.fill(0);
-        for (i, &byte) in row.iter().enumerate() {
-            words[i / 8] |= u64::from(byte.reverse_bits()) << (8 * (i % 8));
-        }
+        unpack_row(row, &mut words);
         b.push_row(&words).map_err(PbmError::Image)?;
     }
     b.finish().map_err(PbmError::Image)
@@ -336,8 +333,7 @@ pub fn write_to(tree: &ImageTree, format: PbmFormat, out: impl Write) -> Result<
         match format {
             PbmFormat::Raw => {
                 for i in 0..(w as usize).div_ceil(8) {
-                    let byte = (words[i / 8] >> (8 * (i % 8))) as u8;
-                    out.write_all(&[byte.reverse_bits()])?;
+                    out.write_all(&[packed_byte(words, i)])?;
                 }
             }
             PbmFormat::Plain => {
@@ -356,6 +352,21 @@ pub fn write_to(tree: &ImageTree, format: PbmFormat, out: impl Write) -> Result<
     })?;
     out.flush()?;
     Ok(())
+}
+
+/// Sets `words` (bit `x` for pixel `x`) from `bytes` of 8 pixels each, the first in the most
+/// significant bit, as a `P4` row and a 1-bit PNG row hold them.
+pub(super) fn unpack_row(bytes: &[u8], words: &mut [u64]) {
+    words.fill(0);
+    for (i, &byte) in bytes.iter().enumerate() {
+        words[i / 8] |= u64::from(byte.reverse_bits()) << (8 * (i % 8));
+    }
+}
+
+/// Byte `i` of the row `words` packed as [`unpack_row`] reads it: pixels `8 i ..= 8 i + 7`, the
+/// first in the most significant bit.
+pub(super) fn packed_byte(words: &[u64], i: usize) -> u8 {
+    ((words[i / 8] >> (8 * (i % 8))) as u8).reverse_bits()
 }
 
 /// The extent of an image to write, or `empty(width, height)` for a zero side, which neither a
