@@ -28,13 +28,16 @@ impl BoardFormat {
     /// assert_eq!(BoardFormat::from_path("poly"), None);
     /// ```
     pub fn from_path(path: impl AsRef<Path>) -> Option<BoardFormat> {
-        let extension = path.as_ref().extension()?.to_str()?;
-        if extension.eq_ignore_ascii_case("poly") {
-            Some(BoardFormat::Poly)
-        } else if extension.eq_ignore_ascii_case("txt") {
-            Some(BoardFormat::Text)
-        } else {
-            None
+        match path
+            .as_ref()
+            .extension()?
+            .to_str()?
+            .to_ascii_lowercase()
+            .as_str()
+        {
+            "poly" => Some(BoardFormat::Poly),
+            "txt" => Some(BoardFormat::Text),
+            _ => None,
         }
     }
 
@@ -304,21 +307,12 @@ pub fn read_board_file_with_limit(
     let format = BoardFormat::from_path(path).ok_or_else(|| BoardFileError::UnknownFormat {
         path: path.to_path_buf(),
     })?;
-    let io_error = |error| BoardFileError::Io {
-        path: path.to_path_buf(),
-        error,
-    };
-    let file = std::fs::File::open(path).map_err(io_error)?;
-    let bytes = read_bounded(file, max_bytes)
-        .map_err(io_error)?
-        .ok_or_else(|| BoardFileError::TooLarge {
-            path: path.to_path_buf(),
-            limit: max_bytes,
-        })?;
-    format
-        .read_bytes(&bytes, size)
-        .map_err(|error| BoardFileError::Board {
-            path: path.to_path_buf(),
-            error,
+    let file = std::fs::File::open(path).map_err(BoardReadError::Io);
+    let path = path.to_path_buf();
+    file.and_then(|file| format.read_with_limit(file, size, max_bytes))
+        .map_err(|e| match e {
+            BoardReadError::Io(error) => BoardFileError::Io { path, error },
+            BoardReadError::TooLarge { limit } => BoardFileError::TooLarge { path, limit },
+            BoardReadError::Board(error) => BoardFileError::Board { path, error },
         })
 }

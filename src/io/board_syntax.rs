@@ -106,10 +106,9 @@ impl<'a> Iterator for Lines<'a> {
                 }));
             }
         };
-        let (content, comment) = match text.split_once('#') {
-            Some((content, comment)) => (content, Some(comment)),
-            None => (text, None),
-        };
+        let (content, comment) = text
+            .split_once('#')
+            .map_or((text, None), |(content, comment)| (content, Some(comment)));
         Some(Ok(Line {
             number: self.number,
             content,
@@ -148,10 +147,7 @@ pub(crate) fn parse_error(line: usize, message: impl Into<String>) -> BoardError
 /// Parses an integer coordinate: decimal digits with an optional sign, optionally followed by a
 /// point and zeros (`3`, `-2`, `3.0`, `3.`). The error is a message naming the field.
 pub(crate) fn parse_coordinate(field: &str) -> Result<i64, String> {
-    let (whole, fraction) = match field.split_once('.') {
-        Some((whole, fraction)) => (whole, fraction),
-        None => (field, ""),
-    };
+    let (whole, fraction) = field.split_once('.').unwrap_or((field, ""));
     let digits = whole.strip_prefix(['+', '-']).unwrap_or(whole);
     let whole_ok = !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit());
     if !fraction.bytes().all(|b| b == b'0') || !whole_ok {
