@@ -163,22 +163,23 @@ fn guarded<T>(
     point: Option<u64>,
     f: impl FnOnce() -> Result<T, ::las::Error>,
 ) -> Result<T, LasError> {
-    std::panic::catch_unwind(std::panic::AssertUnwindSafe(f))
-        .map_err(|panic| decoder_panic(point, panic))?
-        .map_err(las_error(point))
+    caught(point, f)?.map_err(las_error(point))
 }
 
-/// The error for a panic of the `las` crate's decoder, with its message.
-fn decoder_panic(point: Option<u64>, panic: Box<dyn std::any::Any + Send>) -> LasError {
-    let message = panic
-        .downcast_ref::<&str>()
-        .map(|s| s.to_string())
-        .or_else(|| panic.downcast_ref::<String>().cloned())
-        .unwrap_or_default();
-    LasError::Las {
-        point,
-        message: format!("the decoder failed on damaged data: {message}"),
-    }
+/// Runs `f` with a panic of the `las` crate's decoder in it turned into [`LasError::Las`], with
+/// the panic's message.
+fn caught<T>(point: Option<u64>, f: impl FnOnce() -> T) -> Result<T, LasError> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).map_err(|panic| {
+        let message = panic
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| panic.downcast_ref::<String>().cloned())
+            .unwrap_or_default();
+        LasError::Las {
+            point,
+            message: format!("the decoder failed on damaged data: {message}"),
+        }
+    })
 }
 
 /// Reads the LAS (or, with the `laz` feature, LAZ) file at `path`.
@@ -212,15 +213,15 @@ pub fn read_from<R: Read + Seek + Send + Sync + 'static>(
         return Err(LasError::UnsupportedFormat(format.to_u8().unwrap_or(4)));
     }
     let t = header.transforms();
+    let fields = Fields::new(&format);
     let mut cloud = Cloud {
         points: Vec::new(),
-        attributes: Fields::new(&format).attributes(),
+        attributes: fields.attributes(),
         frame: Frame {
             scale: [t.x.scale, t.y.scale, t.z.scale],
             offset: [t.x.offset, t.y.offset, t.z.offset],
         },
     };
-    let fields = Fields::new(&format);
     let count = header.number_of_points();
     let record = usize::from(format.len());
     let batch = (BATCH_BYTES / record.max(1)).max(1) as u64;
@@ -228,11 +229,7 @@ pub fn read_from<R: Read + Seek + Send + Sync + 'static>(
     let mut done = 0u64;
     while done < count {
         let want = batch.min(count - done);
-        let filled = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            reader.fill_points(want, &mut data)
-        }))
-        .map_err(|panic| decoder_panic(Some(done), panic))?;
-        match filled {
+        match caught(Some(done), || reader.fill_points(want, &mut data))? {
             Ok(got) if got == want => {}
             Ok(_) | Err(::las::Error::Io(_)) => {
                 // Find the first point that cannot be read, one at a time. Not in a LAZ file:

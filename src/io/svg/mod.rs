@@ -305,8 +305,7 @@ impl Svg {
     }
 
     fn rect(&mut self, b: &Aabb<f64, 2>) {
-        let line = self.rect_line(b);
-        self.body.push_str(&line);
+        self.body.push_str(&self.rect_line(b));
     }
 
     /// A box as one `<rect>` line, with its line break.
