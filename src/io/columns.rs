@@ -2,6 +2,7 @@
 //! [`Cloud`]'s positions and attribute columns, each value converted exactly or refused: the
 //! one mapping every text and PLY reader shares.
 
+use super::ply::Kind;
 use crate::cloud::{Attributes, Cloud, Column};
 use crate::geom::Scalar;
 
@@ -148,41 +149,32 @@ fn push_to<V>(column: &mut Option<Vec<V>>, v: V) {
     }
 }
 
-/// The column names the writers use for `a`'s present columns, after `x y z`, with the kind
-/// of values each holds (`true` for 16-bit unsigned integers, the attributes' own type).
-pub(crate) fn attribute_names(a: &Attributes) -> Vec<(String, ColumnKind)> {
-    let mut out: Vec<(String, ColumnKind)> = Vec::new();
-    let mut add = |names: &[&str], kind: ColumnKind| {
+/// The column names the writers use for `a`'s present columns, after `x y z`, with the PLY type
+/// of the values each holds (the attributes' own type).
+pub(crate) fn attribute_names(a: &Attributes) -> Vec<(String, Kind)> {
+    let mut out: Vec<(String, Kind)> = Vec::new();
+    let mut add = |names: &[&str], kind: Kind| {
         out.extend(names.iter().map(|n| (n.to_string(), kind)));
     };
     if a.intensity.is_some() {
-        add(&["intensity"], ColumnKind::U16);
+        add(&["intensity"], Kind::U16);
     }
     if a.classification.is_some() {
-        add(&["classification"], ColumnKind::U8);
+        add(&["classification"], Kind::U8);
     }
     if a.color.is_some() {
-        add(&["red", "green", "blue"], ColumnKind::U16);
+        add(&["red", "green", "blue"], Kind::U16);
     }
     if a.gps_time.is_some() {
-        add(&["gps_time"], ColumnKind::F64);
+        add(&["gps_time"], Kind::F64);
     }
     if a.normal.is_some() {
-        add(&["nx", "ny", "nz"], ColumnKind::F32);
+        add(&["nx", "ny", "nz"], Kind::F32);
     }
     for c in &a.extra {
-        out.push((c.name.clone(), ColumnKind::F64));
+        out.push((c.name.clone(), Kind::F64));
     }
     out
-}
-
-/// The type of an attribute column's values, for the writers.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum ColumnKind {
-    U8,
-    U16,
-    F32,
-    F64,
 }
 
 /// Point `i`'s values in the order of [`attribute_names`], after its coordinates, into `out`

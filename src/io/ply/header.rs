@@ -1,7 +1,7 @@
 //! The PLY header: `ply`, the format line, comments, elements with their properties and
 //! `end_header`, read line by line within [`MAX_HEADER_BYTES`].
 
-use super::{Encoding, Kind, PlyError, MAX_HEADER_BYTES};
+use super::{Encoding, Kind, PlyError, FORMATS, MAX_HEADER_BYTES};
 use crate::cloud::Frame;
 use std::io::{BufRead, Read};
 
@@ -81,14 +81,11 @@ pub(super) fn read_header(reader: &mut impl BufRead) -> Result<Header, PlyError>
                 if encoding.is_some() {
                     return Err(error(current, "a second format line"));
                 }
-                encoding = Some(match *format {
-                    "ascii" => Encoding::Ascii,
-                    "binary_little_endian" => Encoding::BinaryLittleEndian,
-                    "binary_big_endian" => Encoding::BinaryBigEndian,
-                    other => {
-                        return Err(error(current, format!("unknown format {}", quote(other))))
-                    }
-                });
+                let (found, _) = FORMATS
+                    .iter()
+                    .find(|f| f.1 == *format)
+                    .ok_or_else(|| error(current, format!("unknown format {}", quote(format))))?;
+                encoding = Some(*found);
             }
             ["comment", ..] | ["obj_info", ..] => {
                 let rest = line.trim_start().strip_prefix("comment").map(str::trim);

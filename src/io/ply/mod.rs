@@ -70,6 +70,13 @@ pub enum Kind {
     F64,
 }
 
+/// Each encoding with its name on the `format` line, in the order of [`Encoding`].
+const FORMATS: [(Encoding, &str); 3] = [
+    (Encoding::Ascii, "ascii"),
+    (Encoding::BinaryLittleEndian, "binary_little_endian"),
+    (Encoding::BinaryBigEndian, "binary_big_endian"),
+];
+
 /// Each kind with its classic and its sized PLY name and its bytes per value, in the order of
 /// [`Kind`].
 const KINDS: [(Kind, &str, &str, usize); 8] = [

@@ -2,10 +2,10 @@
 //! record (binary), streamed to any writer.
 
 use super::header::FRAME_COMMENT;
-use super::{Encoding, Kind, PlyError};
+use super::{Encoding, Kind, PlyError, FORMATS};
 use crate::cloud::{Cloud, Frame};
 use crate::geom::Scalar;
-use crate::io::columns::{attribute_names, row, ColumnKind};
+use crate::io::columns::{attribute_names, row};
 use std::io::{BufWriter, Write};
 
 /// The PLY type that holds every value of `S` exactly: `float`, `double`, or the integer type
@@ -54,25 +54,8 @@ pub fn write<S: Scalar>(
     let mut w = BufWriter::with_capacity(1 << 16, out);
     let pos = kind_of::<S>();
     let mut props: Vec<(String, Kind)> = ["x", "y", "z"].map(|n| (n.to_string(), pos)).into();
-    props.extend(
-        attribute_names(&cloud.attributes)
-            .into_iter()
-            .map(|(name, kind)| {
-                let kind = match kind {
-                    ColumnKind::U8 => Kind::U8,
-                    ColumnKind::U16 => Kind::U16,
-                    ColumnKind::F32 => Kind::F32,
-                    ColumnKind::F64 => Kind::F64,
-                };
-                (name, kind)
-            }),
-    );
-    let format = match encoding {
-        Encoding::Ascii => "ascii",
-        Encoding::BinaryLittleEndian => "binary_little_endian",
-        Encoding::BinaryBigEndian => "binary_big_endian",
-    };
-    writeln!(w, "ply\nformat {format} 1.0")?;
+    props.extend(attribute_names(&cloud.attributes));
+    writeln!(w, "ply\nformat {} 1.0", FORMATS[encoding as usize].1)?;
     if cloud.frame != Frame::IDENTITY {
         let (s, o) = (cloud.frame.scale, cloud.frame.offset);
         writeln!(
