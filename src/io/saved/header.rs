@@ -320,11 +320,8 @@ fn ensure(
     found: impl ToString,
     expected: impl ToString,
 ) -> Result<(), SavedError> {
-    if ok {
-        Ok(())
-    } else {
-        Err(field(name, offset, found, expected))
-    }
+    ok.then_some(())
+        .ok_or_else(|| field(name, offset, found, expected))
 }
 
 fn field(
