@@ -289,28 +289,18 @@ fn push_line<S: Scalar>(
 /// O(n) time, O(1) memory beyond the buffer.
 pub fn write<S: Scalar>(cloud: &Cloud<S>, out: impl Write) -> Result<(), XyzError> {
     let mut w = BufWriter::with_capacity(1 << 16, out);
-    let mut names = vec!["x".to_string(), "y".to_string(), "z".to_string()];
-    names.extend(
-        attribute_names(&cloud.attributes)
-            .into_iter()
-            .map(|(n, _)| n),
-    );
-    writeln!(w, "{}", names.join(","))?;
+    write!(w, "x,y,z")?;
+    for (name, _) in attribute_names(&cloud.attributes) {
+        write!(w, ",{name}")?;
+    }
+    writeln!(w)?;
     let mut values = Vec::new();
-    let mut line = String::new();
     for i in 0..cloud.len() {
         row(cloud, i, &mut values);
-        line.clear();
         for (j, v) in values.iter().enumerate() {
-            use core::fmt::Write as _;
-            if j > 0 {
-                line.push(',');
-            }
-            let _ = write!(line, "{v}");
+            let end = if j + 1 == values.len() { '\n' } else { ',' };
+            write!(w, "{v}{end}")?;
         }
-        line.push('\n');
-        w.write_all(line.as_bytes())?;
     }
-    w.flush()?;
-    Ok(())
+    Ok(w.flush()?)
 }

@@ -14,8 +14,7 @@ use std::path::Path;
 /// As [`write_to`], and [`LasError::Io`] when the file cannot be created.
 pub fn write(cloud: &Cloud<i32>, path: impl AsRef<Path>, compressed: bool) -> Result<(), LasError> {
     let file = std::io::BufWriter::new(std::fs::File::create(path)?);
-    write_to(cloud, file, compressed)?;
-    Ok(())
+    write_to(cloud, file, compressed).map(|_| ())
 }
 
 /// Writes `cloud` as LAS 1.4 to `out` and returns it: point format 0-3 (by GPS time and

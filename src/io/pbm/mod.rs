@@ -350,8 +350,7 @@ pub fn write_to(tree: &ImageTree, format: PbmFormat, out: impl Write) -> Result<
         }
         Ok(())
     })?;
-    out.flush()?;
-    Ok(())
+    Ok(out.flush()?)
 }
 
 /// Sets `words` (bit `x` for pixel `x`) from `bytes` of 8 pixels each, the first in the most

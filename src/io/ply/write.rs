@@ -83,8 +83,7 @@ pub fn write<S: Scalar>(
         }
         w.write_all(&record)?;
     }
-    w.flush()?;
-    Ok(())
+    Ok(w.flush()?)
 }
 
 /// Appends `v` (exact in `kind`) to `out`: text and a space, or its bytes.
