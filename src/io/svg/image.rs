@@ -3,7 +3,7 @@
 //! viewers show it (the plane's y axis points up, so row `y` is the strip
 //! `side - y - 1 .. side - y`).
 
-use super::{Style, Svg, DEFAULT_WIDTH_PX};
+use super::{square, Style, Svg, DEFAULT_WIDTH_PX};
 use crate::geom::Aabb;
 use crate::image::{Block, ImageTree};
 use std::io::{BufWriter, Write};
@@ -77,11 +77,7 @@ pub fn image_tree_svg(tree: &ImageTree) -> String {
 /// ```
 pub fn write_image_tree_svg(tree: &ImageTree, out: impl Write) -> std::io::Result<()> {
     let side = f64::from(tree.side());
-    let cube = Aabb {
-        min: [0.0, 0.0],
-        max: [side, side],
-    };
-    let svg = Svg::new(cube, DEFAULT_WIDTH_PX);
+    let svg = Svg::new(square(side), DEFAULT_WIDTH_PX);
     let mut out = BufWriter::new(out);
     out.write_all(svg.header().as_bytes())?;
     writeln!(out, "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>")?;

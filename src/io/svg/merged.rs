@@ -7,7 +7,7 @@
 //! [`write_mesh_svg`]: super::write_mesh_svg
 
 use super::super::format::{clamp_px, escape};
-use super::super::{Style, Svg, DEFAULT_WIDTH_PX};
+use super::super::{square, Style, Svg, DEFAULT_WIDTH_PX};
 use super::{line_widths, region_fill, BOARD_FILL, SEGMENTS_PER_PATH};
 use crate::geom::Aabb;
 use crate::io::text_out::TextOut;
@@ -81,10 +81,7 @@ fn open_group<W: Write + ?Sized>(o: &mut TextOut<'_, W>, style: &Style) -> io::R
 /// Writes the picture (see [`write_mesh_svg`](super::write_mesh_svg)).
 pub(super) fn write(mesh: &Mesh, board: &Board, out: &mut impl Write) -> io::Result<()> {
     let u = board.size() as f64;
-    let view = Aabb {
-        min: [0.0; 2],
-        max: [u; 2],
-    };
+    let view = square(u);
     let mut svg = Svg::new(view, DEFAULT_WIDTH_PX);
     svg.margin(6.0);
     let (w, h) = svg.size_px();

@@ -7,8 +7,7 @@
 //! and the board, not by the mesh.
 
 use super::format::num;
-use super::{Style, Svg, DEFAULT_WIDTH_PX};
-use crate::geom::Aabb;
+use super::{square, Style, Svg, DEFAULT_WIDTH_PX};
 use crate::hash::FastMap;
 use crate::mesh::{Board, Mesh, SegmentKind};
 use core::fmt::Write as _;
@@ -183,10 +182,7 @@ pub fn write_mesh_svg(mesh: &Mesh, board: &Board, out: &mut impl Write) -> io::R
 /// The picture of a small mesh, triangle by triangle.
 fn detailed(mesh: &Mesh, board: &Board) -> Svg {
     let u = board.size() as f64;
-    let view = Aabb {
-        min: [0.0; 2],
-        max: [u; 2],
-    };
+    let view = square(u);
     let mut svg = Svg::new(view, DEFAULT_WIDTH_PX);
     svg.margin(6.0).background("white");
     let point = |v: u32| mesh.vertices.get(v as usize).map(|p| p.map(|c| c as f64));
