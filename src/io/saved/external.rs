@@ -405,8 +405,7 @@ impl ExternalBuild {
         let point_bytes = n * Layout::<S, T, D>::POINT as u64;
         let items_at = padded(head + point_bytes).expect("in range");
         let item_bytes = n * Layout::<S, T, D>::ITEM as u64;
-        let file = File::create(out).map_err(&fail)?;
-        let mut points = BufWriter::with_capacity(buffer, file);
+        let mut points = BufWriter::with_capacity(buffer, File::create(out).map_err(&fail)?);
         points.seek(SeekFrom::Start(head)).map_err(&fail)?;
         let second = OpenOptions::new().write(true).open(out).map_err(&fail)?;
         let mut items = BufWriter::with_capacity(buffer, second);

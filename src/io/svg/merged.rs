@@ -124,8 +124,7 @@ fn write_regions<W: Write + ?Sized>(
     board: &Board,
     view: &Aabb<f64, 2>,
 ) -> io::Result<()> {
-    let board_style = Style::solid().stroke("none").fill(BOARD_FILL);
-    open_group(o, &board_style)?;
+    open_group(o, &Style::solid().stroke("none").fill(BOARD_FILL))?;
     o.s(&svg.rect_line(view)).spill()?;
     o.s("</g>").nl()?;
     for (i, c) in board.components().iter().enumerate() {
@@ -227,8 +226,7 @@ fn shade_runs(shades: &[u8], width: usize) -> Vec<Vec<Run>> {
                 x += 1;
             }
             if shade > 0 {
-                let run = (start as u32, y as u32, (x - start) as u32);
-                runs[usize::from(shade) - 1].push(run);
+                runs[usize::from(shade) - 1].push((start as u32, y as u32, (x - start) as u32));
             }
         }
     }
