@@ -98,10 +98,8 @@ impl<const D: usize> Header<D> {
             self.depth,
             code,
             difference,
-            0,
-            0,
-            0,
         ]);
+        b.extend_from_slice(&[0; 3]);
         b.extend_from_slice(&self.item_size.to_le_bytes());
         b.extend_from_slice(&self.item_align.to_le_bytes());
         b.extend_from_slice(&0u32.to_le_bytes());
