@@ -200,11 +200,10 @@ pub fn read<S: Scalar>(input: impl Read) -> Result<Cloud<S>, XyzError> {
         }
         if layout.is_none() {
             let first: Vec<&str> = fields(text).collect();
-            // A first line of separators alone (",,") names no column.
-            let Some(head) = first.first() else {
-                return Err(XyzError::MissingColumn { name: "x" });
-            };
-            let numeric = head.parse::<f64>().is_ok();
+            // A first line of separators alone (",,") names no column: `x` is missing.
+            let numeric = first
+                .first()
+                .is_some_and(|head| head.parse::<f64>().is_ok());
             let names: Vec<String> = if numeric {
                 let name = |i: usize| ["x", "y", "z"].get(i).map(|n| n.to_string());
                 (0..first.len())
