@@ -324,12 +324,8 @@ impl Fields {
     fn push(&self, p: &raw::Point, cloud: &mut Cloud<i32>) {
         let a = &mut cloud.attributes;
         if cloud.points.is_empty() {
-            if p.gps_time.is_some() {
-                a.gps_time = Some(Vec::new());
-            }
-            if p.color.is_some() {
-                a.color = Some(Vec::new());
-            }
+            a.gps_time = p.gps_time.map(|_| Vec::new());
+            a.color = p.color.map(|_| Vec::new());
             let mut names: Vec<String> = self.names().iter().map(|s| s.to_string()).collect();
             if p.nir.is_some() {
                 names.push("nir".into());

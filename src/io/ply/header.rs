@@ -54,10 +54,9 @@ pub(super) fn read_header(reader: &mut impl BufRead) -> Result<Header, PlyError>
         if buf.last() == Some(&b'\r') {
             buf.pop();
         }
-        match String::from_utf8(buf.clone()) {
-            Ok(s) => Ok(Some(s)),
-            Err(_) => Err(error(line_no, "the line is not ASCII text")),
-        }
+        String::from_utf8(buf.clone())
+            .map(Some)
+            .map_err(|_| error(line_no, "the line is not ASCII text"))
     };
     let missing_end = |line| error(line, "the file ends before end_header");
 
