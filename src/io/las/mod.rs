@@ -327,9 +327,7 @@ impl Fields {
             a.gps_time = p.gps_time.map(|_| Vec::new());
             a.color = p.color.map(|_| Vec::new());
             let mut names: Vec<String> = self.names().iter().map(|s| s.to_string()).collect();
-            if p.nir.is_some() {
-                names.push("nir".into());
-            }
+            names.extend(p.nir.map(|_| "nir".to_string()));
             names.extend((0..self.extra_bytes).map(|i| format!("extra_byte_{i}")));
             a.extra = names
                 .into_iter()

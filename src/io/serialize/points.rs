@@ -61,14 +61,11 @@ where
         let o = PointTreeOwned::<S, T>::deserialize(d)?;
         let custom = |m: String| De::Error::custom(format!("point tree: {m}"));
         let points = flat_points::<De::Error, S, D>("point tree", o.points)?;
-        let balanced = match o.balance {
-            None => None,
-            Some((c, k)) => Some(
-                BalanceOptions::new(c)
-                    .with_max_level_difference(k)
-                    .map_err(|e| custom(e.to_string()))?,
-            ),
-        };
+        let balanced = o
+            .balance
+            .map(|(c, k)| BalanceOptions::new(c).with_max_level_difference(k))
+            .transpose()
+            .map_err(|e| custom(e.to_string()))?;
         let parts = PointTreeParts {
             tree: o.tree.into_raw::<De::Error, D>()?,
             half_lo: array("half_lo", &o.half_lo)?,
