@@ -129,13 +129,11 @@ pub fn read_poly_bytes(bytes: &[u8], size: Option<i64>) -> Result<Board, BoardEr
     let vertices = read_vertices(&mut records)?;
     let segments = read_segments(&mut records, &vertices)?;
     read_holes_and_regions(&mut records, &segments)?;
-    for (v, &degree) in segments.degree.iter().enumerate() {
-        if degree == 0 {
-            return Err(BoardError::UnusedVertex {
-                vertex: vertices.base + v as i64,
-                line: vertices.lines[v],
-            });
-        }
+    if let Some(v) = segments.degree.iter().position(|&degree| degree == 0) {
+        return Err(BoardError::UnusedVertex {
+            vertex: vertices.base + v as i64,
+            line: vertices.lines[v],
+        });
     }
     let components = loops(&vertices.points, &segments)?;
     let size = resolve_size(records.size(), size, &components)?;

@@ -63,16 +63,13 @@ impl<'a> Records<'a> {
                 "a `# size U` comment must be on a line of its own, not after data",
             ));
         }
-        match self.size {
-            Some((v, first)) if v != u => Err(parse_error(
+        // The first size is kept; a later one must agree with it.
+        match *self.size.get_or_insert((u, line.number)) {
+            (v, first) if v != u => Err(parse_error(
                 line.number,
                 format!("size {u} contradicts size {v} given on line {first}"),
             )),
-            Some(_) => Ok(()),
-            None => {
-                self.size = Some((u, line.number));
-                Ok(())
-            }
+            _ => Ok(()),
         }
     }
 }
