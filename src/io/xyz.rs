@@ -212,21 +212,17 @@ pub fn read<S: Scalar>(input: impl Read) -> Result<Cloud<S>, XyzError> {
             } else {
                 first.iter().map(|s| s.to_string()).collect()
             };
-            for (field, name) in names.iter().enumerate() {
-                if names[..field].contains(name) {
-                    return Err(XyzError::DuplicateColumn {
-                        line: line_no,
-                        field: field + 1,
-                        name: name.chars().take(32).collect(),
-                    });
-                }
-            }
-            for name in ["x", "y", "z"] {
-                if !names.iter().any(|n| n == name) {
-                    return Err(XyzError::MissingColumn { name });
-                }
-            }
             let names: Vec<&str> = names.iter().map(String::as_str).collect();
+            if let Some(field) = (0..names.len()).find(|&f| names[..f].contains(&names[f])) {
+                return Err(XyzError::DuplicateColumn {
+                    line: line_no,
+                    field: field + 1,
+                    name: names[field].chars().take(32).collect(),
+                });
+            }
+            if let Some(name) = ["x", "y", "z"].into_iter().find(|n| !names.contains(n)) {
+                return Err(XyzError::MissingColumn { name });
+            }
             let columns = Columns::new(&names);
             cloud.attributes = columns.attributes();
             values = vec![0.0; names.len()];

@@ -135,10 +135,9 @@ pub(super) fn read_header(reader: &mut impl BufRead) -> Result<Header, PlyError>
     }
     let encoding = encoding.ok_or_else(|| error(2, "no format line"))?;
     let (count, properties) = vertex.ok_or_else(|| error(current, "no vertex element"))?;
-    for name in ["x", "y", "z"] {
-        if !properties.iter().any(|(n, _)| n == name) {
-            return Err(PlyError::MissingProperty { name });
-        }
+    let has = |name: &str| properties.iter().any(|(n, _)| n == name);
+    if let Some(name) = ["x", "y", "z"].into_iter().find(|name| !has(name)) {
+        return Err(PlyError::MissingProperty { name });
     }
     Ok(Header {
         encoding,
