@@ -1,7 +1,8 @@
 //! The header of a saved point tree and the layout of the sections after it (see the format
 //! table in the module doc of [`super`]): encoded in one pass, decoded field by field with each
 //! field's byte offset, and the section layout computed with checked arithmetic so that every
-//! count is compared with the bytes available before anything is allocated.
+//! count is compared with the bytes available before anything is allocated; then each section's
+//! span for the readers, and a section written with its zero padding for the writers.
 
 use super::{SavedError, SavedScalar};
 use crate::geom::{Aabb, Cell, Connectivity, Dim};
