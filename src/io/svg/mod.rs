@@ -80,14 +80,12 @@ impl Svg {
     /// assert!(svg.contains("width=\"108\" height=\"108\"")); // a square, with the margin
     /// ```
     pub fn new(view: Aabb<f64, 2>, width_px: f64) -> Self {
-        let width = if width_px.is_finite() && width_px > 0.0 {
-            width_px
-        } else {
-            DEFAULT_WIDTH_PX
-        };
         Svg {
             view: repair_view(view),
-            width,
+            // Checked as the other lengths are: the default unless finite and positive.
+            width: Some(width_px)
+                .filter(|&w| length(w) > 0.0)
+                .unwrap_or(DEFAULT_WIDTH_PX),
             margin: DEFAULT_MARGIN_PX,
             body: String::new(),
         }
