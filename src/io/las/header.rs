@@ -248,31 +248,26 @@ fn layers(item: [u16; 2]) -> u64 {
     }
 }
 
+/// The optional LASzip items in the order LASzip writes them, each with the point formats that
+/// carry it.
+const OPTIONAL_ITEMS: [(&[u8], [u16; 2]); 6] = [
+    (&[1, 3, 4, 5], GPS_TIME),
+    (&[2, 3, 5], RGB12),
+    (&[4, 5], WAVE_PACKET13),
+    (&[7], RGB14),
+    (&[8, 10], RGBNIR14),
+    (&[9, 10], WAVE_PACKET14),
+];
+
 /// The LASzip items of a point format with `extra` extra bytes (as LASzip writes them), each
 /// with the versions the `laz` crate decodes.
 fn items_of(format: u8, extra: u16) -> (Vec<[u16; 2]>, [u16; 2]) {
     let legacy = format <= 5;
     let mut items = vec![if legacy { POINT10 } else { POINT14 }];
-    if legacy {
-        if matches!(format, 1 | 3 | 4 | 5) {
-            items.push(GPS_TIME);
-        }
-        if matches!(format, 2 | 3 | 5) {
-            items.push(RGB12);
-        }
-        if matches!(format, 4 | 5) {
-            items.push(WAVE_PACKET13);
-        }
-    } else {
-        match format {
-            7 => items.push(RGB14),
-            8 | 10 => items.push(RGBNIR14),
-            _ => {}
-        }
-        if matches!(format, 9 | 10) {
-            items.push(WAVE_PACKET14);
-        }
-    }
+    let optional = OPTIONAL_ITEMS
+        .iter()
+        .filter(|(formats, _)| formats.contains(&format));
+    items.extend(optional.map(|&(_, item)| item));
     if extra > 0 {
         items.push([if legacy { BYTE } else { BYTE14 }, extra]);
     }
