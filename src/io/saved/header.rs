@@ -70,18 +70,16 @@ pub(super) fn write_section(out: &mut impl Write, at: u64, bytes: &[u8]) -> std:
     Ok(next)
 }
 
+/// The header's balance bytes: 0 and 0 without balance, else 1 + the connectivity's place in
+/// [`Connectivity::ALL`] (face 1, edge 2, corner 3) and the level difference.
 fn balance_code(b: Option<BalanceOptions>) -> (u8, u8) {
-    match b {
-        None => (0, 0),
-        Some(o) => {
-            let c = match o.connectivity {
-                Connectivity::Face => 1,
-                Connectivity::Edge => 2,
-                Connectivity::Corner => 3,
-            };
-            (c, o.max_level_difference())
-        }
-    }
+    b.map_or((0, 0), |o| {
+        let place = Connectivity::ALL.iter().position(|&c| c == o.connectivity);
+        (
+            1 + place.expect("every connectivity") as u8,
+            o.max_level_difference(),
+        )
+    })
 }
 
 impl<const D: usize> Header<D> {
@@ -297,9 +295,7 @@ fn decode_balance(code: u8, difference: u8) -> Result<Option<BalanceOptions>, Sa
                 "0 without balance",
             ))
         }
-        1 => Connectivity::Face,
-        2 => Connectivity::Edge,
-        3 => Connectivity::Corner,
+        1..=3 => Connectivity::ALL[usize::from(code) - 1],
         _ => return Err(field("balance", 15, code, "0 to 3")),
     };
     BalanceOptions::new(connectivity)
