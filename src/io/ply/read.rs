@@ -138,14 +138,10 @@ fn parse(word: &str, kind: Kind) -> Option<f64> {
         Kind::F64 => word.parse::<f64>().ok(),
         _ => {
             let v: i64 = word.parse().ok()?;
-            let (lo, hi) = match kind {
-                Kind::I8 => (i8::MIN as i64, i8::MAX as i64),
-                Kind::U8 => (0, u8::MAX as i64),
-                Kind::I16 => (i16::MIN as i64, i16::MAX as i64),
-                Kind::U16 => (0, u16::MAX as i64),
-                Kind::I32 => (i32::MIN as i64, i32::MAX as i64),
-                _ => (0, u32::MAX as i64),
-            };
+            // The integer kind's range: its bits, one of them the sign's if it has one.
+            let signed = matches!(kind, Kind::I8 | Kind::I16 | Kind::I32);
+            let hi = (1i64 << (8 * kind.size() as u32 - u32::from(signed))) - 1;
+            let lo = if signed { -hi - 1 } else { 0 };
             (lo..=hi).contains(&v).then_some(v as f64)
         }
     }
