@@ -197,36 +197,6 @@ fn bytes_of_items<T: Pod>(items: &[T]) -> &[u8] {
     }
 }
 
-/// Where the sections are read from, in order.
-trait Source {
-    /// Fills `dst` with the next bytes.
-    fn fill(&mut self, dst: &mut [u8]) -> Result<(), SavedError>;
-}
-
-/// A byte slice, read from its start.
-struct SliceSource<'a> {
-    bytes: &'a [u8],
-    at: usize,
-}
-
-impl Source for SliceSource<'_> {
-    fn fill(&mut self, dst: &mut [u8]) -> Result<(), SavedError> {
-        // The lengths were checked against the slice (`Header::check_length`).
-        dst.copy_from_slice(&self.bytes[self.at..self.at + dst.len()]);
-        self.at += dst.len();
-        Ok(())
-    }
-}
-
-/// A reader (a file whose length was checked).
-struct ReadSource<R>(R);
-
-impl<R: Read> Source for ReadSource<R> {
-    fn fill(&mut self, dst: &mut [u8]) -> Result<(), SavedError> {
-        self.0.read_exact(dst).map_err(SavedError::Io)
-    }
-}
-
 /// Reads a tree saved by [`write_point_tree`] from `bytes`, without a rebuild: the arrays are
 /// copied into place and checked (see the module doc).
 ///
@@ -242,8 +212,8 @@ pub fn read_point_tree<S: SavedScalar, T: Pod, const D: usize>(
     bytes: &[u8],
 ) -> Result<PointTree<S, T, D>, SavedError> {
     let header = read_header::<S, T, D>(bytes, bytes.len() as u64)?;
-    let at = sections_start::<D>() as usize;
-    read_sections(header, &mut SliceSource { bytes, at })
+    // The lengths were checked against the slice (`Header::check_length`).
+    read_sections(header, &mut &bytes[sections_start::<D>() as usize..])
 }
 
 /// [`read_point_tree`] from the file at `path`, each array read straight into its place (no
@@ -264,7 +234,7 @@ pub fn read_point_tree_file<S: SavedScalar, T: Pod, const D: usize>(
     let mut head = vec![0u8; want.min(available) as usize];
     file.read_exact(&mut head).map_err(SavedError::Io)?;
     let header = read_header::<S, T, D>(&head, available)?;
-    read_sections(header, &mut ReadSource(std::io::BufReader::new(file)))
+    read_sections(header, &mut std::io::BufReader::new(file))
 }
 
 /// The header, checked, and the file's length checked against `available`.
@@ -281,10 +251,11 @@ fn read_header<S: SavedScalar, T: Pod, const D: usize>(
     Ok(header)
 }
 
-/// Reads the sections after `header` (their lengths checked) from `src`, then checks the tree.
+/// Reads the sections after `header` (their lengths checked) from `src` (a slice or a file from
+/// the first section on), then checks the tree.
 fn read_sections<S: SavedScalar, T: Pod, const D: usize>(
     header: Header<D>,
-    src: &mut impl Source,
+    src: &mut impl Read,
 ) -> Result<PointTree<S, T, D>, SavedError> {
     let n = header.points as usize;
     let slots = header.slots as usize;
@@ -320,18 +291,18 @@ fn read_sections<S: SavedScalar, T: Pod, const D: usize>(
 
 /// Reads one section, `len` values of `V`, and its padding, which must be zero; `at` is its
 /// offset.
-fn section<V: Pod>(src: &mut impl Source, at: &mut u64, len: usize) -> Result<Vec<V>, SavedError> {
+fn section<V: Pod>(src: &mut impl Read, at: &mut u64, len: usize) -> Result<Vec<V>, SavedError> {
     let mut values: Vec<V> = bytemuck::zeroed_vec(len);
     // Nothing to read for a zero-sized type (which `bytemuck` does not cast).
     let dst: &mut [u8] = match core::mem::size_of::<V>() {
         0 => &mut [],
         _ => bytemuck::cast_slice_mut(&mut values),
     };
-    src.fill(dst)?;
+    src.read_exact(dst).map_err(SavedError::Io)?;
     *at += dst.len() as u64;
     let pad = (padded(*at).expect("checked") - *at) as usize;
     let mut zeros = [0u8; ALIGN as usize];
-    src.fill(&mut zeros[..pad])?;
+    src.read_exact(&mut zeros[..pad]).map_err(SavedError::Io)?;
     if let Some(i) = zeros[..pad].iter().position(|&b| b != 0) {
         return Err(SavedError::Padding {
             offset: *at + i as u64,
