@@ -34,16 +34,11 @@ pub(super) struct Segments {
     pub(super) degree: Vec<u8>,
 }
 
-/// The vertex count line: `<#vertices> [2] [<#attributes>] [<#boundary markers>]`.
-struct VertexHeader {
-    line: usize,
-    count: usize,
-    attributes: usize,
-    markers: usize,
-}
-
-/// Reads the vertex count line.
-fn read_vertex_header(records: &mut Records<'_>) -> Result<VertexHeader, BoardError> {
+/// Reads the vertex count line `<#vertices> [2] [<#attributes>] [<#boundary markers>]`;
+/// returns its line, the count, the attribute count and the marker count.
+fn read_vertex_header(
+    records: &mut Records<'_>,
+) -> Result<(usize, usize, usize, usize), BoardError> {
     let header = records
         .expect("the vertex count line `<#vertices> [2] [<#attributes>] [<#boundary markers>]`")?;
     let line = header.number;
@@ -70,12 +65,7 @@ fn read_vertex_header(records: &mut Records<'_>) -> Result<VertexHeader, BoardEr
         .map_or(Ok(0), |f| parse_marker_count(f, line))?;
     let record = "<#vertices> <dimension> <#attributes> <#boundary markers>";
     extra_field(line, fields.next(), record)?;
-    Ok(VertexHeader {
-        line,
-        count,
-        attributes,
-        markers,
-    })
+    Ok((line, count, attributes, markers))
 }
 
 /// The line of record `i` (from 0) of a section of `count` records whose count is on line
@@ -133,8 +123,7 @@ fn add_vertex(vertices: &mut Vertices, record: &Line<'_>, i: usize) -> Result<()
 
 /// Reads the vertex section: its count line and the vertex records.
 pub(super) fn read_vertices(records: &mut Records<'_>) -> Result<Vertices, BoardError> {
-    let header = read_vertex_header(records)?;
-    let (line, attributes, markers) = (header.line, header.attributes, header.markers);
+    let (line, count, attributes, markers) = read_vertex_header(records)?;
     let wanted = format!(
         "`<id> <x> <y>` (two coordinates), then {attributes} attributes and {markers} boundary \
          markers as the header on line {line} declares"
@@ -146,10 +135,10 @@ pub(super) fn read_vertices(records: &mut Records<'_>) -> Result<Vertices, Board
         header_line: line,
         fields: 3usize.saturating_add(attributes).saturating_add(markers),
     };
-    for i in 0..header.count {
+    for i in 0..count {
         let next_id = vertices.base + i as i64;
         let shape = format!("vertex {next_id}");
-        let section = ("vertex", header.count, line);
+        let section = ("vertex", count, line);
         let record = section_record(records, section, i, (Some(next_id), &shape))?;
         check_fields(&record, attributes, markers, &wanted)?;
         add_vertex(&mut vertices, &record, i)?;
