@@ -161,11 +161,8 @@ fn read_from<R: BufRead + Seek>(input: R, limits: Limits) -> Result<ImageTree, P
     let channels = reader.output_color_type().0.samples();
     let line = reader.output_line_size(w).unwrap_or(usize::MAX) as u64;
     let row_words = 8 * (w as u64).div_ceil(64);
-    let gathered = if interlaced {
-        (w as u64).div_ceil(8) * u64::from(h)
-    } else {
-        0
-    };
+    // The 1-bit image gathered from the passes, for an interlaced image only.
+    let gathered = u64::from(interlaced) * (w as u64).div_ceil(8) * u64::from(h);
     let mut used = 0u64;
     for (what, bytes) in [
         ("one decoded row", line),
