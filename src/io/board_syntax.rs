@@ -61,11 +61,8 @@ pub(crate) struct Lines<'a> {
 impl<'a> Lines<'a> {
     /// The lines of `bytes`, skipping a leading UTF-8 byte-order mark.
     pub fn new(bytes: &'a [u8]) -> Self {
-        let position = if bytes.starts_with(b"\xEF\xBB\xBF") {
-            3
-        } else {
-            0
-        };
+        // The mark's 3 bytes, if there.
+        let position = 3 * usize::from(bytes.starts_with(b"\xEF\xBB\xBF"));
         Lines {
             bytes,
             position,

@@ -94,11 +94,9 @@ impl Columns {
     ) -> Result<(), usize> {
         let integer = |i: usize, max: f64| {
             let v = values[i];
-            if (0.0..=max).contains(&v) && v.fract() == 0.0 {
-                Ok(v)
-            } else {
-                Err(i)
-            }
+            ((0.0..=max).contains(&v) && v.fract() == 0.0)
+                .then_some(v)
+                .ok_or(i)
         };
         let mut position = [S::zero(); 3];
         let mut color = [0u16; 3];

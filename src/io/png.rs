@@ -131,11 +131,8 @@ fn threshold(data: &[u8], channels: usize, words: &mut [u64]) {
             _ => {
                 let lum =
                     0.2126 * f64::from(p[0]) + 0.7152 * f64::from(p[1]) + 0.0722 * f64::from(p[2]);
-                let alpha = if channels == 4 {
-                    f64::from(p[3])
-                } else {
-                    255.0
-                };
+                // Opaque without an alpha channel (a pixel of 3 samples).
+                let alpha = p.get(3).map_or(255.0, |&a| f64::from(a));
                 over_white(lum, alpha) < 128.0
             }
         };
