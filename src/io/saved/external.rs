@@ -255,13 +255,9 @@ impl ExternalBuild {
             }
         }
         let (geometry, domain) = crate::points::settle(None, bounds, n as usize);
-        let dir = match &self.temp_dir {
-            Some(d) => d.clone(),
-            None => match out.parent() {
-                Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-                _ => PathBuf::from("."),
-            },
-        };
+        let beside = out.parent().filter(|p| !p.as_os_str().is_empty());
+        let beside = beside.map_or_else(|| PathBuf::from("."), Path::to_path_buf);
+        let dir = self.temp_dir.clone().unwrap_or(beside);
         let stem = out
             .file_name()
             .map(|s| s.to_string_lossy().into_owned())
