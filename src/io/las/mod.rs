@@ -216,7 +216,12 @@ pub fn read_from<R: Read + Seek + Send + Sync + 'static>(
     let fields = Fields::new(&format);
     let mut cloud = Cloud {
         points: Vec::new(),
-        attributes: fields.attributes(),
+        // Every format's columns; the optional ones come with the first record.
+        attributes: Attributes {
+            intensity: Some(Vec::new()),
+            classification: Some(Vec::new()),
+            ..Attributes::default()
+        },
         frame: Frame {
             scale: [t.x.scale, t.y.scale, t.z.scale],
             offset: [t.x.offset, t.y.offset, t.z.offset],
@@ -309,14 +314,6 @@ impl Fields {
             &EXTENDED
         } else {
             &LEGACY
-        }
-    }
-
-    fn attributes(&self) -> Attributes {
-        Attributes {
-            intensity: Some(Vec::new()),
-            classification: Some(Vec::new()),
-            ..Attributes::default()
         }
     }
 
