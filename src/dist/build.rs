@@ -152,7 +152,7 @@ impl<S: Scalar + Pod, const D: usize> DistPointTreeBuilder<S, D> {
             global.add_box(&box_from_words(&w[1..]));
         }
         let (geometry, domain) = settle(root, global, total as usize);
-        let offset: u64 = counts[..rank].iter().sum();
+        let offset = counts[..rank].iter().sum::<u64>() as usize;
         clock.lap("agree");
 
         let bits = index_bits(total as usize);
@@ -160,9 +160,7 @@ impl<S: Scalar + Pod, const D: usize> DistPointTreeBuilder<S, D> {
         geometry.keys_into(
             n,
             |i| &points[i],
-            |i, key| {
-                packed.push(pack(key, offset as usize + i, bits));
-            },
+            |i, key| packed.push(pack(key, offset + i, bits)),
         );
         let splitters = splitters(&comm, &packed, bits, &counts);
         clock.lap("keys");
@@ -178,7 +176,7 @@ impl<S: Scalar + Pod, const D: usize> DistPointTreeBuilder<S, D> {
         let mut at = comm::starts(&send_counts);
         for (i, &p) in packed.iter().enumerate() {
             let d = dest(p);
-            words.writer(at[d]).put(&p).point(&points[i]).put(&items[i]);
+            words.writer(at[d]).put(&p).put(&points[i]).put(&items[i]);
             at[d] += 1;
         }
         drop((points, items, packed));
@@ -202,7 +200,7 @@ impl<S: Scalar + Pod, const D: usize> DistPointTreeBuilder<S, D> {
             }
             let mut r = recv.reader((k & mask) as usize);
             let _: u64 = r.get();
-            points.push(r.point::<S, D>());
+            points.push(r.get::<[S; D]>());
             items.push(r.get::<T>());
         }
         drop(recv);
@@ -276,12 +274,12 @@ fn agree_points<S: Scalar + Pod, const D: usize>(
     let mut w = Words::with_records(1, 8 + point_bytes::<S, D>());
     if let Err(e) = scan {
         let index = point_index(e);
-        w.writer(0).put(&(index as u64)).point(&points[index]);
+        w.writer(0).put(&(index as u64)).put(&points[index]);
     }
     comm::broadcast(comm, rank, &mut w.words);
     let mut r = w.reader(0);
     let index = r.get::<u64>() as usize;
-    let point: [S; D] = r.point();
+    let point: [S; D] = r.get();
     let error = Error::check_input(&point, root, index)
         .expect_err("the point check is the same on every rank");
     Err(DistError::Input { rank, error })
@@ -367,7 +365,7 @@ fn even_out<S: Scalar + Pod, T: Pod, const D: usize>(
     let mut w = 0;
     for r in (0..ranks).filter(|&r| r != rank) {
         for i in part(r) {
-            words.writer(w).point(&points[i]).put(&items[i]);
+            words.writer(w).put(&points[i]).put(&items[i]);
             w += 1;
         }
         counts[r] = part(r).len();
@@ -379,7 +377,7 @@ fn even_out<S: Scalar + Pod, T: Pod, const D: usize>(
     let take = |js: core::ops::Range<usize>, points: &mut Vec<[S; D]>, items: &mut Vec<T>| {
         for j in js {
             let mut r = recv.reader(j);
-            points.push(r.point::<S, D>());
+            points.push(r.get::<[S; D]>());
             items.push(r.get::<T>());
         }
     };

@@ -186,21 +186,12 @@ pub(crate) struct Writer<'a> {
 }
 
 impl Writer<'_> {
-    /// Appends `value`'s bytes.
+    /// Appends `value`'s bytes (a point's: its coordinates in turn).
     #[inline]
     pub(crate) fn put<P: Pod>(&mut self, value: &P) -> &mut Self {
         let b = bytemuck::bytes_of(value);
         self.bytes[self.at..self.at + b.len()].copy_from_slice(b);
         self.at += b.len();
-        self
-    }
-
-    /// Appends a point, coordinate by coordinate.
-    #[inline]
-    pub(crate) fn point<S: Pod, const D: usize>(&mut self, p: &[S; D]) -> &mut Self {
-        for c in p {
-            self.put(c);
-        }
         self
     }
 }
@@ -212,19 +203,13 @@ pub(crate) struct Reader<'a> {
 }
 
 impl Reader<'_> {
-    /// The next field.
+    /// The next field (a point: its coordinates in turn).
     #[inline]
     pub(crate) fn get<P: Pod>(&mut self) -> P {
         let n = core::mem::size_of::<P>();
         let v = bytemuck::pod_read_unaligned(&self.bytes[self.at..self.at + n]);
         self.at += n;
         v
-    }
-
-    /// The next point.
-    #[inline]
-    pub(crate) fn point<S: Pod, const D: usize>(&mut self) -> [S; D] {
-        core::array::from_fn(|_| self.get())
     }
 }
 

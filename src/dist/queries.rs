@@ -60,9 +60,9 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
             bad,
             point_bytes::<S, D>(),
             |i, w| {
-                w.point(&queries[i]);
+                w.put(&queries[i]);
             },
-            |r| query_point(&r.point::<S, D>()).expect_err("refused on its rank"),
+            |r| query_point(&r.get::<[S; D]>()).expect_err("refused on its rank"),
         )?;
         let q64: Vec<[f64; D]> = queries
             .iter()
@@ -74,14 +74,14 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
         let ranks = self.partition.nonempty_ranks();
         let bytes = 16 + point_bytes::<S, D>();
         let write = |q: usize, radius: f64, w: &mut Writer<'_>| {
-            w.put(&(k as u64)).put(&radius).point(&queries[q]);
+            w.put(&(k as u64)).put(&radius).put(&queries[q]);
         };
         let search = |q: &[f64; D], k: usize, max: f64, hits: &mut Vec<(f64, usize)>| {
             hits.extend(k_nearest(self.local.index(), q, k, max, &SquaredEuclidean));
         };
         let answer = |r: &mut Reader<'_>, hits: &mut Vec<(f64, usize)>| {
             let (k, max) = (r.get::<u64>() as usize, r.get::<f64>());
-            let p: [S; D] = r.point();
+            let p: [S; D] = r.get();
             // checked on its rank; a NaN bound is never sent
             if let Ok(q) = query_point(&p)
                 && !max.is_nan()
@@ -155,11 +155,11 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
             2 * point_bytes::<S, D>(),
             |b| query_box(b).and_then(|f| f.validate().map(|()| f)),
             |b, w| {
-                w.point(&b.min).point(&b.max);
+                w.put(&b.min).put(&b.max);
             },
             |r| Aabb {
-                min: r.point(),
-                max: r.point(),
+                min: r.get(),
+                max: r.get(),
             },
             |_| None,
         )
@@ -179,11 +179,11 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
             8 + point_bytes::<S, D>(),
             |(c, r)| Ball::new(query_point(c)?, *r),
             |b, w| {
-                w.put(&b.1).point(&b.0);
+                w.put(&b.1).put(&b.0);
             },
             |r| {
                 let radius = r.get::<f64>();
-                (r.point(), radius)
+                (r.get(), radius)
             },
             |b| Some(b.center),
         )
@@ -342,7 +342,7 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
                 .put(&q)
                 .put(&(first + s as u64))
                 .put(&d)
-                .point(&points[s])
+                .put(&points[s])
                 .put(&items[s]);
         }
         drop((replies, incoming));
@@ -365,7 +365,7 @@ impl<S: Scalar + Pod, T: Pod, const D: usize> DistPointTree<S, T, D> {
             found[q].push(DistNeighbor {
                 slot: r.get(),
                 distance: r.get(),
-                point: r.point(),
+                point: r.get(),
                 item: r.get(),
             });
         }
