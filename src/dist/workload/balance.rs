@@ -3,7 +3,7 @@
 //! layer and a serial check; [`BalanceReport`] holds what rank 0 prints.
 
 use super::fractal::{fractal_part, fractal_tree, uniform_cells};
-use super::{max_over, median, phase_list, sum_over, WorkloadError};
+use super::{max_over, median, phase_list, slowest, sum_over, timed, WorkloadError};
 use crate::dist::{DistError, DistForest, Partition};
 use crate::geom::Cell;
 use crate::Connectivity;
@@ -140,28 +140,24 @@ impl BalanceWorkload {
 
     fn run_in<const D: usize>(&self, comm: &impl Communicator) -> Result<BalanceReport, DistError> {
         let (rank, size) = (comm.rank() as usize, comm.size() as usize);
-        comm.barrier();
-        let t = mpi::time();
-        let cells = Partition::uniform(uniform_cells::<D>(self.level), size);
-        let part = fractal_part::<D>(self.level, cells[rank], cells[rank + 1]);
-        let refined = DistForest::new(comm, part)?;
-        let refine_s = max_over(comm, mpi::time() - t);
+        let (refined, refine_s) = timed(comm, || {
+            let cells = Partition::uniform(uniform_cells::<D>(self.level), size);
+            DistForest::new(
+                comm,
+                fractal_part::<D>(self.level, cells[rank], cells[rank + 1]),
+            )
+        });
+        let refined = refined?;
         let mut totals = Vec::new();
         let mut runs: Vec<Vec<(&'static str, f64)>> = Vec::new();
         let mut forest = refined.clone();
         let mut stats = None;
         for _ in 0..self.reps {
             forest = refined.clone();
-            comm.barrier();
-            let t = mpi::time();
-            let s = forest.balance(comm, self.connect)?;
-            totals.push(max_over(comm, mpi::time() - t));
-            runs.push(
-                s.phases
-                    .iter()
-                    .map(|&(n, x)| (n, max_over(comm, x)))
-                    .collect(),
-            );
+            let (s, total) = timed(comm, || forest.balance(comm, self.connect));
+            let s = s?;
+            totals.push(total);
+            runs.push(slowest(comm, &s.phases));
             stats = Some(s);
         }
         let stats = stats.expect("validated: at least one run");
@@ -173,10 +169,8 @@ impl BalanceWorkload {
         let most = max_over(comm, mine);
         let checksum = checksum(comm, forest.leaves());
         let ghost = if self.ghost {
-            comm.barrier();
-            let t = mpi::time();
-            let layer = forest.ghost(comm, self.connect)?;
-            let ghost_s = max_over(comm, mpi::time() - t);
+            let (layer, ghost_s) = timed(comm, || forest.ghost(comm, self.connect));
+            let layer = layer?;
             Some((
                 sum_over(comm, layer.ghosts().len() as u64),
                 sum_over(comm, layer.mirrors().len() as u64),

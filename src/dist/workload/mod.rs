@@ -114,6 +114,22 @@ fn sum_over(comm: &impl Communicator, x: u64) -> u64 {
     over(comm, x, SystemOperation::sum())
 }
 
+/// `work`'s value, and its seconds on the slowest rank, timed from a barrier (collective).
+fn timed<T>(comm: &impl Communicator, work: impl FnOnce() -> T) -> (T, f64) {
+    comm.barrier();
+    let t = mpi::time();
+    let value = work();
+    (value, max_over(comm, mpi::time() - t))
+}
+
+/// Each phase's seconds on the slowest rank (collective).
+fn slowest(comm: &impl Communicator, phases: &[(&'static str, f64)]) -> Vec<(&'static str, f64)> {
+    phases
+        .iter()
+        .map(|&(n, s)| (n, max_over(comm, s)))
+        .collect()
+}
+
 /// The median of `v` (the upper one of an even count); 0 for none.
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -122,9 +138,6 @@ fn median(mut v: Vec<f64>) -> f64 {
 
 /// `phases` as `name seconds` joined by commas, with `digits` decimals.
 fn phase_list(phases: &[(&'static str, f64)], digits: usize) -> String {
-    let list: Vec<String> = phases
-        .iter()
-        .map(|(n, s)| format!("{n} {s:.digits$}"))
-        .collect();
-    list.join(", ")
+    let list = phases.iter().map(|(n, s)| format!("{n} {s:.digits$}"));
+    list.collect::<Vec<_>>().join(", ")
 }

@@ -4,7 +4,7 @@
 //! and the checksums are the same at every rank count. [`PointsReport`] holds what rank 0
 //! prints.
 
-use super::{max_over, over, phase_list, sum_over, WorkloadError};
+use super::{over, phase_list, slowest, sum_over, timed, WorkloadError};
 use crate::dist::{DistError, DistPointTree, Partition, MAX_TOTAL};
 use crate::query::PointSet;
 use mpi::collective::SystemOperation;
@@ -128,25 +128,17 @@ impl PointsWorkload {
             let queries: Vec<[f64; 2]> = (qs[rank]..qs[rank + 1])
                 .map(|j| point(j + (1 << 50), clustered))
                 .collect();
-            comm.barrier();
-            let t0 = mpi::time();
-            let tree = DistPointTree::builder().build_from_vec(comm, entries)?;
-            let build_s = max_over(comm, mpi::time() - t0);
-            let phases = tree
-                .build_phases()
-                .iter()
-                .map(|&(name, s)| (name, max_over(comm, s)))
-                .collect();
+            let (tree, build_s) = timed(comm, || {
+                DistPointTree::builder().build_from_vec(comm, entries)
+            });
+            let tree = tree?;
+            let phases = slowest(comm, tree.build_phases());
             let first = tree.first_slot();
-            let mut sum = 0u64;
-            for (s, item) in tree.local().items().iter().enumerate() {
-                sum ^= mix((first + s as u64) ^ mix(*item));
-            }
+            let items = tree.local().items().iter().enumerate();
+            let sum = items.fold(0, |x, (s, item)| x ^ mix((first + s as u64) ^ mix(*item)));
             let build_sum = over(comm, sum, SystemOperation::bitwise_xor());
-            comm.barrier();
-            let t1 = mpi::time();
-            let answers = tree.k_nearest_batch(&queries, self.k)?;
-            let knn_s = max_over(comm, mpi::time() - t1);
+            let (answers, knn_s) = timed(comm, || tree.k_nearest_batch(&queries, self.k));
+            let answers = answers?;
             let mut sum = 0u64;
             let mut found = 0u64;
             for (j, a) in answers.iter().enumerate() {
