@@ -45,10 +45,7 @@ impl KeyRanges {
 
     /// The keys rank `r` owns (empty for an empty rank).
     pub(crate) fn of(&self, r: usize) -> (u128, u128) {
-        match self.rank.binary_search(&r) {
-            Ok(i) => (self.begin[i], self.end[i]),
-            Err(_) => (0, 0),
-        }
+        (self.rank.binary_search(&r)).map_or((0, 0), |i| (self.begin[i], self.end[i]))
     }
 
     /// Calls `visit` with every rank owning a key in `lo..hi`, in rank order.
@@ -125,11 +122,9 @@ pub(crate) fn exchange_cells<const D: usize>(
     cells: &[Cell<D>],
     sends: &[Vec<usize>],
 ) -> Result<(Vec<Cell<D>>, Vec<usize>), DistError> {
-    let mut words = Vec::with_capacity(2 * sends.iter().map(Vec::len).sum::<usize>());
-    for &i in sends.iter().flatten() {
-        words.push(cells[i].aligned_key());
-        words.push(cells[i].level() as u64);
-    }
+    let words: Vec<u64> = (sends.iter().flatten())
+        .flat_map(|&i| [cells[i].aligned_key(), cells[i].level() as u64])
+        .collect();
     let counts: Vec<usize> = sends.iter().map(|c| 2 * c.len()).collect();
     let (recv, recv_counts) = comm::exchange(comm, &words, &counts)?;
     let cells = recv

@@ -147,15 +147,15 @@ fn touches_any<const D: usize>(
     directions: &[Direction],
     connectivity: Connectivity,
 ) -> bool {
-    directions.iter().any(|&d| {
-        let Some(n) = cell.neighbor(d) else {
-            return false;
-        };
-        let (lo, hi) = span(&n);
-        let start = cells.partition_point(|c| span(c).1 <= lo);
-        cells[start..]
-            .iter()
-            .take_while(|c| (c.aligned_key() as u128) < hi)
-            .any(|c| cell.contact(c).is_some_and(|k| connectivity.allows(k)))
-    })
+    directions
+        .iter()
+        .filter_map(|&d| cell.neighbor(d))
+        .any(|n| {
+            let (lo, hi) = span(&n);
+            let start = cells.partition_point(|c| span(c).1 <= lo);
+            cells[start..]
+                .iter()
+                .take_while(|c| (c.aligned_key() as u128) < hi)
+                .any(|c| cell.contact(c).is_some_and(|k| connectivity.allows(k)))
+        })
 }
