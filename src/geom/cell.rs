@@ -90,10 +90,7 @@ impl<const D: usize> Cell<D> {
     /// The parent cell; `None` for the root.
     #[inline]
     pub fn parent(&self) -> Option<Self> {
-        (self.level > 0).then(|| Cell {
-            level: self.level - 1,
-            coords: self.coords.map(|c| c >> 1),
-        })
+        (self.level > 0).then(|| self.ancestor(self.level - 1))
     }
 
     /// The ancestor at `level` (the cell itself if `level` is its own).
@@ -113,9 +110,7 @@ impl<const D: usize> Cell<D> {
     /// Which child of its parent the cell is (0 for the root).
     #[inline]
     pub fn child_index(&self) -> usize {
-        if self.level == 0 {
-            return 0;
-        }
+        // the root's coordinates are all 0
         self.coords
             .iter()
             .enumerate()

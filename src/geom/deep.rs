@@ -66,10 +66,7 @@ pub fn common_level<const D: usize>(a: &DeepKey<D>, b: &DeepKey<D>) -> u8 {
 /// The bits of a coordinate that a cell at `level` fixes.
 #[inline]
 fn mask(level: u8) -> u64 {
-    match level {
-        0 => 0,
-        l => u64::MAX << (64 - l as u32),
-    }
+    u64::MAX.checked_shl(64 - u32::from(level)).unwrap_or(0)
 }
 
 /// A dyadic cell of a 64-level tree: at `level` l the root cube is cut into 2^l parts along each
@@ -159,10 +156,8 @@ impl<const D: usize> DeepCell<D> {
     /// The coordinates at the cell's own level, each in `0..2^level`.
     #[inline]
     pub fn coords(&self) -> [u64; D] {
-        match self.level {
-            0 => [0; D],
-            l => self.anchor.map(|c| c >> (64 - l)),
-        }
+        let shift = 64 - u32::from(self.level);
+        self.anchor.map(|c| c.checked_shr(shift).unwrap_or(0))
     }
 
     /// `true` when the cell holds the finest cell `key`.
@@ -223,10 +218,7 @@ impl<const D: usize> DeepCell<D> {
     /// Which child of its parent the cell is (0 for the root).
     #[inline]
     pub fn child_index(&self) -> usize {
-        match self.parent() {
-            Some(p) => p.child_digit(&self.anchor),
-            None => 0,
-        }
+        self.parent().map_or(0, |p| p.child_digit(&self.anchor))
     }
 
     /// The [`Cell`] of this cell, or of its ancestor at [`Cell::MAX_LEVEL`] when it is deeper:
