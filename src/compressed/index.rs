@@ -187,11 +187,7 @@ impl<S: Scalar, const D: usize> CompressedIndex<S, D> {
         let mut slots = Vec::with_capacity(self.len());
         for &v in &order {
             let start = slots.len() as u32;
-            let mut s = t.node(v).head;
-            while s != NIL {
-                slots.push(s);
-                s = self.next[s as usize];
-            }
+            slots.extend(self.leaf_slots(v).map(|s| s as u32));
             runs.push((start, slots.len() as u32));
             boxes.push(self.geometry.deep_cell_box(&t.node(v).cell));
             let first = children.len() as u32;
@@ -276,7 +272,7 @@ impl<S: Scalar, const D: usize> CompressedIndex<S, D> {
         }
     }
 
-    /// The slots of `leaf`, in list order.
+    /// The slots of `leaf`, in list order (none for an inner node).
     pub(crate) fn leaf_slots(&self, leaf: u32) -> impl Iterator<Item = usize> + '_ {
         let mut s = self.topology.node(leaf).head;
         core::iter::from_fn(move || {

@@ -131,10 +131,7 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
 
     /// Level `i` (0 is the base's tree).
     fn level(&self, i: usize) -> &Topology<D> {
-        match i {
-            0 => &self.base.index.topology,
-            _ => &self.levels[i - 1],
-        }
+        (i.checked_sub(1)).map_or(&self.base.index.topology, |i| &self.levels[i])
     }
 
     /// The seed the sample is drawn with ([`SkipQuadtree::with_seed`]).

@@ -114,16 +114,12 @@ impl<const D: usize> Topology<D> {
     }
 
     fn alloc(&mut self, node: Node<D>) -> u32 {
-        match self.free.pop() {
-            Some(id) => {
-                self.nodes[id as usize] = node;
-                id
-            }
-            None => {
-                self.nodes.push(node);
-                (self.nodes.len() - 1) as u32
-            }
-        }
+        let Some(id) = self.free.pop() else {
+            self.nodes.push(node);
+            return (self.nodes.len() - 1) as u32;
+        };
+        self.nodes[id as usize] = node;
+        id
     }
 
     fn release(&mut self, v: u32) {
@@ -290,11 +286,7 @@ impl<const D: usize> Topology<D> {
     pub fn pre_order(&self) -> PreOrder<'_, D> {
         PreOrder {
             topology: self,
-            stack: if self.is_empty() {
-                SmallVec::new()
-            } else {
-                smallvec::smallvec![0]
-            },
+            stack: (!self.is_empty()).then_some(0).into_iter().collect(),
         }
     }
 

@@ -24,8 +24,7 @@ impl PointLocator {
         split_edges: bool,
     ) -> Result<Self, SubdivisionError> {
         let v = subdivision.vertices();
-        let mut bounds = Aabb::empty();
-        v.iter().for_each(|p| bounds.add_point(p));
+        let mut bounds = Aabb::around(v);
         if v.is_empty() {
             bounds = Aabb {
                 min: [0.0; 2],
