@@ -125,8 +125,7 @@ impl<S: Scalar, T, const D: usize> PointTree<S, T, D> {
         let mut flags = kept.iter();
         self.items
             .retain(|_| *flags.next().expect("one flag per item"));
-        let geometry = self.geometry;
-        self.recut(|points, i, _| geometry.scalar_key(&points[i]));
+        self.rebuild_canonical();
     }
 
     /// Drops every node (and any balance refinement) and cuts the stored run, which is in Morton

@@ -204,12 +204,8 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
         &self,
         entries: Vec<([S; D], T)>,
     ) -> Result<PointTree<S, T, D>, Error> {
-        let mut points = Vec::with_capacity(entries.len());
-        let mut items: Vec<Option<T>> = Vec::with_capacity(entries.len());
-        for (p, item) in entries {
-            points.push(p);
-            items.push(Some(item));
-        }
+        let (points, mut items): (Vec<[S; D]>, Vec<Option<T>>) =
+            entries.into_iter().map(|(p, item)| (p, Some(item))).unzip();
         self.build_with(
             points.len(),
             |i| &points[i],
@@ -328,10 +324,9 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
         if n >= u32::MAX as usize {
             return Err(Error::TooManyPoints { len: n });
         }
-        match &self.root {
-            Some(root) => Ok(Some(Aabb::new(root.min, root.max)?.to_exact_f64()?)),
-            None => Ok(None),
-        }
+        (self.root.as_ref())
+            .map(|root| Ok(Aabb::new(root.min, root.max)?.to_exact_f64()?))
+            .transpose()
     }
 
     /// Checks the points with indices in `range` (finite, inside `root` when given) and returns
@@ -412,10 +407,7 @@ pub(crate) fn order_by_full_keys<S: Scalar, T, const D: usize>(
                 .count();
         if points[start + 1..end].iter().any(|p| *p != points[start]) {
             let mut order: Vec<(u64, u64, usize)> = (start..end)
-                .map(|i| {
-                    let key = geometry.scalar_key(&points[i]);
-                    (key, packed[i], i)
-                })
+                .map(|i| (geometry.scalar_key(&points[i]), packed[i], i))
                 .collect();
             order.sort_unstable();
             // Old position `order[j].2` goes to `j`: move each along its cycle by swaps.
@@ -476,9 +468,7 @@ pub(crate) fn settle<const D: usize>(
             };
             let geometry = RootGeometry::enclosing(&bounds);
             let mut domain = geometry.root_box();
-            for x in &mut domain.max {
-                *x = x.min(f64::MAX);
-            }
+            domain.max = domain.max.map(|x| x.min(f64::MAX));
             (geometry, domain)
         }
     }

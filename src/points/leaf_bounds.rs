@@ -134,10 +134,7 @@ fn first_bad<S: Scalar, const D: usize>(
     leaves.iter().find_map(|leaf| {
         let (lo, hi) = cell_bounds(geometry, domain, &leaf.cell);
         let run = &points[leaf.start as usize..leaf.end as usize];
-        if all_within(run, &lo, &hi, exact) {
-            return None;
-        }
-        Some(explain(domain, leaf, run, &lo, &hi))
+        (!all_within(run, &lo, &hi, exact)).then(|| explain(domain, leaf, run, &lo, &hi))
     })
 }
 

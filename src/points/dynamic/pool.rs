@@ -29,6 +29,11 @@ impl<S: Copy + Default, const D: usize> Pool<S, D> {
     /// A pool holding `points` (slots `0..n`) in one run: the layout of a fresh build.
     pub(super) fn dense(points: Vec<[S; D]>) -> Self {
         let slots = (0..points.len() as u32).collect();
+        Self::new(points, slots)
+    }
+
+    /// A pool of these entries, no space free.
+    fn new(points: Vec<[S; D]>, slots: Vec<u32>) -> Self {
         Pool {
             points,
             slots,
@@ -102,35 +107,20 @@ impl<S: Copy + Default, const D: usize> Pool<S, D> {
         for (p, _) in points.iter_mut().zip(live).filter(|&(_, &l)| !l) {
             *p = filler;
         }
-        let mut pool = Pool {
-            points,
-            slots,
-            free: Vec::new(),
-            free_len: 0,
-        };
-        let mut e = 0;
-        while e < owned.len() {
-            if owned[e] {
-                e += 1;
-                continue;
+        let mut pool = Self::new(points, slots);
+        let mut start = 0;
+        for run in owned.chunk_by(|a, b| a == b) {
+            if !run[0] {
+                pool.free(start as u32, run.len() as u32);
             }
-            let start = e;
-            while e < owned.len() && !owned[e] {
-                e += 1;
-            }
-            pool.free(start as u32, (e - start) as u32);
+            start += run.len();
         }
         pool
     }
 
     /// An empty pool with room for `n` entries.
     pub(super) fn with_capacity(n: usize) -> Self {
-        Pool {
-            points: Vec::with_capacity(n),
-            slots: Vec::with_capacity(n),
-            free: Vec::new(),
-            free_len: 0,
-        }
+        Self::new(Vec::with_capacity(n), Vec::with_capacity(n))
     }
 
     /// Bytes of heap memory held.
