@@ -428,21 +428,20 @@ impl<const D: usize> RegionTree<D> {
 /// `Ok` when a bitmap (or a row) of `found` values has the `expected` length, else
 /// [`ImageError::BitmapLength`] naming both.
 pub(super) fn check_length(expected: usize, found: usize) -> Result<(), ImageError> {
-    if found != expected {
-        return Err(ImageError::BitmapLength { expected, found });
-    }
-    Ok(())
+    (found == expected)
+        .then_some(())
+        .ok_or(ImageError::BitmapLength { expected, found })
 }
 
-fn pixel_count<const D: usize>(extent: [u32; D]) -> usize {
+/// The number of pixels of an image of this extent.
+pub(super) fn pixel_count<const D: usize>(extent: [u32; D]) -> usize {
     extent.iter().map(|&e| e as usize).product()
 }
 
+/// The index of pixel `p` in row-major order (axis 0 varying fastest).
 #[inline]
-fn row_major<const D: usize>(p: [u32; D], extent: [u32; D]) -> usize {
-    let mut index = 0;
-    for a in (0..D).rev() {
-        index = index * extent[a] as usize + p[a] as usize;
-    }
-    index
+pub(super) fn row_major<const D: usize>(p: [u32; D], extent: [u32; D]) -> usize {
+    (0..D)
+        .rev()
+        .fold(0, |index, a| index * extent[a] as usize + p[a] as usize)
 }

@@ -1,6 +1,7 @@
 //! The leaves of a region tree as cells ([`Blocks`], in pre-order = Morton order), and the
 //! conversions back to dense bitmaps, O(pixels + nodes): each black leaf fills its block.
 
+use super::build::{pixel_count, row_major};
 use super::{RegionTree, BLACK, INTERNAL};
 use smallvec::SmallVec;
 
@@ -103,11 +104,7 @@ impl<const D: usize> RegionTree<D> {
             // odometer over axes 1..D
             let mut p = lo;
             loop {
-                let mut index = 0;
-                for a in (0..D).rev() {
-                    index = index * ext[a] + p[a];
-                }
-                fill(index, run);
+                fill(row_major(p.map(|x| x as u32), self.extent), run);
                 let mut a = 1;
                 while a < D {
                     p[a] += 1;
@@ -136,8 +133,7 @@ impl<const D: usize> RegionTree<D> {
     /// assert_eq!(t.to_bools(), bits);
     /// ```
     pub fn to_bools(&self) -> Vec<bool> {
-        let n = self.extent.iter().map(|&e| e as usize).product();
-        let mut out = vec![false; n];
+        let mut out = vec![false; pixel_count(self.extent)];
         self.black_runs(|i, run| out[i..i + run].fill(true));
         out
     }
@@ -154,8 +150,7 @@ impl<const D: usize> RegionTree<D> {
     /// assert_eq!(t.to_packed(), vec![0x3ff, 0]);
     /// ```
     pub fn to_packed(&self) -> Vec<u64> {
-        let n: usize = self.extent.iter().map(|&e| e as usize).product();
-        let mut out = vec![0u64; n.div_ceil(64)];
+        let mut out = vec![0u64; pixel_count(self.extent).div_ceil(64)];
         self.black_runs(|i, run| set_bits(&mut out, i, i + run));
         out
     }

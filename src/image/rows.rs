@@ -73,11 +73,7 @@ struct Subtrees<'a> {
 
 impl<'a> Subtrees<'a> {
     fn take(&mut self) -> &'a [u8] {
-        let start = if self.next == 0 {
-            0
-        } else {
-            self.band.ends[self.next - 1]
-        };
+        let start = self.next.checked_sub(1).map_or(0, |i| self.band.ends[i]);
         let end = self.band.ends[self.next];
         self.next += 1;
         &self.band.nodes[start..end]
