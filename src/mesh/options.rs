@@ -212,10 +212,7 @@ impl MeshOptions {
     pub fn generate(&self, board: &Board) -> Result<MeshOutcome, OptionsError> {
         let unit = match self.settings.grid_unit {
             None => board.grid_unit(),
-            Some(u) => {
-                check_unit(board, u)?;
-                u
-            }
+            Some(u) => check_unit(board, u)?,
         };
         let limit = |option: &'static str, size: Option<i64>| match size {
             None => Ok(i64::MAX),
@@ -242,8 +239,8 @@ impl MeshOptions {
     }
 }
 
-/// Checks a grid unit given by the user against the board.
-fn check_unit(board: &Board, unit: i64) -> Result<(), OptionsError> {
+/// Checks a grid unit given by the user against the board, and hands it back.
+fn check_unit(board: &Board, unit: i64) -> Result<i64, OptionsError> {
     if unit <= 0 || unit & (unit - 1) != 0 {
         return Err(OptionsError::GridUnitNotPowerOfTwo { unit });
     }
@@ -261,7 +258,7 @@ fn check_unit(board: &Board, unit: i64) -> Result<(), OptionsError> {
             });
         }
     }
-    Ok(())
+    Ok(unit)
 }
 
 /// Mesher settings refused by [`MeshOptions::generate`], each naming the offending value.

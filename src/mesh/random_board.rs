@@ -270,20 +270,16 @@ pub fn try_random_board(seed: u64, size: i64, count: usize) -> Result<Board, Ran
         let e = rng.range(1 << l, 1 << (l + 1));
         let local = random_shape(&mut rng, e);
         let (shape, hi) = random_pose(&mut rng, &local);
-        if hi[0] > size || hi[1] > size {
+        // Rejected when it does not fit the board or meets a placed one.
+        let fits = hi[0] <= size && hi[1] <= size;
+        let at = fits.then(|| [rng.range(0, size - hi[0]), rng.range(0, size - hi[1])]);
+        let Some(at) = at.filter(|at| !placed.meets(*at, [at[0] + hi[0], at[1] + hi[1]])) else {
             rejections += 1;
             in_a_row += 1;
             continue;
-        }
-        let at = [rng.range(0, size - hi[0]), rng.range(0, size - hi[1])];
-        let (lo, hi) = (at, [at[0] + hi[0], at[1] + hi[1]]);
-        if placed.meets(lo, hi) {
-            rejections += 1;
-            in_a_row += 1;
-            continue;
-        }
+        };
         in_a_row = 0;
-        placed.insert(lo, hi);
+        placed.insert(at, [at[0] + hi[0], at[1] + hi[1]]);
         outlines.push(ccw(shape
             .iter()
             .map(|p| [p[0] + at[0], p[1] + at[1]])

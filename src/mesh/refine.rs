@@ -123,17 +123,9 @@ fn place(p: Point, (x0, y0, s): (i64, i64, i64)) -> u8 {
     } else if on(p[0], x0) && on(p[1], y0) {
         4
     } else if s >= 2 && p[0] == x0 + h && on(p[1], y0) {
-        if p[1] == y0 {
-            0
-        } else {
-            2
-        }
+        2 * u8::from(p[1] != y0) // S or N
     } else if s >= 2 && p[1] == y0 + h && on(p[0], x0) {
-        if p[0] == x0 {
-            3
-        } else {
-            1
-        }
+        3 - 2 * u8::from(p[0] != x0) // W or E
     } else {
         5
     }

@@ -204,15 +204,9 @@ impl<'a> Numbering<'a> {
         };
         let corners = [[x, y], [x + s, y], [x + s, y + s], [x, y + s]];
         let mid_points = [[x + h, y], [x + s, y + h], [x + h, y + s], [x, y + h]];
-        let mut mids = [None; 4];
-        for (k, m) in mids.iter_mut().enumerate() {
-            if f & (1 << k) != 0 {
-                *m = Some(id(mid_points[k]));
-            }
-        }
         LeafVertices {
             corners: [own, id(corners[1]), id(corners[2]), id(corners[3])],
-            mids,
+            mids: core::array::from_fn(|k| (f & (1 << k) != 0).then(|| id(mid_points[k]))),
             centre: (f & CENTRE != 0).then(|| self.owned(leaf, [x + h, y + h])),
         }
     }

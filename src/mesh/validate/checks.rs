@@ -95,14 +95,8 @@ fn indices(mesh: &Mesh, board: &Board) -> (Check, Vec<bool>) {
                 .all(|&v| mesh.vertices.get(v as usize).is_some_and(inside))
         })
         .collect();
-    let check = f.finish(|| {
-        format!(
-            "{} vertices, {} triangles, {} segments",
-            nv,
-            mesh.triangles.len(),
-            mesh.segments.len()
-        )
-    });
+    let (nt, ns) = (mesh.triangles.len(), mesh.segments.len());
+    let check = f.finish(|| format!("{nv} vertices, {nt} triangles, {ns} segments"));
     (check, good)
 }
 
@@ -249,12 +243,9 @@ impl<'m> Validator<'m> {
         let (cover, boundary_edges) = self.boundary_cover();
         f.keep(cover);
         f.keep(self.coincident_vertices());
-        let check = f.finish(|| {
-            format!(
-                "interior edges paired, {} edges cover the board boundary",
-                boundary_edges.len()
-            )
-        });
+        let n = boundary_edges.len();
+        let check =
+            f.finish(|| format!("interior edges paired, {n} edges cover the board boundary"));
         (check, boundary_edges)
     }
 

@@ -16,23 +16,16 @@ impl Validator<'_> {
             sides: vec![Input::None; self.half_edge_count()],
             steps: Vec::new(),
         };
-        for (ci, comp) in self.board.components().iter().enumerate() {
+        let components = self.board.components();
+        for (ci, comp) in components.iter().enumerate() {
             for (k, (p, q)) in comp.edges().enumerate() {
                 f.keep(self.follow(ci as u32 + 1, k, p, q, &mut found));
             }
         }
-        let steps_len = found.steps.len();
-        let check = f.finish(|| {
-            format!(
-                "{} component edges are chains of {} mesh edges",
-                self.board
-                    .components()
-                    .iter()
-                    .map(|c| c.outline.len())
-                    .sum::<usize>(),
-                steps_len
-            )
-        });
+        let edges: usize = components.iter().map(|c| c.outline.len()).sum();
+        let steps = found.steps.len();
+        let check =
+            f.finish(|| format!("{edges} component edges are chains of {steps} mesh edges"));
         (check, found)
     }
 

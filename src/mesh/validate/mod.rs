@@ -49,23 +49,17 @@ struct Finding(Option<MeshValidationError>);
 impl Finding {
     /// Records the violation unless one is already recorded (the first one is kept).
     fn fail(&mut self, violation: impl FnOnce() -> MeshValidationError) {
-        if self.0.is_none() {
-            self.0 = Some(violation());
-        }
+        self.0.get_or_insert_with(violation);
     }
 
     /// Records `violation` unless one is already recorded.
     fn keep(&mut self, violation: Option<MeshValidationError>) {
-        if self.0.is_none() {
-            self.0 = violation;
-        }
+        self.0 = self.0.take().or(violation);
     }
 
     fn finish(self, summary: impl FnOnce() -> String) -> Check {
-        match self.0 {
-            Some(e) => Check::Failed(e),
-            None => Check::Passed(summary()),
-        }
+        self.0
+            .map_or_else(|| Check::Passed(summary()), Check::Failed)
     }
 }
 
