@@ -113,11 +113,8 @@ impl<const D: usize> Tree<D> {
     /// Which child of its parent `id` is (bit `a` set: upper half along axis `a`); 0 for the root.
     #[inline]
     pub fn child_index(&self, id: NodeId) -> usize {
-        if id.0 == 0 {
-            0
-        } else {
-            ((id.0 - 1) as usize) & (Dim::<D>::CHILDREN - 1)
-        }
+        // the root (0) is child 0, the others come in blocks of 2^D from 1
+        (id.0.saturating_sub(1) as usize) & (Dim::<D>::CHILDREN - 1)
     }
 
     /// The `index`-th child of `id`; `None` if `id` is a leaf.
@@ -172,10 +169,7 @@ impl<const D: usize> Tree<D> {
     /// # Panics
     /// If `id` is not a leaf or is at [`Cell::MAX_LEVEL`]; see [`Tree::try_split`].
     pub fn split(&mut self, id: NodeId) -> NodeId {
-        match self.try_split(id) {
-            Ok(first) => first,
-            Err(e) => panic!("{e}"),
-        }
+        self.try_split(id).unwrap_or_else(|e| panic!("{e}"))
     }
 
     /// Splits the leaf `id`, or says why it cannot be split.
