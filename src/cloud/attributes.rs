@@ -44,19 +44,23 @@ pub struct Attributes {
 }
 
 impl Attributes {
-    /// Checks that every present column has `len` values.
-    ///
-    /// # Errors
-    /// [`CloudError::ColumnLength`] naming the first column of another length.
-    pub fn check(&self, len: usize) -> Result<(), CloudError> {
-        let lens = [
+    /// The fixed columns by name, in the order the writers use, with their lengths when present.
+    fn fixed_lengths(&self) -> [(&'static str, Option<usize>); 5] {
+        [
             ("intensity", self.intensity.as_ref().map(Vec::len)),
             ("classification", self.classification.as_ref().map(Vec::len)),
             ("color", self.color.as_ref().map(Vec::len)),
             ("gps_time", self.gps_time.as_ref().map(Vec::len)),
             ("normal", self.normal.as_ref().map(Vec::len)),
-        ];
-        for (name, found) in lens {
+        ]
+    }
+
+    /// Checks that every present column has `len` values.
+    ///
+    /// # Errors
+    /// [`CloudError::ColumnLength`] naming the first column of another length.
+    pub fn check(&self, len: usize) -> Result<(), CloudError> {
+        for (name, found) in self.fixed_lengths() {
             if let Some(found) = found.filter(|&n| n != len) {
                 return Err(CloudError::ColumnLength {
                     column: name.to_string(),
@@ -117,27 +121,14 @@ impl Attributes {
     /// assert!(!a.is_empty());
     /// ```
     pub fn is_empty(&self) -> bool {
-        self.intensity.is_none()
-            && self.classification.is_none()
-            && self.color.is_none()
-            && self.gps_time.is_none()
-            && self.normal.is_none()
-            && self.extra.is_empty()
+        self.fixed_lengths().iter().all(|f| f.1.is_none()) && self.extra.is_empty()
     }
 
     /// The names of the present columns, in the order the writers use.
     pub fn names(&self) -> Vec<String> {
-        let mut out = Vec::new();
-        let fixed = [
-            ("intensity", self.intensity.is_some()),
-            ("classification", self.classification.is_some()),
-            ("color", self.color.is_some()),
-            ("gps_time", self.gps_time.is_some()),
-            ("normal", self.normal.is_some()),
-        ];
-        out.extend(fixed.iter().filter(|f| f.1).map(|f| f.0.to_string()));
-        out.extend(self.extra.iter().map(|c| c.name.clone()));
-        out
+        let fixed = self.fixed_lengths().into_iter().filter(|f| f.1.is_some());
+        let extra = self.extra.iter().map(|c| c.name.clone());
+        fixed.map(|f| f.0.to_string()).chain(extra).collect()
     }
 
     /// The extra column called `name`, if any.

@@ -42,14 +42,9 @@ impl VoxelGrid<3> {
         // Plain sums: exact for integer coordinates (so ties in Nearest are true ties), and
         // independent of the order of the voxel's points.
         let centroid = |v: &Voxel<3>| {
-            let mut sum = [0.0f64; 3];
-            for p in &tree.points()[v.slots.clone()] {
-                for a in 0..3 {
-                    sum[a] += Scalar::to_f64(p[a]);
-                }
-            }
-            let n = v.slots.len() as f64;
-            sum.map(|s| s / n)
+            let points = &tree.points()[v.slots.clone()];
+            let sum = |a: usize| points.iter().fold(0.0, |s, p| s + Scalar::to_f64(p[a]));
+            core::array::from_fn(|a| sum(a) / points.len() as f64)
         };
         match representative {
             Representative::Nearest => {
