@@ -6,9 +6,9 @@
 //!    root cube and the Morton sort), so both trees have the same cells.
 //! 2. Key every point again at 64 levels ([`RootGeometry::deep_key`](crate::geom::RootGeometry::deep_key)).
 //!    The deep boundaries refine the point tree's, so step 1's order is already the deep Morton
-//!    order except among points sharing a finest [`Cell`]: one O(n) pass checks it, and only
-//!    when it fails does a stable merge sort of slot numbers put them in order (Rust's sort,
-//!    near-linear on such presorted runs; the radix sort of step 1 is not run again).
+//!    order except among points sharing a finest [`Cell`](crate::Cell): one O(n) pass checks it,
+//!    and only when it fails does a stable merge sort of slot numbers put them in order (Rust's
+//!    sort, near-linear on such presorted runs; the radix sort of step 1 is not run again).
 //! 3. Walk the sorted keys once with a stack holding the rightmost path of the tree built so far
 //!    ([`Topology::from_sorted`](super::topology::Topology::from_sorted)): consecutive keys part
 //!    at the level of their longest common prefix, and that cell is the only node the new key
@@ -24,12 +24,12 @@
 //! tree is the fresh build of the same points over the same root cube, a compressed node deeper
 //! than its maximum depth lying in one of its deepest leaves
 //! ([`DeepCell::to_cell`](crate::geom::DeepCell::to_cell)). The point tree's order among points
-//! sharing a finest [`Cell`] is its input order, the compressed tree's their deep Morton order.
-//! Both directions run over the points in Morton order without a full sort.
+//! sharing a finest [`Cell`](crate::Cell) is its input order, the compressed tree's their deep
+//! Morton order. Both directions run over the points in Morton order without a full sort.
 
 use super::CompressedTree;
 use crate::error::Error;
-use crate::geom::{Aabb, Cell, Scalar};
+use crate::geom::{Aabb, Scalar};
 use crate::points::{PointTree, PointTreeBuilder};
 use crate::query::PointSet;
 use crate::query::SpatialIndex;
@@ -118,9 +118,8 @@ impl<S: Scalar, T, const D: usize> From<PointTree<S, T, D>> for CompressedTree<S
 impl<S: Scalar, T: Clone, const D: usize> From<&PointTree<S, T, D>> for CompressedTree<S, T, D> {
     /// The compressed tree of the same points over the same root cube, cloning the items.
     fn from(tree: &PointTree<S, T, D>) -> Self {
-        let g = *tree.geometry();
         CompressedTree::from_sorted(
-            g,
+            *tree.geometry(),
             *tree.domain(),
             tree.points().to_vec(),
             tree.items().to_vec(),
@@ -134,15 +133,10 @@ pub(super) fn to_point_tree<S: Scalar, T: Clone, const D: usize>(
     bucket_size: usize,
     max_depth: u8,
 ) -> Result<PointTree<S, T, D>, Error> {
-    if bucket_size == 0 {
-        return Err(Error::ZeroBucketSize);
-    }
-    if max_depth > Cell::<D>::MAX_LEVEL {
-        return Err(Error::MaxDepthTooLarge {
-            requested: max_depth,
-            limit: Cell::<D>::MAX_LEVEL,
-        });
-    }
+    // the builder's checks of the same settings, with the same errors
+    (PointTreeBuilder::<S, D>::new().bucket_size(bucket_size))
+        .max_depth(max_depth)
+        .check_settings(0)?;
     let index = tree.index();
     let points = index.points().to_vec();
     let items = index
