@@ -35,15 +35,7 @@ impl Direction {
     /// If `axis >= 8`.
     pub const fn face(axis: usize, positive: bool) -> Direction {
         assert!(axis < 8, "axis out of range");
-        let up = Direction {
-            plus: 1 << axis,
-            minus: 0,
-        };
-        if positive {
-            up
-        } else {
-            up.opposite()
-        }
+        Direction::from_masks((positive as u8) << axis, (!positive as u8) << axis)
     }
 
     /// From the masks of axes moving up and down (which must be disjoint and not both empty).

@@ -51,7 +51,7 @@ pub fn deinterleave<const D: usize>(key: u64, bits: u32) -> [u32; D] {
 
 #[inline]
 fn mask(v: u64, bits: u32) -> u64 {
-    v & u64::MAX.checked_shr(64 - bits).unwrap_or(0)
+    v & u64::MAX.checked_shr(64 - bits.min(64)).unwrap_or(0)
 }
 
 /// Spreads the low 32 bits of `v` to the even bit positions.

@@ -111,10 +111,7 @@ scalar!(
 /// assert_eq!(validate_point(&[1i64 << 53, (1 << 53) + 1]), Err(1));
 /// ```
 pub fn validate_point<S: Scalar, const D: usize>(point: &[S; D]) -> Result<(), usize> {
-    match point.iter().position(|c| !c.converts_exactly()) {
-        Some(axis) => Err(axis),
-        None => Ok(()),
-    }
+    (point.iter().position(|c| !c.converts_exactly())).map_or(Ok(()), Err)
 }
 
 /// Why a coordinate failed [`validate_point`], for the callers' own error types.
@@ -146,12 +143,8 @@ pub(crate) fn check_point<S: Scalar, const D: usize>(
     domain: &crate::geom::Aabb<f64, D>,
 ) -> Result<Checked<D>, (usize, Fault)> {
     let p = exact_point(point)?;
-    Ok(
-        match (0..D).find(|&a| !(domain.min[a] <= p[a] && p[a] <= domain.max[a])) {
-            None => Checked::Inside(p),
-            Some(axis) => Checked::Outside(axis, p),
-        },
-    )
+    let outside = (0..D).find(|&a| !(domain.min[a] <= p[a] && p[a] <= domain.max[a]));
+    Ok(outside.map_or(Checked::Inside(p), |axis| Checked::Outside(axis, p)))
 }
 
 /// A point that passed [`validate_point`], placed against a domain ([`check_point`]).
