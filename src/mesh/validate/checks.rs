@@ -194,10 +194,7 @@ impl<'m> Validator<'m> {
     }
 
     pub(super) fn is_edge(&self, a: u32, b: u32) -> bool {
-        let key = edge_key(a, b);
-        let keys = &self.pairing.keys;
-        let i = keys.partition_point(|&(k, _)| k < key);
-        keys.get(i).is_some_and(|&(k, _)| k == key)
+        self.find(a, b).or_else(|| self.find(b, a)).is_some()
     }
 
     /// The used vertex at `p`, if any.
