@@ -63,11 +63,9 @@ impl<const D: usize> Tree<D> {
 
     /// The subtree below `id` (inclusive) in pre-order, or only its leaves.
     pub fn walk_from(&self, id: NodeId, leaves_only: bool) -> PreOrder<'_, D> {
-        let mut stack = SmallVec::new();
-        stack.push((id, self.cell(id)));
         PreOrder {
             tree: self,
-            stack,
+            stack: smallvec::smallvec![(id, self.cell(id))],
             leaves_only,
         }
     }
