@@ -144,23 +144,16 @@ impl<const D: usize> Cell<D> {
     #[inline]
     pub fn aligned_key(&self) -> u64 {
         let shift = D as u32 * (Self::MAX_LEVEL - self.level) as u32;
-        if shift >= 64 {
-            0
-        } else {
-            self.morton() << shift
-        }
+        self.morton().checked_shl(shift).unwrap_or(0)
     }
 
     /// The cell at `level` whose aligned key's prefix is `key` (the inverse of
     /// [`Cell::aligned_key`] after truncating to `level`).
     #[inline]
     pub fn from_aligned_key(key: u64, level: u8) -> Self {
-        let full: [u32; D] = morton::deinterleave(key, Self::MAX_LEVEL as u32);
-        let shift = (Self::MAX_LEVEL - level) as u32;
-        Cell {
-            level,
-            coords: full.map(|c| ((c as u64) >> shift) as u32),
-        }
+        // the key's first `level` digits, which the shift brings to the bottom
+        let shift = D as u32 * u32::from(Self::MAX_LEVEL - level);
+        Self::from_morton(key.checked_shr(shift).unwrap_or(0), level)
     }
 
     /// `true` when `other` is this cell or a descendant of it.
