@@ -87,7 +87,6 @@ impl<const D: usize> Tree<D> {
             });
         }
         let tree = Tree::from_arrays(raw);
-        tree.validate()?;
-        Ok(tree)
+        tree.validate().map(|()| tree)
     }
 }
