@@ -332,22 +332,12 @@ impl<'a> HalfEdges<'a> {
 
     /// The next half-edge around the same triangle (counter-clockwise).
     pub fn next(&self, h: u32) -> u32 {
-        let _ = self.twins[h as usize];
-        if h % 3 == 2 {
-            h - 2
-        } else {
-            h + 1
-        }
+        3 * self.face(h) + (h + 1) % 3
     }
 
     /// The previous half-edge around the same triangle.
     pub fn prev(&self, h: u32) -> u32 {
-        let _ = self.twins[h as usize];
-        if h.is_multiple_of(3) {
-            h + 2
-        } else {
-            h - 1
-        }
+        3 * self.face(h) + (h + 2) % 3
     }
 
     /// The triangle (face) on the left of `h`: `h / 3`.
