@@ -410,8 +410,7 @@ impl<const D: usize> RegionTree<D> {
             depth: Self::depth_for(extent)?,
             nodes,
         };
-        t.validate()?;
-        Ok(t)
+        t.validate().map(|()| t)
     }
 
     /// Whether the pixel at `p` is black. Pixels outside the extent are white.
