@@ -164,19 +164,12 @@ impl<const D: usize> Cell<D> {
 
     /// The same-level cell one step in `direction`; `None` outside the root cube.
     pub fn neighbor(&self, direction: Direction) -> Option<Self> {
-        let side = 1u64 << self.level;
         let mut coords = self.coords;
         for (a, c) in coords.iter_mut().enumerate() {
-            let moved = *c as i64 + direction.component(a) as i64;
-            if moved < 0 || moved as u64 >= side {
-                return None;
-            }
-            *c = moved as u32;
+            *c = c.checked_add_signed(direction.component(a).into())?;
         }
-        Some(Cell {
-            level: self.level,
-            coords,
-        })
+        // a step past the far side is refused here, below 2^level
+        Self::new(self.level, coords)
     }
 
     /// The closed cell as integer intervals `[lo, hi]` per axis, in units of the finest level.
