@@ -230,10 +230,12 @@ impl<S: Scalar, const D: usize> CompressedIndex<S, D> {
     pub(crate) fn remove_slot(&mut self, s: usize) -> u32 {
         let leaf = self.leaf[s];
         self.unlink(s);
-        let emptied = self.topology.node(leaf).head == NIL;
-        if emptied {
+        let removed = if self.topology.node(leaf).head == NIL {
             self.topology.remove_leaf(leaf);
-        }
+            leaf
+        } else {
+            NIL
+        };
         let last = self.points.len() - 1;
         if s != last {
             // Whatever pointed at `last` points at `s` now.
@@ -246,11 +248,7 @@ impl<S: Scalar, const D: usize> CompressedIndex<S, D> {
         self.prev.swap_remove(s);
         self.next.swap_remove(s);
         self.changed();
-        if emptied {
-            leaf
-        } else {
-            NIL
-        }
+        removed
     }
 
     fn unlink(&mut self, s: usize) {
