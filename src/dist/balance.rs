@@ -216,8 +216,6 @@ pub(crate) fn agree_options(
 ) -> Result<(), DistError> {
     let code = options.connectivity as u64 * 256 + options.max_level_difference() as u64;
     let all = comm::all_gather(comm, &[code]);
-    match all.iter().position(|&c| c != all[0]) {
-        Some(rank) => Err(DistError::SettingsDiffer { rank }),
-        None => Ok(()),
-    }
+    (all.iter().position(|&c| c != all[0]))
+        .map_or(Ok(()), |rank| Err(DistError::SettingsDiffer { rank }))
 }

@@ -302,8 +302,7 @@ fn check_targets(first: &[u64], ranks: usize) -> Result<(), DistError> {
     if first[0] != 0 {
         return Err(DistError::InvalidTargets { index: 0 });
     }
-    match (1..first.len()).find(|&i| first[i] < first[i - 1]) {
-        Some(index) => Err(DistError::InvalidTargets { index }),
-        None => Ok(()),
-    }
+    (1..first.len())
+        .find(|&i| first[i] < first[i - 1])
+        .map_or(Ok(()), |index| Err(DistError::InvalidTargets { index }))
 }
