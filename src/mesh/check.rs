@@ -147,21 +147,18 @@ impl Edge {
 }
 
 fn edge_table(components: &[Component]) -> Vec<Edge> {
-    let mut edges = Vec::with_capacity(components.iter().map(|c| c.outline.len()).sum());
-    for (ci, c) in components.iter().enumerate() {
-        let count = c.outline.len();
-        for (index, (a, b)) in c.edges().enumerate() {
-            edges.push(Edge {
+    (components.iter().enumerate())
+        .flat_map(|(component, c)| {
+            c.edges().enumerate().map(move |(index, (a, b))| Edge {
                 a,
                 b,
-                component: ci,
+                component,
                 index,
-                count,
+                count: c.outline.len(),
                 line: c.lines[index],
-            });
-        }
-    }
-    edges
+            })
+        })
+        .collect()
 }
 
 /// `true` when edges `i` and `j` follow each other along one outline.
