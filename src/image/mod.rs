@@ -321,11 +321,7 @@ impl<const D: usize> RegionTree<D> {
     /// assert!(e.is_empty() && e.node_count() == 1 && e.depth() == 7);
     /// ```
     pub fn empty(extent: [u32; D]) -> Result<Self, ImageError> {
-        Ok(RegionTree {
-            extent,
-            depth: Self::depth_for(extent)?,
-            nodes: vec![WHITE],
-        })
+        Self::from_nodes(extent, vec![WHITE])
     }
 
     /// The image whose pixels within the extent are all black (one black leaf when the extent is

@@ -171,9 +171,8 @@ impl<const D: usize> RegionTree<D> {
     pub fn try_combine(&self, other: &Self, op: BoolOp) -> Result<Self, ImageError> {
         self.check_same_size(other)?;
         Ok(RegionTree {
-            extent: self.extent,
-            depth: self.depth,
             nodes: combine::<D>(&self.nodes, &other.nodes, op),
+            ..*self
         })
     }
 
@@ -304,9 +303,8 @@ impl<const D: usize> RegionTree<D> {
         }
         let full = Self::full(self.extent).expect("the extent was accepted before");
         RegionTree {
-            extent: self.extent,
-            depth: self.depth,
             nodes: combine::<D>(&self.nodes, &full.nodes, BoolOp::Xor),
+            ..*self
         }
     }
 
