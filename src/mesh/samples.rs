@@ -106,10 +106,8 @@ impl Frame {
 
     /// The board point of local point `p`.
     fn point(&self, p: Point) -> Point {
-        [
-            self.origin[0] + p[0] * self.ex[0] + p[1] * self.ey[0],
-            self.origin[1] + p[0] * self.ex[1] + p[1] * self.ey[1],
-        ]
+        let v = self.vector(p);
+        [self.origin[0] + v[0], self.origin[1] + v[1]]
     }
 
     /// The board vector of local vector `v`.
@@ -149,8 +147,7 @@ fn fan(
             } else {
                 vec![[a, y0], [a, turn], [b, top], [b, y1]]
             };
-            let path: Vec<Point> = path.into_iter().map(|p| frame.point(p)).collect();
-            swept(&path, frame.vector([w, 0]))
+            swept(&frame.outline(&path), frame.vector([w, 0]))
         })
         .collect()
 }
