@@ -175,11 +175,8 @@ impl core::fmt::Display for Half {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         let sign = if self.0 < 0 { "-" } else { "" };
         let m = self.0.unsigned_abs();
-        if m.is_multiple_of(2) {
-            write!(f, "{sign}{}", m / 2)
-        } else {
-            write!(f, "{sign}{}.5", m / 2)
-        }
+        let half = if m.is_multiple_of(2) { "" } else { ".5" };
+        write!(f, "{sign}{}{half}", m / 2)
     }
 }
 
