@@ -100,11 +100,8 @@ impl Board {
     /// assert_eq!(Board::new(64, vec![]).unwrap().grid_unit(), 64);
     /// ```
     pub fn grid_unit(&self) -> i64 {
-        let coords = self
-            .components
-            .iter()
-            .flat_map(|c| c.outline.iter().flatten());
-        let zeros = coords
+        let zeros = (self.components.iter())
+            .flat_map(|c| c.outline.iter().flatten())
             .filter(|&&c| c != 0)
             .map(|c| c.trailing_zeros())
             .fold(self.size.trailing_zeros(), u32::min);
