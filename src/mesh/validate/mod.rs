@@ -174,9 +174,8 @@ impl ValidationReport {
     /// The names of the failed checks.
     pub fn failed(&self) -> Vec<&'static str> {
         self.checks()
-            .iter()
-            .filter(|(_, c)| !c.is_ok())
-            .map(|(name, _)| *name)
+            .into_iter()
+            .filter_map(|(name, c)| c.error().map(|_| name))
             .collect()
     }
 }
