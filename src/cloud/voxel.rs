@@ -82,10 +82,7 @@ impl<const D: usize> VoxelGrid<D> {
             bounds.add_point(&q);
         }
         if points.is_empty() {
-            bounds = Aabb {
-                min: [0.0; D],
-                max: [0.0; D],
-            };
+            bounds.add_point(&[0.0; D]);
         }
         Self::for_box(&bounds, voxel)
     }

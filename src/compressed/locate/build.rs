@@ -24,13 +24,12 @@ impl PointLocator {
         split_edges: bool,
     ) -> Result<Self, SubdivisionError> {
         let v = subdivision.vertices();
-        let mut bounds = Aabb::around(v);
-        if v.is_empty() {
-            bounds = Aabb {
-                min: [0.0; 2],
-                max: [1.0; 2],
-            };
-        }
+        // no vertices: the unit square
+        let bounds = Aabb::around(if v.is_empty() {
+            &[[0.0; 2], [1.0; 2]]
+        } else {
+            v
+        });
         let mut locator = PointLocator {
             geometry: RootGeometry::enclosing(&bounds),
             subdivision,
