@@ -459,10 +459,7 @@ pub(crate) fn settle<const D: usize>(
         Some(root) => (RootGeometry::enclosing(&root), root),
         None => {
             let bounds = if n == 0 {
-                Aabb {
-                    min: [0.0; D],
-                    max: [1.0; D],
-                }
+                Aabb::around(&[[0.0; D], [1.0; D]])
             } else {
                 bounds
             };
