@@ -229,10 +229,7 @@ mod tests {
 
     #[test]
     fn extreme_boxes_keep_deep_coordinates_exact() {
-        let b = Aabb {
-            min: [-f64::MAX, -1.0],
-            max: [f64::MAX, 1.0],
-        };
+        let b = Aabb::around(&[[-f64::MAX, -1.0], [f64::MAX, 1.0]]);
         let g = RootGeometry::enclosing(&b);
         for x in [
             f64::MAX,

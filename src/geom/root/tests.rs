@@ -117,24 +117,15 @@ fn lane_keys_agree_with_key() {
 
 #[test]
 fn extreme_boxes_stay_finite_and_monotone() {
-    let b = Aabb {
-        min: [-f64::MAX, -1.0],
-        max: [f64::MAX, 1.0],
-    };
+    let b = Aabb::around(&[[-f64::MAX, -1.0], [f64::MAX, 1.0]]);
     let g = RootGeometry::enclosing(&b);
     assert!(g.root_box().max[0] >= f64::MAX);
     assert!(g.boundary(0, 1, 1).is_finite());
     assert_eq!(g.cell_of(&[f64::MAX, 0.0], 1).coords()[0], 1);
     assert_eq!(g.cell_of(&[0.0, 0.0], 1).coords()[0], 0);
-    let tiny = Aabb {
-        min: [0.0; 2],
-        max: [f64::MIN_POSITIVE / 4.0; 2],
-    };
+    let tiny = Aabb::around(&[[0.0; 2], [f64::MIN_POSITIVE / 4.0; 2]]);
     let g = RootGeometry::enclosing(&tiny);
     assert!(g.root_box().max[0] >= tiny.max[0]);
-    let same = Aabb {
-        min: [3.0; 2],
-        max: [3.0; 2],
-    };
+    let same = Aabb::around(&[[3.0; 2]]);
     assert_eq!(RootGeometry::enclosing(&same).root_box().max, [4.0, 4.0]);
 }
