@@ -35,7 +35,9 @@ pub fn read<S: Scalar>(input: impl Read) -> Result<Cloud<S>, PlyError> {
     };
     let mut values = vec![0.0f64; header.properties.len()];
     let ascii = header.encoding == Encoding::Ascii;
-    let mut buf = Vec::new();
+    // A binary record's bytes, or an ASCII line (each read clears and refills it).
+    let stride: usize = header.properties.iter().map(|(_, k)| k.size()).sum();
+    let mut buf = vec![0u8; if ascii { 0 } else { stride }];
     let mut offset = header.bytes;
     for vertex in 0..header.count {
         let at = (vertex, offset);
@@ -147,17 +149,16 @@ fn parse(word: &str, kind: Kind) -> Option<f64> {
     }
 }
 
-/// Reads vertex `vertex`'s binary record, which starts at byte `offset`, into `values`; the
-/// bytes read.
+/// Reads vertex `vertex`'s binary record, which starts at byte `offset` and is as long as
+/// `record`, into `values`; the bytes read.
 fn read_record(
     reader: &mut impl BufRead,
     header: &Header,
     (vertex, offset): (u64, u64),
-    record: &mut Vec<u8>,
+    record: &mut [u8],
     values: &mut [f64],
 ) -> Result<u64, PlyError> {
-    let stride: usize = header.properties.iter().map(|(_, k)| k.size()).sum();
-    record.resize(stride, 0);
+    let stride = record.len();
     let got = read_full(reader, record)?;
     if got < stride {
         return Err(PlyError::Truncated {
