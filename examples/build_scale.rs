@@ -88,16 +88,17 @@ fn cpu_ns() -> Option<u64> {
     stat.split_whitespace().next()?.parse().ok()
 }
 
-/// The processor time of the whole process so far in nanoseconds, (user, kernel), from
-/// `/proc/self/stat` (Linux only, in clock ticks, usually of 10 ms): the kernel's part is
+/// The processor time so far in nanoseconds, (user, kernel), and the page faults taken, of the
+/// whole process (`who` = "self") or of the calling thread ("thread-self"), from
+/// `/proc/<who>/stat` (Linux only, times in clock ticks, usually of 10 ms): the kernel's part is
 /// mostly the page faults on fresh memory.
-fn process_ns() -> Option<(u64, u64)> {
-    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+fn stat_ns(who: &str) -> Option<(u64, u64, u64)> {
+    let stat = std::fs::read_to_string(format!("/proc/{who}/stat")).ok()?;
     // the fields after the command name, which is in parentheses and may hold spaces
     let fields: Vec<&str> = stat.rsplit_once(')')?.1.split_whitespace().collect();
     let tick = 10_000_000; // ns per tick at the usual 100 Hz
     let (user, kernel): (u64, u64) = (fields.get(11)?.parse().ok()?, fields.get(12)?.parse().ok()?);
-    Some((user * tick, kernel * tick))
+    Some((user * tick, kernel * tick, fields.get(7)?.parse().ok()?))
 }
 
 /// The peak resident memory of this process in KiB, if the system reports it.
@@ -128,7 +129,12 @@ fn main() {
     let before = peak_kib();
     let mut costs = Vec::with_capacity(args.runs);
     for run in 0..args.runs {
-        let (start, cpu_start, process_start) = (Instant::now(), cpu_ns(), process_ns());
+        let (start, cpu_start, process_start, thread_start) = (
+            Instant::now(),
+            cpu_ns(),
+            stat_ns("self"),
+            stat_ns("thread-self"),
+        );
         let tree = if args.par {
             par_build(&entries)
         } else {
@@ -145,14 +151,20 @@ fn main() {
             ),
             _ => String::new(),
         };
-        let kernel = match (process_start, process_ns()) {
-            (Some((u0, k0)), Some((u1, k1))) => format!(
-                ", all threads {:.1} user + {:.1} kernel ns/point",
+        let share = |who, start: Option<(u64, u64, u64)>| match (start, stat_ns(who)) {
+            (Some((u0, k0, f0)), Some((u1, k1, f1))) => format!(
+                "{:.1} user + {:.1} kernel ns/point, {} page faults",
                 (u1 - u0) as f64 / args.n as f64,
-                (k1 - k0) as f64 / args.n as f64
+                (k1 - k0) as f64 / args.n as f64,
+                f1 - f0
             ),
             _ => String::new(),
         };
+        let kernel = format!(
+            "; all threads {}; this thread {}",
+            share("self", process_start),
+            share("thread-self", thread_start)
+        );
         // FNV-1a over the item order: equal for equal trees.
         let digest = tree.items().iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &i| {
             (h ^ u64::from(i)).wrapping_mul(0x100_0000_01b3)

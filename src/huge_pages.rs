@@ -127,46 +127,56 @@ pub(crate) fn allocation<T>(v: &Vec<T>) -> core::ops::Range<usize> {
     start..start + v.capacity() * core::mem::size_of::<T>()
 }
 
-/// Runs `work` on this thread while another asks the kernel to map the pages of `ranges`
+/// Runs `work` on this thread while another asks the kernel to map the pages of `stages`
 /// (`madvise(MADV_POPULATE_WRITE)`, Linux 5.14 and later), so that the first writes to fresh
 /// buffers do not stop `work` at a page fault each: on a machine with a second core the kernel
-/// zeroes the pages there. The ranges are mapped a slice of each in turn (a 64th of every
-/// range, then the next), since `work` writes them side by side. They must lie in allocations
-/// that outlive this call and that `work` does not free or grow; nothing in them is read or
-/// written (pages already present keep their contents, new ones come in zeroed, as a first
-/// write would have them). Without a second core, below [`POPULATE_MIN_BYTES`], on other
-/// systems or with the feature off, it just runs `work`; a kernel that refuses the advice
-/// leaves the faults to the first writes, as before.
+/// zeroes the pages there. The stages are mapped one after the other, in the order `work` first
+/// writes them; the ranges of one stage a slice of each in turn (a 64th of every range, then the
+/// next), for buffers that `work` writes side by side. The mapping stops when `work` returns.
+/// The ranges must lie in allocations that outlive this call and that `work` does not free or
+/// grow; nothing in them is read or written (pages already present keep their contents, new
+/// ones come in zeroed, as a first write would have them). Without a second core, below
+/// [`POPULATE_MIN_BYTES`], on other systems or with the feature off, it just runs `work`; a
+/// kernel that refuses the advice leaves the faults to the first writes, as before.
 pub(crate) fn while_populating<R>(
-    ranges: &[core::ops::Range<usize>],
+    stages: &[&[core::ops::Range<usize>]],
     work: impl FnOnce() -> R,
 ) -> R {
     #[cfg(all(target_os = "linux", feature = "huge-pages"))]
     {
+        use std::sync::atomic::{AtomicBool, Ordering};
         const SLICES: usize = 64;
-        let bytes: usize = ranges.iter().map(|r| r.len()).sum();
+        let bytes: usize = stages.iter().flat_map(|s| s.iter()).map(|r| r.len()).sum();
         let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
         if bytes >= POPULATE_MIN_BYTES && cores >= 2 {
+            let done = AtomicBool::new(false);
             return std::thread::scope(|scope| {
                 // A thread the system will not start maps nothing: the first writes fault.
                 let _ = std::thread::Builder::new().spawn_scoped(scope, || {
-                    for slice in 0..SLICES {
-                        for r in ranges {
-                            // where slice `s` of `r` starts; the last one ends at `r.end`
-                            let cut = |s| match s {
-                                SLICES => r.end,
-                                _ => r.start + r.len() / SLICES * s,
-                            };
-                            populate(cut(slice)..cut(slice + 1));
+                    for ranges in stages {
+                        for slice in 0..SLICES {
+                            for r in *ranges {
+                                if done.load(Ordering::Relaxed) {
+                                    return;
+                                }
+                                // where slice `s` of `r` starts; the last one ends at `r.end`
+                                let cut = |s| match s {
+                                    SLICES => r.end,
+                                    _ => r.start + r.len() / SLICES * s,
+                                };
+                                populate(cut(slice)..cut(slice + 1));
+                            }
                         }
                     }
                 });
-                work()
+                let result = work();
+                done.store(true, Ordering::Relaxed);
+                result
             });
         }
     }
     #[cfg(not(all(target_os = "linux", feature = "huge-pages")))]
-    let _ = ranges;
+    let _ = stages;
     work()
 }
 
@@ -232,7 +242,7 @@ mod tests {
         b.push(5);
         let ranges = [allocation(&a), allocation(&b)];
         let first = ranges[1].start + 1;
-        let written = while_populating(&[ranges[0].clone(), first..ranges[1].end], || {
+        let written = while_populating(&[&[ranges[0].clone(), first..ranges[1].end]], || {
             a.extend((1000..n).map(value));
             b.resize(3 * HUGE_PAGE + 77, 6);
             a.len() + b.len()
@@ -241,7 +251,7 @@ mod tests {
         assert!(a.iter().enumerate().all(|(i, &x)| x == value(i)));
         assert!(b[0] == 5 && b[1..].iter().all(|&x| x == 6));
         let mut small = vec![1u32; 10];
-        let sum = while_populating(&[allocation(&small)], || {
+        let sum = while_populating(&[&[allocation(&small)]], || {
             small.push(2);
             small.iter().sum::<u32>()
         });

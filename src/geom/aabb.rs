@@ -180,7 +180,6 @@ impl<const D: usize> Aabb<f64, D> {
     }
 
     /// Grows the box to hold `other` (nothing for an empty `other`).
-    #[cfg_attr(not(feature = "rayon"), allow(dead_code))] // used by the parallel build only
     pub(crate) fn add_box(&mut self, other: &Self) {
         for a in 0..D {
             self.min[a] = self.min[a].min(other.min[a]);

@@ -76,6 +76,39 @@ fn non_finite_coordinates_are_refused() {
     );
 }
 
+/// The build checks its input in blocks of points: whatever block the first bad point falls in
+/// (its first, its last, a later one, the last point of all), it is the one named, not a later
+/// bad point of its block or of the next, whether it is not finite or outside the root box.
+#[test]
+fn the_first_bad_point_is_named_across_blocks() {
+    let n = 2600;
+    let unit = Aabb::new([0.0; 3], [1.0; 3]).unwrap();
+    let named = |err: Error| match err {
+        Error::NonFiniteCoordinate { index, axis, .. } => ("not finite", index, axis),
+        Error::OutsideRootBox { index, axis, .. } => ("outside", index, axis),
+        other => panic!("unexpected {other:?}"),
+    };
+    for index in [0, 1023, 1024, 2047, 2599] {
+        let mut e = random_entries::<3>(121, n);
+        for later in [index + 1, index + 700].into_iter().filter(|&l| l < n) {
+            e[later].0[0] = f64::INFINITY;
+        }
+        let boxed = PointTreeBuilder::<f64, 3>::new().root_box(unit);
+        e[index].0[2] = f64::NAN;
+        for builder in [PointTreeBuilder::new(), boxed] {
+            let err = builder.build(&e).unwrap_err();
+            assert_eq!(named(err), ("not finite", index, 2));
+        }
+        e[index].0[2] = 1.5;
+        assert_eq!(named(boxed.build(&e).unwrap_err()), ("outside", index, 2));
+        // without a root box 1.5 is a good coordinate: the infinity after it is named
+        match PointTree::new(&e) {
+            Err(err) => assert_eq!(named(err), ("not finite", index + 1, 0)),
+            Ok(tree) => assert!(index == n - 1 && tree.len() == n),
+        }
+    }
+}
+
 /// Points outside a given root box: `OutsideRootBox` naming the first such point, its first bad
 /// axis, its coordinate and the box's interval.
 #[test]
