@@ -271,34 +271,39 @@ struct Fields {
     extra_bytes: usize,
 }
 
+/// A flag or scan column of a point format: its name and, for a bit field, the byte of the
+/// record's flags it lies in (0 the return byte, 1 the next), its shift and its width in bits.
+/// The last three columns of each format (scan angle, user data, point source id) have no bits.
+type FlagColumn = (&'static str, usize, u32, u32);
+
 /// The extra columns of legacy formats (0-5), in order.
-const LEGACY: [&str; 10] = [
-    "return_number",
-    "number_of_returns",
-    "scan_direction",
-    "edge_of_flight_line",
-    "synthetic",
-    "key_point",
-    "withheld",
-    "scan_angle_rank",
-    "user_data",
-    "point_source_id",
+const LEGACY: [FlagColumn; 10] = [
+    ("return_number", 0, 0, 3),
+    ("number_of_returns", 0, 3, 3),
+    ("scan_direction", 0, 6, 1),
+    ("edge_of_flight_line", 0, 7, 1),
+    ("synthetic", 1, 5, 1),
+    ("key_point", 1, 6, 1),
+    ("withheld", 1, 7, 1),
+    ("scan_angle_rank", 0, 0, 0),
+    ("user_data", 0, 0, 0),
+    ("point_source_id", 0, 0, 0),
 ];
 
 /// The extra columns of extended formats (6-10), in order.
-const EXTENDED: [&str; 12] = [
-    "return_number",
-    "number_of_returns",
-    "scan_direction",
-    "edge_of_flight_line",
-    "synthetic",
-    "key_point",
-    "withheld",
-    "overlap",
-    "scanner_channel",
-    "scan_angle",
-    "user_data",
-    "point_source_id",
+const EXTENDED: [FlagColumn; 12] = [
+    ("return_number", 0, 0, 4),
+    ("number_of_returns", 0, 4, 4),
+    ("scan_direction", 1, 6, 1),
+    ("edge_of_flight_line", 1, 7, 1),
+    ("synthetic", 1, 0, 1),
+    ("key_point", 1, 1, 1),
+    ("withheld", 1, 2, 1),
+    ("overlap", 1, 3, 1),
+    ("scanner_channel", 1, 4, 2),
+    ("scan_angle", 0, 0, 0),
+    ("user_data", 0, 0, 0),
+    ("point_source_id", 0, 0, 0),
 ];
 
 impl Fields {
@@ -309,12 +314,18 @@ impl Fields {
         }
     }
 
-    fn names(&self) -> &'static [&'static str] {
+    fn columns(&self) -> &'static [FlagColumn] {
         if self.extended {
             &EXTENDED
         } else {
             &LEGACY
         }
+    }
+
+    /// The bit fields of the flag bytes: every column but the last three.
+    fn bits(&self) -> &'static [FlagColumn] {
+        let columns = self.columns();
+        &columns[..columns.len() - 3]
     }
 
     /// Appends one record's fields to the cloud, creating the optional columns on the first.
@@ -323,7 +334,7 @@ impl Fields {
         if cloud.points.is_empty() {
             a.gps_time = p.gps_time.map(|_| Vec::new());
             a.color = p.color.map(|_| Vec::new());
-            let mut names: Vec<String> = self.names().iter().map(|s| s.to_string()).collect();
+            let mut names: Vec<String> = self.columns().iter().map(|c| c.0.to_string()).collect();
             names.extend(p.nir.map(|_| "nir".to_string()));
             names.extend((0..self.extra_bytes).map(|i| format!("extra_byte_{i}")));
             a.extra = names
@@ -335,43 +346,19 @@ impl Fields {
                 .collect();
         }
         cloud.points.push([p.x, p.y, p.z]);
-        let bit = |b: u8, i: u32| f64::from((b >> i) & 1);
         let angle = match p.scan_angle {
             ScanAngle::Scaled(s) => f64::from(s),
             ScanAngle::Rank(r) => f64::from(r),
         };
-        // One record's columns, on the stack: no allocation per point.
-        let mut values: SmallVec<[f64; 16]> = SmallVec::new();
-        let class = match p.flags {
-            Flags::TwoByte(r, c) => {
-                values.extend([
-                    f64::from(r & 7),
-                    f64::from((r >> 3) & 7),
-                    bit(r, 6),
-                    bit(r, 7),
-                    bit(c, 5),
-                    bit(c, 6),
-                    bit(c, 7),
-                    angle,
-                ]);
-                c & 0x1f
-            }
-            Flags::ThreeByte(r, f, c) => {
-                values.extend([
-                    f64::from(r & 15),
-                    f64::from(r >> 4),
-                    bit(f, 6),
-                    bit(f, 7),
-                    bit(f, 0),
-                    bit(f, 1),
-                    bit(f, 2),
-                    bit(f, 3),
-                    f64::from((f >> 4) & 3),
-                    angle,
-                ]);
-                c
-            }
+        let (bytes, class) = match p.flags {
+            Flags::TwoByte(r, c) => ([r, c], c & 0x1f),
+            Flags::ThreeByte(r, f, c) => ([r, f], c),
         };
+        // One record's columns, on the stack: no allocation per point.
+        let mut values: SmallVec<[f64; 16]> = (self.bits().iter())
+            .map(|&(_, b, shift, width)| f64::from((bytes[b] >> shift) & ((1u8 << width) - 1)))
+            .collect();
+        values.push(angle);
         values.push(f64::from(p.user_data));
         values.push(f64::from(p.point_source_id));
         if let Some(nir) = p.nir {
