@@ -25,7 +25,7 @@ use super::header::{padded, sections_start, write_section, Header};
 use super::runs::{io, merge, Layout, Spill};
 use super::SavedScalar;
 use crate::geom::{Aabb, Cell, FloatBits, RootGeometry};
-use crate::points::DEFAULT_BUCKET_SIZE;
+use crate::points::{PointTreeBuilder, DEFAULT_BUCKET_SIZE};
 use crate::Error;
 use bytemuck::Pod;
 use core::fmt;
@@ -231,16 +231,12 @@ impl ExternalBuild {
         I: IntoIterator<Item = ([S; D], T)>,
     {
         let out = out.as_ref();
-        if self.bucket_size == 0 {
-            return Err(ExternalError::Build(Error::ZeroBucketSize));
-        }
         let max_depth = self.max_depth.unwrap_or(Cell::<D>::MAX_LEVEL);
-        if max_depth > Cell::<D>::MAX_LEVEL {
-            return Err(ExternalError::Build(Error::MaxDepthTooLarge {
-                requested: max_depth,
-                limit: Cell::<D>::MAX_LEVEL,
-            }));
-        }
+        // The in-memory build's checks of the same settings, with the same errors.
+        (PointTreeBuilder::<S, D>::new().bucket_size(self.bucket_size))
+            .max_depth(max_depth)
+            .check_settings(0)
+            .map_err(ExternalError::Build)?;
         // Pass 1: the points' check and bounds.
         let mut bounds = Aabb::empty();
         let mut n = 0u64;
