@@ -60,6 +60,17 @@ pub(super) fn sections_start<const D: usize>() -> u64 {
     padded(header_len::<D>()).expect("a short header")
 }
 
+/// `Ok` when the padding `pad`, which starts at byte `at`, is all zero, else the
+/// [`SavedError::Padding`] naming its first other byte.
+pub(super) fn zero_padding(pad: &[u8], at: u64) -> Result<(), SavedError> {
+    match pad.iter().position(|&b| b != 0) {
+        Some(i) => Err(SavedError::Padding {
+            offset: at + i as u64,
+        }),
+        None => Ok(()),
+    }
+}
+
 /// Writes `bytes` at offset `at` of `out`, then zeros up to the next multiple of [`ALIGN`];
 /// the offset after them.
 pub(super) fn write_section(out: &mut impl Write, at: u64, bytes: &[u8]) -> std::io::Result<u64> {
@@ -362,10 +373,7 @@ impl Fields<'_> {
 
     fn zero(&mut self, name: &'static str) -> Result<(), SavedError> {
         let offset = self.at;
-        match self.byte(name)? {
-            0 => Ok(()),
-            _ => Err(SavedError::Padding { offset }),
-        }
+        zero_padding(&[self.byte(name)?], offset)
     }
 
     fn floats<const D: usize>(&mut self, name: &'static str) -> Result<[f64; D], SavedError> {

@@ -84,7 +84,7 @@ use crate::points::{PointTreeArrays, PointTreeParts};
 use crate::tree::raw::OwnedRawTree;
 use crate::{PointTree, Scalar};
 use bytemuck::Pod;
-use header::{padded, sections_start, write_section, Header};
+use header::{padded, sections_start, write_section, zero_padding, Header};
 use std::io::{Read, Write};
 
 /// A coordinate type the format stores: a [`Scalar`] that is plain data, with its code in the
@@ -230,8 +230,7 @@ pub fn read_point_tree_file<S: SavedScalar, T: Pod, const D: usize>(
 ) -> Result<PointTree<S, T, D>, SavedError> {
     let mut file = std::fs::File::open(path).map_err(SavedError::Io)?;
     let available = file.metadata().map_err(SavedError::Io)?.len();
-    let want = sections_start::<D>();
-    let mut head = vec![0u8; want.min(available) as usize];
+    let mut head = vec![0u8; sections_start::<D>().min(available) as usize];
     file.read_exact(&mut head).map_err(SavedError::Io)?;
     let header = read_header::<S, T, D>(&head, available)?;
     read_sections(header, &mut std::io::BufReader::new(file))
@@ -303,11 +302,7 @@ fn section<V: Pod>(src: &mut impl Read, at: &mut u64, len: usize) -> Result<Vec<
     let pad = (padded(*at).expect("checked") - *at) as usize;
     let mut zeros = [0u8; ALIGN as usize];
     src.read_exact(&mut zeros[..pad]).map_err(SavedError::Io)?;
-    if let Some(i) = zeros[..pad].iter().position(|&b| b != 0) {
-        return Err(SavedError::Padding {
-            offset: *at + i as u64,
-        });
-    }
+    zero_padding(&zeros[..pad], *at)?;
     *at += pad as u64;
     Ok(values)
 }

@@ -28,7 +28,7 @@
 //! for the coordinate or item type, that section is copied instead
 //! ([`PointTreeView::is_borrowed`] tells).
 
-use super::header::{padded, Header};
+use super::header::{padded, zero_padding, Header};
 use super::{read_header, SavedError, SavedScalar};
 use crate::error::{Invariant, ValidationError};
 use crate::geom::{Aabb, RootGeometry};
@@ -193,11 +193,7 @@ impl<'a, S: SavedScalar, T: Pod, const D: usize> PointTreeView<'a, S, T, D> {
     }
 
     /// The per-leaf bound check of every point (see the module doc).
-    pub(super) fn check_points(
-        &self,
-        leaves: &[LeafRun<D>],
-        parallel: bool,
-    ) -> Result<(), ValidationError> {
+    fn check_points(&self, leaves: &[LeafRun<D>], parallel: bool) -> Result<(), ValidationError> {
         leaf_bounds::check_leaves(&self.geometry, &self.domain, &self.points, leaves, parallel)
     }
 
@@ -295,14 +291,7 @@ fn sections<'b, S: SavedScalar, const D: usize>(
     let (spans, _) = header.spans::<S>();
     for &(_, stop) in &spans {
         let end = padded(stop).expect("checked");
-        if let Some(i) = bytes[stop as usize..end as usize]
-            .iter()
-            .position(|&b| b != 0)
-        {
-            return Err(SavedError::Padding {
-                offset: stop + i as u64,
-            });
-        }
+        zero_padding(&bytes[stop as usize..end as usize], stop)?;
     }
     Ok(spans.map(|(start, stop)| &bytes[start as usize..stop as usize]))
 }
