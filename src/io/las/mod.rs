@@ -2,9 +2,9 @@
 //! through the `las` crate: every point record of formats 0-3 and 6-8 with all its fields.
 //!
 //! Coordinates stay the file's integers (a [`Cloud<i32>`]) with its scale and offset as the
-//! cloud's [`Frame`]; intensity, classification, GPS time and colour fill their columns and
-//! every other field an extra column: `return_number`, `number_of_returns`, `scan_direction`,
-//! `edge_of_flight_line`, `synthetic`, `key_point`, `withheld`, `user_data`,
+//! cloud's [`Frame`](crate::cloud::Frame); intensity, classification, GPS time and colour fill
+//! their columns and every other field an extra column: `return_number`, `number_of_returns`,
+//! `scan_direction`, `edge_of_flight_line`, `synthetic`, `key_point`, `withheld`, `user_data`,
 //! `point_source_id`, `scan_angle_rank` (formats 0-5) or `scan_angle`, `overlap` and
 //! `scanner_channel` (formats 6-10), `nir`, and `extra_byte_0`, `extra_byte_1`, ... for the
 //! extra bytes. [`write_to`] writes all of them back, choosing the point format the columns
@@ -27,7 +27,7 @@
 //! assert_eq!(back.attributes.intensity, Some(vec![12, 34]));
 //! ```
 
-use crate::cloud::{Attributes, Cloud, Column, Frame};
+use crate::cloud::{Attributes, Cloud, Column};
 use ::las::raw::point::{Flags, ScanAngle};
 use ::las::{point::Format, raw, PointDataBuilder, Reader};
 use core::fmt;
@@ -157,15 +157,6 @@ fn las_error(point: Option<u64>) -> impl Fn(::las::Error) -> LasError {
     }
 }
 
-/// Runs `f`, a call into the `las` crate, with a panic in it (its LAZ decoder panics on some
-/// damaged chunk tables that no check of the header rules out) turned into [`LasError::Las`].
-fn guarded<T>(
-    point: Option<u64>,
-    f: impl FnOnce() -> Result<T, ::las::Error>,
-) -> Result<T, LasError> {
-    caught(point, f)?.map_err(las_error(point))
-}
-
 /// Runs `f` with a panic of the `las` crate's decoder in it turned into [`LasError::Las`], with
 /// the panic's message.
 fn caught<T>(point: Option<u64>, f: impl FnOnce() -> T) -> Result<T, LasError> {
@@ -204,15 +195,16 @@ pub fn read_from<R: Read + Seek + Send + Sync + 'static>(
     mut input: R,
 ) -> Result<Cloud<i32>, LasError> {
     let length = input.seek(SeekFrom::End(0))?;
-    header::checked_header(&mut input, length)?;
+    let raw_header = header::checked_header(&mut input, length)?;
     input.seek(SeekFrom::Start(0))?;
-    let mut reader = guarded(None, || Reader::new(input))?;
+    // A panic in the `las` crate (its LAZ decoder panics on some damaged chunk tables that no
+    // check of the header rules out) is an error too.
+    let mut reader = caught(None, || Reader::new(input))?.map_err(las_error(None))?;
     let header = reader.header().clone();
     let format = *header.point_format();
     if format.has_waveform {
         return Err(LasError::UnsupportedFormat(format.to_u8().unwrap_or(4)));
     }
-    let t = header.transforms();
     let fields = Fields::new(&format);
     let mut cloud = Cloud {
         points: Vec::new(),
@@ -222,10 +214,8 @@ pub fn read_from<R: Read + Seek + Send + Sync + 'static>(
             classification: Some(Vec::new()),
             ..Attributes::default()
         },
-        frame: Frame {
-            scale: [t.x.scale, t.y.scale, t.z.scale],
-            offset: [t.x.offset, t.y.offset, t.z.offset],
-        },
+        // The transforms the `las` crate read from the same header.
+        frame: header::frame_of(&raw_header),
     };
     let count = header.number_of_points();
     let record = usize::from(format.len());
