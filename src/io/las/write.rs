@@ -99,15 +99,12 @@ fn point_format(a: &Attributes, len: usize) -> Result<(Format, Fields), LasError
         a.color.is_some(),
         has("nir"),
     ) {
-        (false, false, false, _) => 0,
-        (false, true, false, _) => 1,
-        (false, false, true, _) => 2,
-        (false, true, true, _) => 3,
+        // Formats 0-3: GPS time adds 1, colour 2.
+        (false, gps, color, _) => u8::from(gps) + 2 * u8::from(color),
         (true, false, _, _) => return Err(LasError::MissingColumn("gps_time")),
-        (true, true, false, false) => 6,
-        (true, true, true, false) => 7,
-        (true, true, true, true) => 8,
         (true, true, false, true) => return Err(LasError::MissingColumn("color")),
+        // Formats 6-8: colour adds 1, NIR (which needs colour) 1 more.
+        (true, true, color, nir) => 6 + u8::from(color) + u8::from(nir),
     };
     let mut format = Format::new(number).map_err(las_error(None))?;
     format.extra_bytes = extra_bytes as u16;
@@ -145,12 +142,7 @@ struct RecordColumns<'a> {
 impl<'a> RecordColumns<'a> {
     /// The columns of `a` for `fields` (whose extra-byte columns [`point_format`] has checked).
     fn new(a: &'a Attributes, fields: Fields) -> Self {
-        let column = |name: &str| {
-            a.extra
-                .iter()
-                .find(|c| c.name == name)
-                .map(|c| &c.values[..])
-        };
+        let column = |name: &str| a.extra_column(name);
         RecordColumns {
             attributes: a,
             flags: fields.columns().iter().map(|c| column(c.0)).collect(),
