@@ -150,29 +150,18 @@ fn push_to<V>(column: &mut Option<Vec<V>>, v: V) {
 /// The column names the writers use for `a`'s present columns, after `x y z`, with the PLY type
 /// of the values each holds (the attributes' own type).
 pub(crate) fn attribute_names(a: &Attributes) -> Vec<(String, Kind)> {
-    let mut out: Vec<(String, Kind)> = Vec::new();
-    let mut add = |names: &[&str], kind: Kind| {
-        out.extend(names.iter().map(|n| (n.to_string(), kind)));
-    };
-    if a.intensity.is_some() {
-        add(&["intensity"], Kind::U16);
-    }
-    if a.classification.is_some() {
-        add(&["classification"], Kind::U8);
-    }
-    if a.color.is_some() {
-        add(&["red", "green", "blue"], Kind::U16);
-    }
-    if a.gps_time.is_some() {
-        add(&["gps_time"], Kind::F64);
-    }
-    if a.normal.is_some() {
-        add(&["nx", "ny", "nz"], Kind::F32);
-    }
-    for c in &a.extra {
-        out.push((c.name.clone(), Kind::F64));
-    }
-    out
+    let fixed: [(bool, &[&str], Kind); 5] = [
+        (a.intensity.is_some(), &["intensity"], Kind::U16),
+        (a.classification.is_some(), &["classification"], Kind::U8),
+        (a.color.is_some(), &["red", "green", "blue"], Kind::U16),
+        (a.gps_time.is_some(), &["gps_time"], Kind::F64),
+        (a.normal.is_some(), &["nx", "ny", "nz"], Kind::F32),
+    ];
+    let present = fixed.into_iter().filter(|f| f.0);
+    let named =
+        present.flat_map(|(_, names, kind)| names.iter().map(move |n| (n.to_string(), kind)));
+    let extra = a.extra.iter().map(|c| (c.name.clone(), Kind::F64));
+    named.chain(extra).collect()
 }
 
 /// Point `i`'s values in the order of [`attribute_names`], after its coordinates, into `out`
