@@ -223,22 +223,16 @@ pub fn from_bytes_with_limits(bytes: &[u8], limits: Limits) -> Result<ImageTree,
     limits.check_pixels(w, h).map_err(PbmError::Limit)?;
     ImageTree::depth_for([w, h]).map_err(PbmError::Image)?;
     let budget = limits.max_bytes.saturating_sub(bytes.len() as u64);
-    if raw {
-        match c.peek() {
-            Some(b'#') => c.comment(),
-            Some(b) if is_space(b) => c.bump(),
-            None => return Err(c.truncated(u64::from(w).div_ceil(8) * u64::from(h), 0, true)),
-            Some(_) => return Err(c.no_space("height")),
-        }
-        read_raw(&mut c, [w, h], budget)
-    } else {
-        match c.peek() {
-            Some(b) if b == b'#' || is_space(b) => {}
-            None => return Err(c.truncated(u64::from(w) * u64::from(h), 0, false)),
-            Some(_) => return Err(c.no_space("height")),
-        }
-        read_plain(&mut c, [w, h], budget)
+    // A P4 header ends with its one whitespace byte (or comment); a P1 raster may start after
+    // any. At the end of the input the reader reports the raster missing.
+    match c.peek() {
+        Some(b'#') if raw => c.comment(),
+        Some(b) if raw && is_space(b) => c.bump(),
+        Some(b) if b != b'#' && !is_space(b) => return Err(c.no_space("height")),
+        _ => {}
     }
+    let read = if raw { read_raw } else { read_plain };
+    read(&mut c, [w, h], budget)
 }
 
 fn builder(extent: [u32; 2], budget: u64) -> Result<RowBuilder, PbmError> {
