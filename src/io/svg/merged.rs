@@ -105,9 +105,7 @@ pub(super) fn write(mesh: &Mesh, board: &Board, out: &mut impl Write) -> io::Res
         &Style::solid().stroke("#1a1a1a").stroke_width(outline_px),
     )?;
     for c in board.components() {
-        o.s("<path d=\"");
-        write_ring(&mut o, &svg, &c.outline)?;
-        o.s("\"/>").nl()?;
+        write_ring(&mut o, &svg, &c.outline, "")?;
     }
     o.s("</g>").nl()?;
     open_group(&mut o, &Style::solid().stroke("#1a1a1a").stroke_width(1.5))?;
@@ -128,11 +126,8 @@ fn write_regions<W: Write + ?Sized>(
     o.s(&svg.rect_line(view)).spill()?;
     o.s("</g>").nl()?;
     for (i, c) in board.components().iter().enumerate() {
-        o.s("<path fill=\"")
-            .s(&escape(region_fill(i as u32 + 1)))
-            .s("\" d=\"");
-        write_ring(o, svg, &c.outline)?;
-        o.s("\"/>").nl()?;
+        let fill = format!(" fill=\"{}\"", escape(region_fill(i as u32 + 1)));
+        write_ring(o, svg, &c.outline, &fill)?;
     }
 
     Ok(())
@@ -255,17 +250,19 @@ fn write_shades<W: Write + ?Sized>(o: &mut TextOut<'_, W>, runs: &[Vec<Run>]) ->
     Ok(())
 }
 
-/// A closed polygon as path data (`M x y L x y ... Z`), in pixels.
+/// A closed polygon as a `<path>` with the attributes `attributes` (each after a space) and its
+/// data `M x y L x y ... Z`, in pixels.
 fn write_ring<W: Write + ?Sized>(
     o: &mut TextOut<'_, W>,
     svg: &Svg,
     ring: &[[i64; 2]],
+    attributes: &str,
 ) -> io::Result<()> {
+    o.s("<path").s(attributes).s(" d=\"");
     for (k, p) in ring.iter().enumerate() {
         o.s(if k == 0 { "M" } else { "L" });
         xy(o, svg, p.map(|c| c as f64));
         o.spill()?;
     }
-    o.s("Z");
-    Ok(())
+    o.s("Z\"/>").nl()
 }

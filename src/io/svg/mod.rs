@@ -144,7 +144,7 @@ impl Svg {
         style: &Style,
     ) -> &mut Self {
         self.group(style, |svg| {
-            svg.rect(&geometry.root_box());
+            svg.body.push_str(&svg.rect_line(&geometry.root_box()));
             for (id, cell) in tree.pre_order() {
                 if !tree.is_leaf(id) {
                     svg.cross(geometry, &cell);
@@ -187,7 +187,7 @@ impl Svg {
             for b in boxes {
                 let b = b.borrow();
                 if b.min.iter().chain(&b.max).all(|v| v.is_finite()) {
-                    svg.rect(b);
+                    svg.body.push_str(&svg.rect_line(b));
                 }
             }
         })
@@ -300,10 +300,6 @@ impl Svg {
             num(y0),
             num(y1)
         );
-    }
-
-    fn rect(&mut self, b: &Aabb<f64, 2>) {
-        self.body.push_str(&self.rect_line(b));
     }
 
     /// A box as one `<rect>` line, with its line break.
