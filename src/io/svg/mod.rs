@@ -145,10 +145,8 @@ impl Svg {
     ) -> &mut Self {
         self.group(style, |svg| {
             svg.body.push_str(&svg.rect_line(&geometry.root_box()));
-            for (id, cell) in tree.pre_order() {
-                if !tree.is_leaf(id) {
-                    svg.cross(geometry, &cell);
-                }
+            for (_, cell) in tree.pre_order().filter(|(id, _)| !tree.is_leaf(*id)) {
+                svg.cross(geometry, &cell);
             }
         })
     }
@@ -165,10 +163,7 @@ impl Svg {
         style: &Style,
     ) -> &mut Self {
         self.group(style, |svg| {
-            for (id, cell) in refined.pre_order() {
-                if refined.is_leaf(id) {
-                    continue;
-                }
+            for (_, cell) in refined.pre_order().filter(|(id, _)| !refined.is_leaf(*id)) {
                 let there = base.locate_cell(&cell);
                 if base.level(there) != cell.level() || base.is_leaf(there) {
                     svg.cross(geometry, &cell);
