@@ -204,12 +204,9 @@ pub fn write_node(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
 /// [`write_node`] on a mesh whose indices are checked.
 fn node_unchecked(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
     let mut on_boundary = vec![false; mesh.vertices.len()];
-    for s in &mesh.segments {
-        if s.kind == SegmentKind::Boundary {
-            for v in s.vertices {
-                on_boundary[v as usize] = true;
-            }
-        }
+    let boundary = (mesh.segments.iter()).filter(|s| s.kind == SegmentKind::Boundary);
+    for v in boundary.flat_map(|s| s.vertices) {
+        on_boundary[v as usize] = true;
     }
     let mut o = TextOut::new(out);
     o.u(mesh.vertices.len() as u64).s(" 2 0 1").nl()?;
