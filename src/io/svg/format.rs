@@ -9,10 +9,7 @@ pub(super) const MAX_PX: f64 = 1e7;
 /// The view with the repairs documented at [`Svg::new`](super::Svg::new).
 pub(super) fn repair_view(view: Aabb<f64, 2>) -> Aabb<f64, 2> {
     if !view.min.iter().chain(&view.max).all(|v| v.is_finite()) {
-        return Aabb {
-            min: [0.0; 2],
-            max: [1.0; 2],
-        };
+        return super::square(1.0);
     }
     let mut v = view;
     for a in 0..2 {

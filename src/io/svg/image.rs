@@ -12,10 +12,7 @@ use std::io::{BufWriter, Write};
 fn block_box(b: &Block<2>, side: f64) -> Aabb<f64, 2> {
     let [x, y] = b.min.map(f64::from);
     let s = f64::from(b.side);
-    Aabb {
-        min: [x, side - y - s],
-        max: [x + s, side - y],
-    }
+    Aabb::around(&[[x, side - y - s], [x + s, side - y]])
 }
 
 impl Svg {
@@ -95,10 +92,7 @@ pub fn write_image_tree_svg(tree: &ImageTree, out: impl Write) -> std::io::Resul
     }
     if !tree.is_cube() {
         let [w, h] = tree.extent().map(f64::from);
-        let extent = Aabb {
-            min: [0.0, side - h],
-            max: [w, side],
-        };
+        let extent = Aabb::around(&[[0.0, side - h], [w, side]]);
         writeln!(out, "<g{}>", Style::dashed().stroke("red").attributes())?;
         out.write_all(svg.rect_line(&extent).as_bytes())?;
         writeln!(out, "</g>")?;

@@ -321,10 +321,7 @@ impl Svg {
 
 /// The square `[0, side]^2`: the view of a board, or of an image tree's cube.
 fn square(side: f64) -> Aabb<f64, 2> {
-    Aabb {
-        min: [0.0; 2],
-        max: [side; 2],
-    }
+    Aabb::around(&[[0.0; 2], [side; 2]])
 }
 
 /// Draws a 2D point tree like the chapter's Figure 14.5: the lines `refinement` (typically a
