@@ -31,7 +31,6 @@ use crate::cloud::{Attributes, Cloud, Column};
 use ::las::raw::point::{Flags, ScanAngle};
 use ::las::{point::Format, raw, PointDataBuilder, Reader};
 use core::fmt;
-use smallvec::SmallVec;
 use std::io::{Read, Seek, SeekFrom};
 use std::path::Path;
 
@@ -344,17 +343,12 @@ impl Fields {
             Flags::TwoByte(r, c) => ([r, c], c & 0x1f),
             Flags::ThreeByte(r, f, c) => ([r, f], c),
         };
-        // One record's columns, on the stack: no allocation per point.
-        let mut values: SmallVec<[f64; 16]> = (self.bits().iter())
-            .map(|&(_, b, shift, width)| f64::from((bytes[b] >> shift) & ((1u8 << width) - 1)))
-            .collect();
-        values.push(angle);
-        values.push(f64::from(p.user_data));
-        values.push(f64::from(p.point_source_id));
-        if let Some(nir) = p.nir {
-            values.push(f64::from(nir));
-        }
-        values.extend(p.extra_bytes.iter().map(|&b| f64::from(b)));
+        // One record's columns, each pushed to its column as it is read.
+        let bits = (self.bits().iter())
+            .map(|&(_, b, shift, width)| f64::from((bytes[b] >> shift) & ((1u8 << width) - 1)));
+        let rest = [angle, f64::from(p.user_data), f64::from(p.point_source_id)];
+        let values = (bits.chain(rest).chain(p.nir.map(f64::from)))
+            .chain(p.extra_bytes.iter().map(|&b| f64::from(b)));
         a.intensity.as_mut().expect("created").push(p.intensity);
         a.classification.as_mut().expect("created").push(class);
         if let (Some(col), Some(t)) = (a.gps_time.as_mut(), p.gps_time) {
