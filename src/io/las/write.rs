@@ -183,39 +183,39 @@ impl<'a> RecordColumns<'a> {
     /// The flag bytes, scan angle and the position of `user_data` among the names, for point
     /// `i` with classification `class`.
     fn flags(&self, i: usize, class: u8) -> Result<(Flags, ScanAngle, usize), LasError> {
-        let extended = self.fields.extended;
-        if !extended && class > 31 {
-            return Err(LasError::BadValue {
-                point: i,
-                column: "classification".into(),
-                value: f64::from(class),
-            });
-        }
-        // The bit fields in the order they are checked (the first out of range is named).
-        let order: &[usize] = if extended {
-            &[0, 1, 4, 5, 6, 7, 2, 3, 8]
+        let bit = |k: usize| -> Result<u8, LasError> { Ok(self.field(k, i, 0.0, 1.0)? as u8) };
+        if self.fields.extended {
+            let returns =
+                self.field(0, i, 0.0, 15.0)? as u8 | (self.field(1, i, 0.0, 15.0)? as u8) << 4;
+            let mut f = 0u8;
+            for (k, shift) in [(4, 0), (5, 1), (6, 2), (7, 3), (2, 6), (3, 7)] {
+                f |= bit(k)? << shift;
+            }
+            f |= (self.field(8, i, 0.0, 3.0)? as u8) << 4;
+            let angle = self.field(9, i, -32768.0, 32767.0)? as i16;
+            Ok((
+                Flags::ThreeByte(returns, f, class),
+                ScanAngle::Scaled(angle),
+                10,
+            ))
         } else {
-            &[0, 1, 2, 3, 4, 5, 6]
-        };
-        let bits = self.fields.bits();
-        let mut bytes = [0u8; 2];
-        for &k in order {
-            let (_, b, shift, width) = bits[k];
-            bytes[b] |= (self.field(k, i, 0.0, f64::from((1u8 << width) - 1))? as u8) << shift;
+            if class > 31 {
+                return Err(LasError::BadValue {
+                    point: i,
+                    column: "classification".into(),
+                    value: f64::from(class),
+                });
+            }
+            let mut r =
+                self.field(0, i, 0.0, 7.0)? as u8 | (self.field(1, i, 0.0, 7.0)? as u8) << 3;
+            r |= bit(2)? << 6 | bit(3)? << 7;
+            let mut c = class;
+            for (k, shift) in [(4, 5), (5, 6), (6, 7)] {
+                c |= bit(k)? << shift;
+            }
+            let angle = self.field(7, i, -128.0, 127.0)? as i8;
+            Ok((Flags::TwoByte(r, c), ScanAngle::Rank(angle), 8))
         }
-        let angle = bits.len();
-        let (flags, scan_angle) = if extended {
-            let scan = self.field(angle, i, -32768.0, 32767.0)? as i16;
-            let flags = Flags::ThreeByte(bytes[0], bytes[1], class);
-            (flags, ScanAngle::Scaled(scan))
-        } else {
-            let scan = self.field(angle, i, -128.0, 127.0)? as i8;
-            (
-                Flags::TwoByte(bytes[0], bytes[1] | class),
-                ScanAngle::Rank(scan),
-            )
-        };
-        Ok((flags, scan_angle, angle + 1))
     }
 
     /// Point `i` of `cloud` as a LAS record.
