@@ -122,22 +122,6 @@ fn all_within<S: Scalar, const D: usize>(
     ok
 }
 
-/// The first leaf of `leaves` with a point out of place, as the error naming it; `points` are
-/// the tree's points (each leaf's run in range, checked by the caller).
-fn first_bad<S: Scalar, const D: usize>(
-    geometry: &RootGeometry<D>,
-    domain: &Aabb<f64, D>,
-    points: &[[S; D]],
-    leaves: &[LeafRun<D>],
-) -> Option<ValidationError> {
-    let exact = needs_exactness::<S, D>(domain);
-    leaves.iter().find_map(|leaf| {
-        let (lo, hi) = cell_bounds(geometry, domain, &leaf.cell);
-        let run = &points[leaf.start as usize..leaf.end as usize];
-        (!all_within(run, &lo, &hi, exact)).then(|| explain(domain, leaf, run, &lo, &hi))
-    })
-}
-
 /// The error for the first point of `run` (the run of `leaf`) outside `lo..=hi`.
 #[cold]
 fn explain<S: Scalar, const D: usize>(
@@ -201,59 +185,32 @@ pub(crate) fn check_leaves<S: Scalar, const D: usize>(
     leaves: &[LeafRun<D>],
     parallel: bool,
 ) -> Result<(), ValidationError> {
-    first_error(leaves, parallel, |chunk| {
-        first_bad(geometry, domain, points, chunk)
+    let exact = needs_exactness::<S, D>(domain);
+    first_error(leaves, parallel, |leaf| {
+        let (lo, hi) = cell_bounds(geometry, domain, &leaf.cell);
+        let run = &points[leaf.start as usize..leaf.end as usize];
+        (!all_within(run, &lo, &hi, exact)).then(|| explain(domain, leaf, run, &lo, &hi))
     })
 }
 
-/// The first error `find` reports on `leaves`, in their order, found on chunks of them on
-/// rayon's threads when `parallel` (and feature `rayon`).
+/// The first error `find` reports on a leaf of `leaves`, in their order, found on chunks of
+/// them on rayon's threads when `parallel` (and feature `rayon`).
 fn first_error<const D: usize>(
     leaves: &[LeafRun<D>],
     parallel: bool,
-    find: impl Fn(&[LeafRun<D>]) -> Option<ValidationError> + Sync,
+    find: impl Fn(&LeafRun<D>) -> Option<ValidationError> + Sync,
 ) -> Result<(), ValidationError> {
+    let in_chunk = |chunk: &[LeafRun<D>]| chunk.iter().find_map(&find);
     #[cfg(feature = "rayon")]
     if parallel && leaves.len() > CHUNK {
         use rayon::prelude::*;
         return leaves
             .par_chunks(CHUNK)
-            .find_map_first(&find)
+            .find_map_first(in_chunk)
             .map_or(Ok(()), Err);
     }
     let _ = parallel;
-    find(leaves).map_or(Ok(()), Err)
-}
-
-/// The first leaf of `leaves` whose points are out of Morton order, as the error naming it.
-fn first_unordered<S: Scalar, const D: usize>(
-    geometry: &RootGeometry<D>,
-    points: &[[S; D]],
-    leaves: &[LeafRun<D>],
-) -> Option<ValidationError> {
-    leaves
-        .iter()
-        .filter(|l| l.end - l.start > 1)
-        .find_map(|leaf| {
-            let run = &points[leaf.start as usize..leaf.end as usize];
-            let (mut previous, mut unordered) = (0u64, None);
-            geometry.keys_into(
-                run.len(),
-                |i| &run[i],
-                |i, key| {
-                    if key < previous && unordered.is_none() {
-                        unordered = Some(i);
-                    }
-                    previous = key;
-                },
-            );
-            unordered.map(|i| {
-                ValidationError::new(Invariant::InLeaf)
-                    .node(leaf.node)
-                    .point(leaf.start as usize + i)
-                    .detail("out of Morton order in its leaf")
-            })
-        })
+    in_chunk(leaves).map_or(Ok(()), Err)
 }
 
 /// Checks that the points of every leaf are in Morton order (the owned tree's updates find a
@@ -271,8 +228,28 @@ pub(crate) fn check_leaf_order<S: Scalar, const D: usize>(
     leaves: &[LeafRun<D>],
     parallel: bool,
 ) -> Result<(), ValidationError> {
-    first_error(leaves, parallel, |chunk| {
-        first_unordered(geometry, points, chunk)
+    first_error(leaves, parallel, |leaf| {
+        if leaf.end - leaf.start <= 1 {
+            return None;
+        }
+        let run = &points[leaf.start as usize..leaf.end as usize];
+        let (mut previous, mut unordered) = (0u64, None);
+        geometry.keys_into(
+            run.len(),
+            |i| &run[i],
+            |i, key| {
+                if key < previous && unordered.is_none() {
+                    unordered = Some(i);
+                }
+                previous = key;
+            },
+        );
+        unordered.map(|i| {
+            ValidationError::new(Invariant::InLeaf)
+                .node(leaf.node)
+                .point(leaf.start as usize + i)
+                .detail("out of Morton order in its leaf")
+        })
     })
 }
 
