@@ -227,12 +227,6 @@ impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
         Ok(crate::query::place_point(point, self.domain())?.map(|p| self.geometry().deep_key(&p)))
     }
 
-    /// The finest key of a point to insert as number `index`, checked like the build's input.
-    pub(crate) fn input_key(&self, point: &[S; D], index: usize) -> Result<DeepKey<D>, Error> {
-        let p = Error::check_input(point, Some(self.domain()), index)?;
-        Ok(self.geometry().deep_key(&p))
-    }
-
     /// The equivalent [`PointTree`] with the same root cube and cells, with `bucket_size` and
     /// `max_depth` (as [`crate::points::PointTreeBuilder`] takes them): the points in Morton order, no
     /// sort. O(n + nodes).

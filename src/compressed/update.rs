@@ -25,11 +25,13 @@ use crate::geom::{DeepKey, Scalar};
 use crate::query::{InsertError, PointSet, PointSetMut};
 
 impl<S: Scalar, T, const D: usize> CompressedTree<S, T, D> {
-    /// The key of a point to insert, checked (finiteness, domain, room for one more).
+    /// The finest key of a point to insert, checked (room for one more; then finiteness and
+    /// domain, like the build's input, as number `len()`).
     pub(crate) fn checked_insert_key(&self, point: &[S; D]) -> Result<DeepKey<D>, Error> {
         let n = self.len();
         Error::check_count(n + 1)?;
-        self.input_key(point, n)
+        let p = Error::check_input(point, Some(self.domain()), n)?;
+        Ok(self.geometry().deep_key(&p))
     }
 
     /// Stores the point below `at`, the deepest node holding `key`; returns what the tree did.
