@@ -224,12 +224,6 @@ impl<const D: usize> Tree<D> {
         }
     }
 
-    /// The length of the per-node level array (equal to [`Tree::node_count`] in a valid tree).
-    #[inline]
-    pub(super) fn level_slots(&self) -> usize {
-        self.level.len()
-    }
-
     /// The parent of every child block, by block number (block `b` holds nodes
     /// `1 + b * 2^D ..`); freed blocks keep their last parent.
     #[inline]

@@ -170,7 +170,7 @@ impl<const D: usize> Tree<D> {
         let n = Dim::<D>::CHILDREN;
         let slots = self.first_child.len();
         let blocks = self.block_parents().len();
-        if self.level_slots() != slots || slots != 1 + blocks * n {
+        if self.level.len() != slots || slots != 1 + blocks * n {
             return Err(TreeError::Arrays {
                 nodes: slots,
                 blocks,
