@@ -35,13 +35,13 @@ use crate::error::Error;
 use crate::error::ValidationError;
 use crate::geom::{Aabb, DeepCell, DeepKey, Scalar};
 use crate::hash::splitmix64;
-use crate::query::point_set::with_item;
+use crate::query::{InsertError, Location};
 use crate::query::{
-    offer, Entry, Metric, Neighbor, PointSet, PointSetMut, PositionSlots, QueryError, SpatialIndex,
+    Metric, Neighbor, PointSet, PointSetMut, PositionSlots, QueryError, SpatialIndex,
     SquaredEuclidean,
 };
-use crate::query::{InsertError, Location};
 use smallvec::SmallVec;
+use std::cmp::Ordering;
 use std::collections::{BinaryHeap, HashSet};
 
 /// The deepest node holding a key on every level, level 0 first.
@@ -240,24 +240,24 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
             }
         };
         let index = self.base.index();
-        let points = index.points();
+        let (points, slots) = (index.points(), index.payloads());
         let m = SquaredEuclidean;
         let mut best = (f64::INFINITY, usize::MAX);
         let mut visited = 0;
         let mut heap = BinaryHeap::new();
         if let Some((root, b)) = index.root() {
-            let d = m.box_distance(&q, &b);
-            offer(&mut heap, f64::INFINITY, d, Some((root, b)), root as usize);
+            heap.push(Pending(m.box_distance(&q, &b), root, b));
         }
-        while let Some(Entry { key: d, node, .. }) = heap.pop() {
-            let (v, b) = node.expect("only nodes are queued");
+        while let Some(Pending(d, v, b)) = heap.pop() {
             if d > bound(best.0) {
                 break;
             }
             visited += 1;
             let leaf = !index.for_each_child_in(v, &b, |c, cb| {
                 let cd = m.box_distance(&q, cb);
-                offer(&mut heap, bound(best.0), cd, Some((c, *cb)), c as usize);
+                if cd <= bound(best.0) {
+                    heap.push(Pending(cd, c, *cb));
+                }
             });
             if leaf {
                 for i in index.run(v) {
@@ -268,9 +268,36 @@ impl<S: Scalar, T, const D: usize> SkipQuadtree<S, T, D> {
                 }
             }
         }
-        let found = (best.1 != usize::MAX)
-            .then(|| with_item(&self.base, Neighbor::at(index, best.0, best.1)));
+        let found = (best.1 != usize::MAX).then(|| Neighbor {
+            point: &points[best.1],
+            item: &self.base.items()[slots[best.1] as usize],
+            distance: best.0,
+            index: slots[best.1] as usize,
+        });
         Ok((found, visited))
+    }
+}
+
+/// A node waiting in the best-first search, nearest box on top.
+struct Pending<const D: usize>(f64, u32, Aabb<f64, D>);
+
+impl<const D: usize> PartialEq for Pending<D> {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+
+impl<const D: usize> Eq for Pending<D> {}
+
+impl<const D: usize> PartialOrd for Pending<D> {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl<const D: usize> Ord for Pending<D> {
+    fn cmp(&self, other: &Self) -> Ordering {
+        other.0.total_cmp(&self.0).then(other.1.cmp(&self.1))
     }
 }
 

@@ -59,7 +59,6 @@ pub(crate) use knn::k_nearest;
 pub use knn::Neighbor;
 pub use location::Location;
 pub use metric::{Chebyshev, Manhattan, Metric, SquaredEuclidean};
-pub(crate) use nearest_iter::{offer, Entry};
 pub use ordered_batch::{BatchError, BatchQueries};
 pub use periodic::{OutsidePoints, PeriodicError, Torus};
 pub use periodic_metric::{AxisMetric, MinImage};

@@ -17,16 +17,12 @@ use core::cmp::Ordering;
 use std::collections::BinaryHeap;
 
 /// A queued node (`node: Some`) or point, ordered so that the heap's top is the least
-/// `(key, is point, index)` (also in the skip quadtree's best-first search, whose queue holds
-/// nodes only, each with its id as the index).
-pub(crate) struct Entry<N> {
-    pub(crate) key: f64,
-    pub(crate) node: Option<N>,
-    pub(crate) index: usize,
+/// `(key, is point, index)`.
+struct Entry<N> {
+    key: f64,
+    node: Option<N>,
+    index: usize,
 }
-
-/// A best-first search's queue: the nearest entry on top.
-pub(crate) type Queue<N> = BinaryHeap<Entry<N>>;
 
 impl<N> Entry<N> {
     fn rank(&self) -> (f64, bool, usize) {
@@ -63,7 +59,7 @@ pub(crate) struct IndexNearestIter<'a, I: SpatialIndex<D>, M, const D: usize> {
     metric: M,
     q: [f64; D],
     max: f64,
-    heap: Queue<(I::Node, Aabb<f64, D>)>,
+    heap: BinaryHeap<Entry<(I::Node, Aabb<f64, D>)>>,
 }
 
 impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> IndexNearestIter<'a, I, M, D> {
@@ -123,7 +119,7 @@ impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> Iterator
 /// Queues a node (`node: Some`) or the point at `index` at distance `key`, unless it lies
 /// beyond `max`.
 #[inline(always)]
-pub(crate) fn offer<N>(heap: &mut Queue<N>, max: f64, key: f64, node: Option<N>, index: usize) {
+fn offer<N>(heap: &mut BinaryHeap<Entry<N>>, max: f64, key: f64, node: Option<N>, index: usize) {
     if key <= max {
         heap.push(Entry { key, node, index });
     }

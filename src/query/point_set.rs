@@ -685,7 +685,7 @@ pub trait PointSet<const D: usize> {
 
 /// A neighbour found on `set`'s index, with its item and slot.
 #[inline(always)]
-pub(crate) fn with_item<'a, P: PointSet<D> + ?Sized, const D: usize>(
+pub(super) fn with_item<'a, P: PointSet<D> + ?Sized, const D: usize>(
     set: &'a P,
     n: Neighbor<'a, P::Scalar, Payload<P, D>, D>,
 ) -> NeighborIn<'a, P, D> {
