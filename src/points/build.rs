@@ -8,7 +8,7 @@
 //! 2. Quantise each point to its Morton key at the finest level ([`RootGeometry::key`]), which
 //!    agrees exactly with the split convention; replace the key's low ceil(log2 n) bits by the
 //!    point's input index ([`pack`]) and radix-sort these `u64`s; gather points and items in
-//!    that order, asking the cache for the record 16 ahead (`prefetch.rs`: 1.2x faster); put
+//!    that order, asking the cache for the record 24 ahead, both its lines (`prefetch.rs`); put
 //!    the rare runs whose keys agree above the index bits but differ below them in full key
 //!    order ([`order_by_full_keys`]). The result is the (key, input index) order.
 //!    Moving 8 bytes per point instead of a 16-byte (key, index) pair made the build 1.2x (2D)
@@ -122,9 +122,9 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
     /// `par_build` keeps both cores busy and ignores it.
     ///
     /// Measured on a 2-core virtual machine (`examples/build_scale --runs 1`, three alternated
-    /// cold builds of 10^8 uniform 3-D points): 75.8-78.7 ns/point against 131.6-170.0 without
+    /// cold builds of 10^8 uniform 3-D points): 69.1-77.3 ns/point against 118.4-133.9 without
     /// (the kernel's share of the time moves to the second thread), the same peak memory; at
-    /// 10^7, 66.6-67.6 against 74.7-75.6.
+    /// 10^7, 66.6-67.6 against 74.7-75.6 (an earlier build).
     ///
     /// ```
     /// use orthtree::{points::PointTreeBuilder, PointSet};
