@@ -20,7 +20,7 @@
 //! ```
 
 use super::CloudError;
-use crate::geom::{exact_point, morton, Aabb, Cell, RootGeometry, Scalar};
+use crate::geom::{morton, Aabb, Cell, RootGeometry, Scalar};
 use crate::image::{Coverage, RegionTree};
 use crate::points::PointTree;
 use core::ops::Range;
@@ -71,16 +71,19 @@ impl<const D: usize> VoxelGrid<D> {
     /// # Complexity
     /// O(n) for the points' bounds.
     pub fn with_size<S: Scalar>(points: &[[S; D]], voxel: f64) -> Result<Self, CloudError> {
-        // The points' bounds, through the crate's one point check; no points: the origin.
-        let mut bounds = Aabb::empty();
-        for (index, p) in points.iter().enumerate() {
-            let q = exact_point(p).map_err(|(axis, _)| CloudError::BadCoordinate {
-                index,
-                axis,
-                value: Scalar::to_f64(p[axis]),
+        // The points' bounds, through the bulk build's check; no points: the origin.
+        let mut bounds =
+            crate::points::scan(None, 0..points.len(), &|i| &points[i]).map_err(|e| match e {
+                crate::Error::NonFiniteCoordinate { index, axis, .. }
+                | crate::Error::InexactCoordinate { index, axis, .. } => {
+                    CloudError::BadCoordinate {
+                        index,
+                        axis,
+                        value: Scalar::to_f64(points[index][axis]),
+                    }
+                }
+                other => CloudError::Tree(other),
             })?;
-            bounds.add_point(&q);
-        }
         if points.is_empty() {
             bounds.add_point(&[0.0; D]);
         }

@@ -132,7 +132,7 @@ impl<S: Scalar + Pod, const D: usize> DistPointTreeBuilder<S, D> {
         let root = self.agree_settings(&comm)?;
         let (points, items): (Vec<[S; D]>, Vec<T>) = entries.into_iter().unzip();
         let n = points.len();
-        let scan = self.inner.scan(root.as_ref(), 0..n, &|i| &points[i]);
+        let scan = crate::points::scan(root.as_ref(), 0..n, &|i| &points[i]);
         agree_points(&comm, &scan, &points, root.as_ref())?;
         let bounds = scan.expect("agreed: no rank failed");
         // Counts and bounds of every rank.

@@ -252,7 +252,7 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
         );
         let (geometry, domain, bits) =
             huge_pages::while_populating(self.ahead(&[&keys, &scratch]), || {
-                let bounds = self.scan(root.as_ref(), 0..n, &point)?;
+                let bounds = scan(root.as_ref(), 0..n, &point)?;
                 let (geometry, domain) = settle(root, bounds, n);
                 let bits = index_bits(n);
                 geometry.keys_into(n, &point, |i, key| packed.push(pack(key, i, bits)));
@@ -338,49 +338,45 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
             .map(|root| Ok(Aabb::new(root.min, root.max)?.to_exact_f64()?))
             .transpose()
     }
+}
 
-    /// Checks the points with indices in `range` (finite, inside `root` when given) and returns
-    /// their bounding box (min above max for an empty range).
-    ///
-    /// A block of points at a time: its bounds and one flag for all its checks, without a
-    /// branch per point; only a block whose flag is down is checked again point by point, for
-    /// the error naming its first bad point (the one a point-by-point scan would report).
-    pub(crate) fn scan<'p>(
-        &self,
-        root: Option<&Aabb<f64, D>>,
-        range: core::ops::Range<usize>,
-        point: &impl Fn(usize) -> &'p [S; D],
-    ) -> Result<Aabb<f64, D>, Error>
-    where
-        S: 'p,
-    {
-        const BLOCK: usize = 1024;
-        const SCAN_AHEAD: usize = 32;
-        let mut bounds = Aabb::empty();
-        let (lower, upper) = root.map_or(([f64::MIN; D], [f64::MAX; D]), |r| (r.min, r.max));
-        for start in range.clone().step_by(BLOCK) {
-            let block = start..(start + BLOCK).min(range.end);
-            let mut fine = true;
-            let mut block_bounds = Aabb::<f64, D>::empty();
-            for index in block.clone() {
-                prefetch(point((index + SCAN_AHEAD).min(range.end - 1)));
-                let p = point(index);
-                for a in 0..D {
-                    let x = p[a].to_f64();
-                    fine &= p[a].converts_exactly() & (lower[a] <= x) & (x <= upper[a]);
-                    block_bounds.min[a] = block_bounds.min[a].min(x);
-                    block_bounds.max[a] = block_bounds.max[a].max(x);
-                }
+/// Checks the points with indices in `range` (finite, inside `root` when given) and returns
+/// their bounding box (min above max for an empty range).
+///
+/// A block of points at a time: its bounds and one flag for all its checks, without a
+/// branch per point; only a block whose flag is down is checked again point by point, for
+/// the error naming its first bad point (the one a point-by-point scan would report).
+pub(crate) fn scan<'p, S: Scalar + 'p, const D: usize>(
+    root: Option<&Aabb<f64, D>>,
+    range: core::ops::Range<usize>,
+    point: &impl Fn(usize) -> &'p [S; D],
+) -> Result<Aabb<f64, D>, Error> {
+    const BLOCK: usize = 1024;
+    const SCAN_AHEAD: usize = 32;
+    let mut bounds = Aabb::empty();
+    let (lower, upper) = root.map_or(([f64::MIN; D], [f64::MAX; D]), |r| (r.min, r.max));
+    for start in range.clone().step_by(BLOCK) {
+        let block = start..(start + BLOCK).min(range.end);
+        let mut fine = true;
+        let mut block_bounds = Aabb::<f64, D>::empty();
+        for index in block.clone() {
+            prefetch(point((index + SCAN_AHEAD).min(range.end - 1)));
+            let p = point(index);
+            for a in 0..D {
+                let x = p[a].to_f64();
+                fine &= p[a].converts_exactly() & (lower[a] <= x) & (x <= upper[a]);
+                block_bounds.min[a] = block_bounds.min[a].min(x);
+                block_bounds.max[a] = block_bounds.max[a].max(x);
             }
-            if !fine {
-                for index in block {
-                    Error::check_input(point(index), root, index)?;
-                }
-            }
-            bounds.add_box(&block_bounds);
         }
-        Ok(bounds)
+        if !fine {
+            for index in block {
+                Error::check_input(point(index), root, index)?;
+            }
+        }
+        bounds.add_box(&block_bounds);
     }
+    Ok(bounds)
 }
 
 /// The number of low key bits [`pack`] gives to the index for `n` points: enough for `n - 1`.

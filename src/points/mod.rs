@@ -35,6 +35,7 @@ pub(crate) use crate::geom::digit;
 use crate::geom::{Aabb, Dim, RootGeometry, Scalar};
 use crate::query::{Location, PointSet, QueryError};
 use crate::tree::{BalanceOptions, NodeId, Tree};
+pub(crate) use build::scan;
 #[cfg(any(feature = "saved", feature = "mpi"))]
 pub(crate) use build::settle;
 #[cfg(feature = "serde")]

@@ -7,7 +7,7 @@
 //! points and items into key order. Cutting the sorted run into nodes stays serial: it is a small
 //! part of the time. The result is the same tree as [`PointTreeBuilder::build`] gives.
 
-use super::build::{index_bits, later_index, pack, settle, unpack_index};
+use super::build::{index_bits, later_index, pack, scan, settle, unpack_index};
 use super::{PointTree, PointTreeBuilder};
 use crate::error::Error;
 use crate::geom::{Aabb, Scalar};
@@ -46,7 +46,7 @@ impl<S: Scalar + Send + Sync, const D: usize> PointTreeBuilder<S, D> {
         let point = |i: usize| &entries[i].0;
         let scans: Vec<Result<Aabb<f64, D>, Error>> = (0..n.div_ceil(CHUNK))
             .into_par_iter()
-            .map(|c| self.scan(root.as_ref(), c * CHUNK..((c + 1) * CHUNK).min(n), &point))
+            .map(|c| scan(root.as_ref(), c * CHUNK..((c + 1) * CHUNK).min(n), &point))
             .collect();
         let mut bounds = Aabb::empty();
         for scan in scans {

@@ -89,16 +89,14 @@ fn sum_of_squares(points: &[[f64; 3]]) -> f64 {
 /// orthtree's downsampling on Open3D's grid.
 fn voxel_orthtree(cloud: &Cloud<f64>, voxel: f64, reps: usize) -> Result<Side, String> {
     let run = || -> Result<(usize, f64), String> {
-        let (mut min, mut max) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-        for p in &cloud.points {
-            for a in 0..3 {
-                min[a] = min[a].min(p[a]);
-                max[a] = max[a].max(p[a]);
-            }
-        }
+        // Open3D's grid: voxels from half a voxel below the lowest point. The grid from the
+        // lowest point ([`VoxelGrid::with_size`], which checks and bounds the points) has the
+        // lowest corner; its cube, moved down by half a voxel, covers the points.
+        let tight = VoxelGrid::with_size(&cloud.points, voxel).map_err(|e| e.to_string())?;
+        let cube = tight.root_box::<f64>().map_err(|e| e.to_string())?;
         let bounds = Aabb {
-            min: min.map(|m| m - voxel / 2.0),
-            max,
+            min: cube.min.map(|m| m - voxel / 2.0),
+            max: cube.max,
         };
         let grid = VoxelGrid::for_box(&bounds, voxel).map_err(|e| e.to_string())?;
         let out = grid
