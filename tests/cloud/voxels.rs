@@ -5,7 +5,7 @@
 
 use crate::common::rng;
 use orthtree::cloud::voxel::{Representative, VoxelGrid};
-use orthtree::cloud::{Cloud, Column};
+use orthtree::cloud::{Cloud, CloudError, Column};
 use orthtree::{Cell, PointSet};
 use proptest::prelude::*;
 use rand::Rng;
@@ -231,6 +231,27 @@ fn bad_grids_are_refused() {
     let err = VoxelGrid::with_size(&pts, 1e-9).unwrap_err();
     assert!(err.to_string().contains("exceed 2^21"), "{err}");
     assert!(VoxelGrid::with_size(&[[f64::INFINITY, 0.0, 0.0]], 1.0).is_err());
+    // the first bad coordinate is named, in whatever block of points the check reads it
+    let mut many: Vec<[f64; 3]> = (0..3000).map(|i| [i as f64, 0.5, 0.25]).collect();
+    for (index, axis, value) in [
+        (2999, 2, f64::NEG_INFINITY),
+        (1024, 1, f64::NAN),
+        (1023, 0, f64::INFINITY),
+    ] {
+        many[index][axis] = value;
+        match VoxelGrid::with_size(&many, 1.0).unwrap_err() {
+            CloudError::BadCoordinate {
+                index: i,
+                axis: a,
+                value: v,
+            } => {
+                assert_eq!((i, a), (index, axis));
+                assert_eq!(v.is_nan(), value.is_nan());
+                assert!(v.is_nan() || v == value);
+            }
+            other => panic!("expected BadCoordinate, got {other:?}"),
+        }
+    }
     // an integer cloud with a voxel that is not an integer has no integer root box
     let ints = [[0i32, 0, 0], [3, 3, 3]];
     let grid = VoxelGrid::with_size(&ints, 0.7).unwrap(); // side 5.6
