@@ -124,7 +124,7 @@ impl<S: Scalar, const D: usize> PointTreeBuilder<S, D> {
     /// Measured on a 2-core virtual machine (`examples/build_scale --runs 1`, three alternated
     /// cold builds of 10^8 uniform 3-D points): 69.1-77.3 ns/point against 118.4-133.9 without
     /// (the kernel's share of the time moves to the second thread), the same peak memory; at
-    /// 10^7, 66.6-67.6 against 74.7-75.6 (an earlier build).
+    /// 10^7, 63.4-66.4 against 67.9-69.7.
     ///
     /// ```
     /// use orthtree::{points::PointTreeBuilder, PointSet};
