@@ -563,3 +563,63 @@ fn single_point_builds() {
     assert_eq!(t.leaf_count(), 1);
     t.validate().unwrap();
 }
+
+/// The reference for the build's input check: the first point, in input order, with a
+/// coordinate that is not finite (then that axis), else the first outside `root` (its first
+/// axis outside), one point at a time.
+fn first_bad_by_scan(
+    points: &[[f64; 2]],
+    root: Option<&Aabb<f64, 2>>,
+) -> Option<(usize, usize, bool)> {
+    points.iter().enumerate().find_map(|(i, p)| {
+        if let Some(a) = (0..2).find(|&a| !p[a].is_finite()) {
+            return Some((i, a, false));
+        }
+        let r = root?;
+        (0..2)
+            .find(|&a| !(r.min[a] <= p[a] && p[a] <= r.max[a]))
+            .map(|a| (i, a, true))
+    })
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+
+    /// Random inputs of up to a few blocks with a few bad coordinates (NaN, infinities, points
+    /// just outside the root box) anywhere: the build names what a point-by-point check names,
+    /// serially and in parallel, and builds a valid tree when that check finds nothing.
+    #[test]
+    fn the_build_names_the_first_bad_point_of_a_point_by_point_check(
+        n in 1usize..5000,
+        seed in 0u64..1000,
+        bad in proptest::collection::vec((0usize..5000, 0usize..2, 0u8..5), 0..4),
+        boxed in proptest::bool::ANY,
+    ) {
+        let mut points: Vec<[f64; 2]> = random_entries::<2>(seed, n).into_iter().map(|e| e.0).collect();
+        for &(at, axis, kind) in &bad {
+            points[at % n][axis] = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 1.0f64.next_up(), -0.5][kind as usize];
+        }
+        let unit = Aabb::new([0.0; 2], [1.0; 2]).unwrap();
+        let root = boxed.then_some(unit);
+        let builder = match root {
+            Some(r) => PointTreeBuilder::<f64, 2>::new().root_box(r),
+            None => PointTreeBuilder::new(),
+        };
+        let named = |result: Result<PointTree<f64, u32, 2>, Error>| match result {
+            Ok(tree) => {
+                tree.validate().unwrap();
+                None
+            }
+            Err(Error::NonFiniteCoordinate { index, axis, .. }) => Some((index, axis, false)),
+            Err(Error::OutsideRootBox { index, axis, .. }) => Some((index, axis, true)),
+            Err(other) => panic!("unexpected {other:?}"),
+        };
+        let expected = first_bad_by_scan(&points, root.as_ref());
+        proptest::prop_assert_eq!(named(builder.build_indexed(&points)), expected);
+        #[cfg(feature = "rayon")]
+        {
+            let entries: Vec<([f64; 2], u32)> = points.iter().zip(0..).map(|(p, i)| (*p, i)).collect();
+            proptest::prop_assert_eq!(named(builder.par_build(&entries)), expected);
+        }
+    }
+}
