@@ -1,12 +1,11 @@
 //! Voxel-grid downsampling (Open3D's `voxel_down_sample`, PCL's `VoxelGrid` filter) on the
-//! runs of [`VoxelGrid::voxels`]: one output point per occupied voxel, in Morton order of the
-//! voxels, either the centroid of the voxel's points with their attributes averaged, or the
+//! points sorted by voxel key (the runs [`VoxelGrid::voxels`] gives for a tree, without the
+//! tree): one output point per occupied voxel, in Morton order of the voxels, either the centroid of the voxel's points with their attributes averaged, or the
 //! point nearest that centroid with its own attributes.
 
-use super::voxel::{Representative, Voxel, VoxelGrid};
+use super::voxel::{Representative, SortedVoxels, Voxel, VoxelGrid};
 use super::{Attributes, Cloud, CloudError, Column};
 use crate::geom::Scalar;
-use crate::query::PointSet;
 
 impl VoxelGrid<3> {
     /// The cloud downsampled to one point per occupied voxel (in Morton order of the voxels),
@@ -17,7 +16,7 @@ impl VoxelGrid<3> {
     /// as [`VoxelGrid::tree`] for points the grid's tree refuses.
     ///
     /// # Complexity
-    /// The tree's build, O(n log n), then O(n).
+    /// The tree build's sort of the points by key, O(n log n), then O(n).
     ///
     /// ```
     /// use orthtree::cloud::{voxel::{Representative, VoxelGrid}, Cloud};
@@ -36,23 +35,23 @@ impl VoxelGrid<3> {
         representative: Representative,
     ) -> Result<Cloud<f64>, CloudError> {
         cloud.attributes.check(cloud.len())?;
-        let tree = self.indexed_tree(&cloud.points)?;
-        let voxels = self.voxels(&tree)?;
-        let index = |slot: usize| tree.items()[slot] as usize;
-        // Plain sums: exact for integer coordinates (so ties in Nearest are true ties), and
-        // independent of the order of the voxel's points.
-        let centroid = |v: &Voxel<3>| {
-            let points = &tree.points()[v.slots.clone()];
-            let sum = |a: usize| points.iter().fold(0.0, |s, p| s + Scalar::to_f64(p[a]));
-            core::array::from_fn(|a| sum(a) / points.len() as f64)
-        };
+        let SortedVoxels {
+            order,
+            voxels,
+            sums,
+        } = self.sorted_voxels(&cloud.points)?;
+        let index = |slot: usize| order[slot] as usize;
+        // Plain sums: exact for integer coordinates (so ties in Nearest are true ties).
+        let centroids = voxels
+            .iter()
+            .zip(&sums)
+            .map(|(v, sum)| sum.map(|s| s / v.slots.len() as f64));
         match representative {
             Representative::Nearest => {
                 let mut chosen = Vec::with_capacity(voxels.len());
-                for v in &voxels {
-                    let c: [f64; 3] = centroid(v);
+                for (v, c) in voxels.iter().zip(centroids) {
                     let d2 = |slot: usize| -> f64 {
-                        let p = tree.points()[slot];
+                        let p = cloud.points[index(slot)];
                         (0..3).map(|a| (Scalar::to_f64(p[a]) - c[a]).powi(2)).sum()
                     };
                     let best = v
@@ -74,10 +73,10 @@ impl VoxelGrid<3> {
                 })
             }
             Representative::Centroid => {
-                let points = voxels.iter().map(centroid).collect();
+                let points = centroids.collect();
                 Ok(Cloud {
                     points,
-                    attributes: averaged(&cloud.attributes, &voxels, tree.items()),
+                    attributes: averaged(&cloud.attributes, &voxels, &order),
                     frame: cloud.frame,
                 })
             }
@@ -85,7 +84,7 @@ impl VoxelGrid<3> {
     }
 }
 
-/// The point indices of one voxel: the items (input indices) of its slots.
+/// The point indices of one voxel: its run of the voxel order.
 #[derive(Clone, Copy)]
 struct Group<'a> {
     slots: &'a [u32],
@@ -97,17 +96,17 @@ impl Group<'_> {
     }
 }
 
-/// The attributes of each voxel's points (`items`: the tree's items, the points' input
-/// indices), averaged as [`Representative::Centroid`] says. Nothing is gathered for a cloud
+/// The attributes of each voxel's points (`order`: the points' input indices grouped by
+/// voxel), averaged as [`Representative::Centroid`] says. Nothing is gathered for a cloud
 /// without attributes.
-fn averaged(a: &Attributes, voxels: &[Voxel<3>], items: &[u32]) -> Attributes {
+fn averaged(a: &Attributes, voxels: &[Voxel<3>], order: &[u32]) -> Attributes {
     let groups: Vec<Group<'_>> = if a.is_empty() {
         Vec::new()
     } else {
         voxels
             .iter()
             .map(|v| Group {
-                slots: &items[v.slots.clone()],
+                slots: &order[v.slots.clone()],
             })
             .collect()
     };

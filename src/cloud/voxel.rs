@@ -6,6 +6,9 @@
 //! pass over the leaves (a leaf at the grid's level is one voxel; a shallower leaf, holding at
 //! most a bucket of points, is cut where its points' voxel changes), with no hash map.
 //!
+//! Bare points need no tree for this: [`VoxelGrid::occupancy_of`] and the downsampling sort
+//! them by voxel key with the build's own keys and radix sort, and read the runs of that order.
+//!
 //! From the runs: downsampling ([`VoxelGrid::downsample`], in `downsample.rs`) and occupancy
 //! as a region tree ([`VoxelGrid::occupancy`]), whose Boolean operations turn two scans of one
 //! site into a change map.
@@ -268,6 +271,50 @@ impl<const D: usize> VoxelGrid<D> {
         Ok(out)
     }
 
+    /// The occupied voxels of `points` in Morton order, each with its run of the points' input
+    /// indices and the sum of their coordinates: the tree build's check, keys and sort, without
+    /// the tree (no nodes), the points carried through the sort so that the sums read them in
+    /// order.
+    ///
+    /// # Errors
+    /// As [`VoxelGrid::tree`].
+    pub(super) fn sorted_voxels<S: Scalar>(
+        &self,
+        points: &[[S; D]],
+    ) -> Result<SortedVoxels<D>, CloudError> {
+        let root = self.builder::<S>()?.check_settings(points.len())?;
+        crate::points::scan(root.as_ref(), 0..points.len(), &|i| &points[i])?;
+        let mut sorted = SortedVoxels {
+            order: Vec::with_capacity(points.len()),
+            voxels: Vec::new(),
+            sums: Vec::new(),
+        };
+        let mut last = 0;
+        let geometry = self.geometry();
+        crate::points::visit_by_cell(&geometry, points, self.level, |key, index, point| {
+            let slot = sorted.order.len();
+            sorted.order.push(index as u32);
+            match (sorted.voxels.last_mut(), sorted.sums.last_mut()) {
+                (Some(v), Some(sum)) if key == last => {
+                    v.slots.end = slot + 1;
+                    for a in 0..D {
+                        sum[a] += point[a].to_f64();
+                    }
+                }
+                _ => {
+                    last = key;
+                    let cell = Cell::from_morton(key, self.level);
+                    sorted.voxels.push(Voxel {
+                        cell,
+                        slots: slot..slot + 1,
+                    });
+                    sorted.sums.push(point.map(Scalar::to_f64));
+                }
+            }
+        });
+        Ok(sorted)
+    }
+
     /// The occupied voxels of a tree built on this grid as a region tree of extent
     /// `2^level` per axis (voxel `c` at pixel `c`): a [`VoxelTree`](crate::VoxelTree) in 3-D.
     ///
@@ -281,28 +328,38 @@ impl<const D: usize> VoxelGrid<D> {
         &self,
         tree: &PointTree<S, T, D>,
     ) -> Result<RegionTree<D>, CloudError> {
-        let keys: Vec<u64> = self.voxels(tree)?.iter().map(|v| v.cell.morton()).collect();
-        Ok(occupancy_from_keys(&keys, self.level)?)
+        Ok(occupied(&self.voxels(tree)?, self.level)?)
     }
 
-    /// [`VoxelGrid::occupancy`] of bare points, building the tree on the grid.
+    /// [`VoxelGrid::occupancy`] of bare points, sorted by voxel without building a tree.
     ///
     /// # Errors
     /// As [`VoxelGrid::tree`] and [`VoxelGrid::occupancy`].
     pub fn occupancy_of<S: Scalar>(&self, points: &[[S; D]]) -> Result<RegionTree<D>, CloudError> {
-        let entries: Vec<([S; D], ())> = points.iter().map(|p| (*p, ())).collect();
-        self.occupancy(&self.tree(&entries)?)
+        Ok(occupied(&self.sorted_voxels(points)?.voxels, self.level)?)
     }
 }
 
-/// The region tree of extent `2^level` per axis whose black pixels are the cells with these
-/// Morton keys (sorted, distinct): a cell of the region tree is full when all its `side^D`
-/// keys are present, empty when none is (two binary searches).
-fn occupancy_from_keys<const D: usize>(
-    keys: &[u64],
+/// The occupied voxels of bare points ([`VoxelGrid::sorted_voxels`]).
+pub(super) struct SortedVoxels<const D: usize> {
+    /// The points' input indices, grouped by voxel.
+    pub(super) order: Vec<u32>,
+    /// The voxels in Morton order, each with its run of `order`.
+    pub(super) voxels: Vec<Voxel<D>>,
+    /// The sum of each voxel's points.
+    pub(super) sums: Vec<[f64; D]>,
+}
+
+/// The region tree of extent `2^level` per axis whose black pixels are these voxels (in
+/// Morton order, distinct): a cell of the region tree is full when all its `side^D` voxels are
+/// present, empty when none is (two binary searches on their keys).
+fn occupied<const D: usize>(
+    voxels: &[Voxel<D>],
     level: u8,
 ) -> Result<RegionTree<D>, crate::image::ImageError> {
-    let extent = [1u32 << level; D];
+    let keys: Vec<u64> = voxels.iter().map(|v| v.cell.morton()).collect();
+    // 2^32 voxels per axis (2-D, level 32) saturate to an extent the region tree refuses.
+    let extent = [1u32.checked_shl(level.into()).unwrap_or(u32::MAX); D];
     RegionTree::from_region(extent, |min, side| {
         let lo = morton::interleave(min, u32::from(level));
         let count = u64::from(side).pow(D as u32);

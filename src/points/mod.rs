@@ -35,9 +35,9 @@ pub(crate) use crate::geom::digit;
 use crate::geom::{Aabb, Dim, RootGeometry, Scalar};
 use crate::query::{Location, PointSet, QueryError};
 use crate::tree::{BalanceOptions, NodeId, Tree};
-pub(crate) use build::scan;
 #[cfg(any(feature = "saved", feature = "mpi"))]
 pub(crate) use build::settle;
+pub(crate) use build::{scan, visit_by_cell};
 #[cfg(feature = "serde")]
 pub(crate) use dynamic::DynamicParts;
 #[cfg(feature = "serde")]

@@ -121,6 +121,7 @@ fn check(cloud: &Cloud<f64>, grid: &VoxelGrid<3>, groups: &[(Cell<3>, Vec<usize>
 
     let occupancy = grid.occupancy(&tree).unwrap();
     occupancy.validate().unwrap();
+    assert_eq!(grid.occupancy_of(&cloud.points).unwrap(), occupancy);
     assert_eq!(occupancy.len(), groups.len() as u64);
     let side = grid.side_voxels() as usize;
     if side <= 32 {
@@ -187,6 +188,47 @@ proptest! {
         let cells: Vec<Cell<3>> = cloud.points.iter().map(|p| grid.voxel_of(p)).collect();
         check(&cloud, &grid, &groups_by_sort(&cells));
     }
+}
+
+/// Grids so fine that a point's input index no longer fits below the voxel digits of its key
+/// (the sort then moves 16-byte pairs), and the levels around that switch.
+#[test]
+fn fine_grids_group_points_like_a_sort_by_voxel_key() {
+    let mut r = rng(21);
+    for level in 15..=Cell::<3>::MAX_LEVEL {
+        let mut points: Vec<[f64; 3]> = (0..600)
+            .map(|_| [r.r#gen(), r.r#gen(), r.r#gen::<f64>()])
+            .collect();
+        // copies, and points one voxel apart on a voxel face
+        let voxel = 1.0 / (1u64 << level) as f64;
+        for i in 0..100 {
+            points.push(points[i]);
+            points.push(points[i].map(|x| (x / voxel).floor() * voxel));
+        }
+        let mut cloud = Cloud::from_points(points);
+        cloud.attributes.extra.push(Column {
+            name: "index".into(),
+            values: (0..cloud.len()).map(|i| i as f64).collect(),
+        });
+        let grid = VoxelGrid::at_level([0.0; 3], 1.0, level).unwrap();
+        let cells: Vec<Cell<3>> = cloud.points.iter().map(|p| grid.voxel_of(p)).collect();
+        check(&cloud, &grid, &groups_by_sort(&cells));
+    }
+    // In 2-D the keys use all 64 bits: the coarsest and finest levels at both ends of them.
+    let points: Vec<[f64; 2]> = (0..300).map(|_| [r.r#gen(), r.r#gen()]).collect();
+    for level in [0, 1, 16, 31] {
+        let grid = VoxelGrid::<2>::at_level([0.0; 2], 1.0, level).unwrap();
+        let distinct: std::collections::BTreeSet<u64> =
+            points.iter().map(|p| grid.voxel_of(p).morton()).collect();
+        let occupancy = grid.occupancy_of(&points).unwrap();
+        occupancy.validate().unwrap();
+        assert_eq!(occupancy.len(), distinct.len() as u64, "level {level}");
+    }
+    // 2^32 voxels per axis: more than a region tree's side holds
+    let grid = VoxelGrid::<2>::at_level([0.0; 2], 1.0, 32).unwrap();
+    let err = grid.occupancy_of(&points).unwrap_err();
+    assert!(matches!(err, CloudError::Image(_)), "{err}");
+    assert!(err.to_string().contains("31"), "{err}");
 }
 
 #[test]
