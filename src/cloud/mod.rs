@@ -87,6 +87,24 @@ impl<S: Scalar> Cloud<S> {
         }
     }
 
+    /// An empty cloud with room for `n` points, in memory advised to be backed by huge pages
+    /// (Linux, feature `huge-pages`, from 4 MiB on; elsewhere a plain reservation). The voxel
+    /// operations and tree builds read a cloud's points in spatial order, at random in
+    /// memory, and with 4 KiB pages nearly every read of a large cloud also misses the address
+    /// cache: `cloud_compare --workload voxel` (10^7 points) took 684-737 ms on a cloud made by
+    /// [`Cloud::from_points`], about 600 ms with every page huge. The file readers fill
+    /// their clouds this way.
+    ///
+    /// ```
+    /// use orthtree::cloud::Cloud;
+    /// let mut cloud = Cloud::<f64>::with_capacity(1000);
+    /// cloud.points.extend((0..1000).map(|i| [i as f64, 0.0, 0.0]));
+    /// assert_eq!(cloud.len(), 1000);
+    /// ```
+    pub fn with_capacity(n: usize) -> Self {
+        Cloud::from_points(crate::huge_pages::with_capacity(n))
+    }
+
     /// The number of points.
     pub fn len(&self) -> usize {
         self.points.len()

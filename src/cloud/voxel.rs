@@ -285,7 +285,7 @@ impl<const D: usize> VoxelGrid<D> {
         let root = self.builder::<S>()?.check_settings(points.len())?;
         crate::points::scan(root.as_ref(), 0..points.len(), &|i| &points[i])?;
         let mut sorted = SortedVoxels {
-            order: Vec::with_capacity(points.len()),
+            order: crate::huge_pages::with_capacity(points.len()),
             voxels: Vec::new(),
             sums: Vec::new(),
         };

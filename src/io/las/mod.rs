@@ -205,8 +205,12 @@ pub fn read_from<R: Read + Seek + Send + Sync + 'static>(
         return Err(LasError::UnsupportedFormat(format.to_u8().unwrap_or(4)));
     }
     let fields = Fields::new(&format);
+    let record = usize::from(format.len());
+    // Room for the points the file's bytes can hold, never more than the header claims
+    // (`Cloud::with_capacity`: memory for huge pages).
+    let room = (length / record.max(1) as u64).min(header.number_of_points());
     let mut cloud = Cloud {
-        points: Vec::new(),
+        points: Cloud::<i32>::with_capacity(usize::try_from(room).unwrap_or(0)).points,
         // Every format's columns; the optional ones come with the first record.
         attributes: Attributes {
             intensity: Some(Vec::new()),
@@ -217,7 +221,6 @@ pub fn read_from<R: Read + Seek + Send + Sync + 'static>(
         frame: header::frame_of(&raw_header),
     };
     let count = header.number_of_points();
-    let record = usize::from(format.len());
     let batch = (BATCH_BYTES / record.max(1)).max(1) as u64;
     let mut data = PointDataBuilder::new().for_header(&header).build();
     let mut done = 0u64;
