@@ -1,7 +1,8 @@
 //! Voxel-grid downsampling (Open3D's `voxel_down_sample`, PCL's `VoxelGrid` filter) on the
 //! points sorted by voxel key (the runs [`VoxelGrid::voxels`] gives for a tree, without the
-//! tree): one output point per occupied voxel, in Morton order of the voxels, either the centroid of the voxel's points with their attributes averaged, or the
-//! point nearest that centroid with its own attributes.
+//! tree): one output point per occupied voxel, in Morton order of the voxels, either the
+//! centroid of the voxel's points with their attributes averaged, or the point nearest that
+//! centroid with its own attributes.
 
 use super::voxel::{Representative, SortedVoxels, Voxel, VoxelGrid};
 use super::{Attributes, Cloud, CloudError, Column};

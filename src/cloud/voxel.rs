@@ -273,8 +273,7 @@ impl<const D: usize> VoxelGrid<D> {
 
     /// The occupied voxels of `points` in Morton order, each with its run of the points' input
     /// indices and the sum of their coordinates: the tree build's check, keys and sort, without
-    /// the tree (no nodes), the points carried through the sort so that the sums read them in
-    /// order.
+    /// the tree (`visit_by_cell`), the sums taken as the walk reads the points in voxel order.
     ///
     /// # Errors
     /// As [`VoxelGrid::tree`].
