@@ -91,9 +91,11 @@ impl<S: Scalar> Cloud<S> {
     /// (Linux, feature `huge-pages`, from 4 MiB on; elsewhere a plain reservation). The voxel
     /// operations and tree builds read a cloud's points in spatial order, at random in
     /// memory, and with 4 KiB pages nearly every read of a large cloud also misses the address
-    /// cache: `cloud_compare --workload voxel` (10^7 points) took 684-737 ms on a cloud made by
-    /// [`Cloud::from_points`], about 600 ms with every page huge. The file readers fill
-    /// their clouds this way.
+    /// cache: `cloud_compare --workload voxel` (10^7 points) took 667-678 ms on a cloud made by
+    /// [`Cloud::from_points`], 609-636 ms on one made here. Not a gain everywhere: a tree
+    /// build of 10^8 points whose input was in huge pages measured no faster, its own fresh
+    /// buffers then waiting for the kernel to compact memory (README, "The input in huge
+    /// pages"). The file readers fill their clouds this way.
     ///
     /// ```
     /// use orthtree::cloud::Cloud;
