@@ -241,6 +241,21 @@ fn one_voxel_and_one_point_clouds() {
     assert_eq!(down.attributes.extra[0].values, [4.5]);
     let near = grid.downsample(&cloud, Representative::Nearest).unwrap();
     assert_eq!(near.attributes.extra[0].values, [0.0]); // ties to the lowest index
+                                                        // no points: no voxels
+    let empty = Cloud::<f64>::from_points(Vec::new());
+    let grid = VoxelGrid::with_size(&empty.points, 1.0).unwrap();
+    for representative in [Representative::Centroid, Representative::Nearest] {
+        assert!(grid.downsample(&empty, representative).unwrap().is_empty());
+    }
+    assert_eq!(grid.occupancy_of(&empty.points).unwrap().len(), 0);
+    // a point outside the grid's cube is refused, not clamped into a voxel
+    let outside = Cloud::from_points(vec![[0.5, 0.5, 0.5], [9.0, 0.5, 0.5]]);
+    let err = grid
+        .downsample(&outside, Representative::Centroid)
+        .unwrap_err();
+    assert!(matches!(err, CloudError::Tree(_)), "{err}");
+    assert!(err.to_string().contains("point 1"), "{err}");
+    assert!(grid.occupancy_of(&outside.points).is_err());
 }
 
 #[test]
