@@ -314,6 +314,34 @@ impl<const D: usize> VoxelGrid<D> {
         Ok(sorted)
     }
 
+    /// The occupied voxels of bare points, in Morton order, sorted by voxel without building a
+    /// tree (PCL's occupied voxel centres; [`VoxelGrid::voxels`] for a tree's runs).
+    ///
+    /// # Errors
+    /// As [`VoxelGrid::tree`].
+    ///
+    /// # Complexity
+    /// The tree build's sort of the points by key, O(n log n).
+    ///
+    /// ```
+    /// use orthtree::{cloud::voxel::VoxelGrid, Cell};
+    /// let points = [[0.5, 0.5], [3.5, 0.5], [0.25, 0.75]];
+    /// let grid = VoxelGrid::<2>::with_size(&points, 1.0).unwrap();
+    /// let cells = grid.occupied_voxels(&points).unwrap();
+    /// assert_eq!(cells, [Cell::new(2, [0, 0]).unwrap(), Cell::new(2, [3, 0]).unwrap()]);
+    /// ```
+    pub fn occupied_voxels<S: Scalar>(
+        &self,
+        points: &[[S; D]],
+    ) -> Result<Vec<Cell<D>>, CloudError> {
+        Ok(self
+            .sorted_voxels(points)?
+            .voxels
+            .iter()
+            .map(|v| v.cell)
+            .collect())
+    }
+
     /// The occupied voxels of a tree built on this grid as a region tree of extent
     /// `2^level` per axis (voxel `c` at pixel `c`): a [`VoxelTree`](crate::VoxelTree) in 3-D.
     ///

@@ -122,6 +122,8 @@ fn check(cloud: &Cloud<f64>, grid: &VoxelGrid<3>, groups: &[(Cell<3>, Vec<usize>
     let occupancy = grid.occupancy(&tree).unwrap();
     occupancy.validate().unwrap();
     assert_eq!(grid.occupancy_of(&cloud.points).unwrap(), occupancy);
+    let cells: Vec<Cell<3>> = groups.iter().map(|(c, _)| *c).collect();
+    assert_eq!(grid.occupied_voxels(&cloud.points).unwrap(), cells);
     assert_eq!(occupancy.len(), groups.len() as u64);
     let side = grid.side_voxels() as usize;
     if side <= 32 {

@@ -151,16 +151,12 @@ pub fn info(a: &InfoArgs) -> Result<(), Failure> {
     let phase = Phase::start("voxelising");
     let grid = VoxelGrid::with_size(&cloud.points, a.voxel)
         .map_err(|e| cloud_failure(&name, "--voxel", e))?;
-    let entries: Vec<([f64; 3], ())> = cloud.points.iter().map(|p| (*p, ())).collect();
-    let tree = grid
-        .tree(&entries)
-        .map_err(|e| cloud_failure(&name, "--voxel", e))?;
     let voxels = grid
-        .voxels(&tree)
+        .occupied_voxels(&cloud.points)
         .map_err(|e| cloud_failure(&name, "--voxel", e))?;
     drop(phase);
     let columns = {
-        let mut c: Vec<[u32; 3]> = voxels.iter().map(|v| v.cell.coords()).collect();
+        let mut c: Vec<[u32; 3]> = voxels.iter().map(|v| v.coords()).collect();
         c.iter_mut().for_each(|x| x[2] = 0);
         c.sort_unstable();
         c.dedup();
