@@ -40,7 +40,7 @@ impl VoxelGrid<3> {
             order,
             voxels,
             sums,
-        } = self.sorted_voxels(&cloud.points)?;
+        } = self.sorted_voxels(&cloud.points, true)?;
         let index = |slot: usize| order[slot] as usize;
         // Plain sums: exact for integer coordinates (so ties in Nearest are true ties).
         let centroids = voxels
@@ -51,16 +51,15 @@ impl VoxelGrid<3> {
             Representative::Nearest => {
                 let mut chosen = Vec::with_capacity(voxels.len());
                 for (v, c) in voxels.iter().zip(centroids) {
-                    let d2 = |slot: usize| -> f64 {
-                        let p = cloud.points[index(slot)];
+                    // each point's distance once, ties to the lowest index
+                    let d2 = |i: usize| -> f64 {
+                        let p = cloud.points[i];
                         (0..3).map(|a| (Scalar::to_f64(p[a]) - c[a]).powi(2)).sum()
                     };
-                    let best = v
-                        .slots
-                        .clone()
-                        .min_by(|&s, &t| d2(s).total_cmp(&d2(t)).then(index(s).cmp(&index(t))))
+                    let (_, best) = (v.slots.clone().map(|s| (d2(index(s)), index(s))))
+                        .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)))
                         .expect("an occupied voxel has a point");
-                    chosen.push(index(best));
+                    chosen.push(best);
                 }
                 let picked = cloud.select(&chosen);
                 Ok(Cloud {

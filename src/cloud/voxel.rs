@@ -272,14 +272,16 @@ impl<const D: usize> VoxelGrid<D> {
     }
 
     /// The occupied voxels of `points` in Morton order, each with its run of the points' input
-    /// indices and the sum of their coordinates: the tree build's check, keys and sort, without
-    /// the tree (`visit_by_cell`), the sums taken as the walk reads the points in voxel order.
+    /// indices and, with `sums`, the sum of their coordinates: the tree build's check, keys and
+    /// sort, without the tree (`visit_by_cell`), the sums taken as the walk reads the points in
+    /// voxel order (without them no point is read after the keys: `sums` stays empty).
     ///
     /// # Errors
     /// As [`VoxelGrid::tree`].
     pub(super) fn sorted_voxels<S: Scalar>(
         &self,
         points: &[[S; D]],
+        sums: bool,
     ) -> Result<SortedVoxels<D>, CloudError> {
         let root = self.builder::<S>()?.check_settings(points.len())?;
         crate::points::scan(root.as_ref(), 0..points.len(), &|i| &points[i])?;
@@ -290,16 +292,11 @@ impl<const D: usize> VoxelGrid<D> {
         };
         let mut last = 0;
         let geometry = self.geometry();
-        crate::points::visit_by_cell(&geometry, points, self.level, |key, index, point| {
+        let visit = |key, index, point: &[S; D]| {
             let slot = sorted.order.len();
             sorted.order.push(index as u32);
-            match (sorted.voxels.last_mut(), sorted.sums.last_mut()) {
-                (Some(v), Some(sum)) if key == last => {
-                    v.slots.end = slot + 1;
-                    for a in 0..D {
-                        sum[a] += point[a].to_f64();
-                    }
-                }
+            match sorted.voxels.last_mut() {
+                Some(v) if key == last => v.slots.end = slot + 1,
                 _ => {
                     last = key;
                     let cell = Cell::from_morton(key, self.level);
@@ -307,10 +304,18 @@ impl<const D: usize> VoxelGrid<D> {
                         cell,
                         slots: slot..slot + 1,
                     });
-                    sorted.sums.push(point.map(Scalar::to_f64));
+                    if sums {
+                        sorted.sums.push([0.0; D]);
+                    }
                 }
             }
-        });
+            if let (true, Some(sum)) = (sums, sorted.sums.last_mut()) {
+                for a in 0..D {
+                    sum[a] += point[a].to_f64();
+                }
+            }
+        };
+        crate::points::visit_by_cell(&geometry, points, self.level, sums, visit);
         Ok(sorted)
     }
 
@@ -335,7 +340,7 @@ impl<const D: usize> VoxelGrid<D> {
         points: &[[S; D]],
     ) -> Result<Vec<Cell<D>>, CloudError> {
         Ok(self
-            .sorted_voxels(points)?
+            .sorted_voxels(points, false)?
             .voxels
             .iter()
             .map(|v| v.cell)
@@ -363,7 +368,10 @@ impl<const D: usize> VoxelGrid<D> {
     /// # Errors
     /// As [`VoxelGrid::tree`] and [`VoxelGrid::occupancy`].
     pub fn occupancy_of<S: Scalar>(&self, points: &[[S; D]]) -> Result<RegionTree<D>, CloudError> {
-        Ok(occupied(&self.sorted_voxels(points)?.voxels, self.level)?)
+        Ok(occupied(
+            &self.sorted_voxels(points, false)?.voxels,
+            self.level,
+        )?)
     }
 }
 
@@ -373,7 +381,7 @@ pub(super) struct SortedVoxels<const D: usize> {
     pub(super) order: Vec<u32>,
     /// The voxels in Morton order, each with its run of `order`.
     pub(super) voxels: Vec<Voxel<D>>,
-    /// The sum of each voxel's points.
+    /// The sum of each voxel's points (when asked for, else empty).
     pub(super) sums: Vec<[f64; D]>,
 }
 

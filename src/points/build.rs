@@ -383,8 +383,9 @@ pub(crate) fn scan<'p, S: Scalar + 'p, const D: usize>(
 /// cell at `level` ([`Cell::morton`]), grouped by cell in Morton order: the build's keys and
 /// radix sort, for work on the cells of one level (voxels) that needs no tree (no points or
 /// items gathered, no nodes). The points must lie in the geometry's cube (checked by
-/// [`scan`]); the order within a cell is not promised. The points are read in key order,
-/// asking for the one [`LOOKAHEAD`] ahead as the gather does.
+/// [`scan`]); the order within a cell is not promised. With `read` (`visit` reads the points)
+/// the point [`LOOKAHEAD`] ahead in key order is asked for, as the gather does; without it no
+/// point is touched after the keys.
 ///
 /// Memory: 16 bytes per point (an 8-byte (key, index) pair and the sort's buffer) while the
 /// index fits below the level's digits, else 32.
@@ -392,6 +393,7 @@ pub(crate) fn visit_by_cell<S: Scalar, const D: usize>(
     geometry: &RootGeometry<D>,
     points: &[[S; D]],
     level: u8,
+    read: bool,
     visit: impl FnMut(u64, usize, &[S; D]),
 ) {
     let n = points.len();
@@ -401,11 +403,11 @@ pub(crate) fn visit_by_cell<S: Scalar, const D: usize>(
     if bits <= below {
         let pair = |key, i| pack(key, i, bits);
         let split = |p: u64| (cell(p), unpack_index(p, bits));
-        visit_sorted(geometry, points, pair, split, visit);
+        visit_sorted(geometry, points, read, pair, split, visit);
     } else {
         let pair = |key, i| u128::from(key) << 32 | i as u128;
         let split = |p: u128| (cell((p >> 32) as u64), p as u32 as usize);
-        visit_sorted(geometry, points, pair, split, visit);
+        visit_sorted(geometry, points, read, pair, split, visit);
     }
 }
 
@@ -414,6 +416,7 @@ pub(crate) fn visit_by_cell<S: Scalar, const D: usize>(
 fn visit_sorted<P: super::radix::Packed, S: Scalar, const D: usize>(
     geometry: &RootGeometry<D>,
     points: &[[S; D]],
+    read: bool,
     pair: impl Fn(u64, usize) -> P,
     split: impl Fn(P) -> (u64, usize),
     mut visit: impl FnMut(u64, usize, &[S; D]),
@@ -426,8 +429,10 @@ fn visit_sorted<P: super::radix::Packed, S: Scalar, const D: usize>(
     );
     super::radix::sort_keyed(&mut pairs);
     for (j, &p) in pairs.iter().enumerate() {
-        let later = pairs.get(j + LOOKAHEAD).unwrap_or(&p);
-        prefetch(&points[split(*later).1]);
+        if read {
+            let later = pairs.get(j + LOOKAHEAD).unwrap_or(&p);
+            prefetch(&points[split(*later).1]);
+        }
         let (cell, index) = split(p);
         visit(cell, index, &points[index]);
     }

@@ -210,7 +210,6 @@ pub fn read_from<R: Read + Seek + Send + Sync + 'static>(
     // (`Cloud::with_capacity`: memory for huge pages).
     let room = (length / record.max(1) as u64).min(header.number_of_points());
     let mut cloud = Cloud {
-        points: Cloud::<i32>::with_capacity(usize::try_from(room).unwrap_or(0)).points,
         // Every format's columns; the optional ones come with the first record.
         attributes: Attributes {
             intensity: Some(Vec::new()),
@@ -219,6 +218,7 @@ pub fn read_from<R: Read + Seek + Send + Sync + 'static>(
         },
         // The transforms the `las` crate read from the same header.
         frame: header::frame_of(&raw_header),
+        ..Cloud::with_capacity(usize::try_from(room).unwrap_or(0))
     };
     let count = header.number_of_points();
     let batch = (BATCH_BYTES / record.max(1)).max(1) as u64;
