@@ -4,7 +4,7 @@
 
 use super::{all_options, leaf_cells};
 use orthtree::prelude::*;
-use orthtree::query::{Location, Metric};
+use orthtree::query::{AxisMetric, Location, Metric};
 use orthtree::{
     geom::RootGeometry, points::PointTreeBuilder, tree::BalanceOptions, Aabb, Cell, PointTree,
     Scalar,
@@ -337,4 +337,34 @@ pub fn assert_numbers(v: &serde_json::Value, keys: &[&str]) {
         };
         assert!(ok, "`{k}` holds numbers only: {}", v[*k]);
     }
+}
+
+/// The period box `[LO, HI)` of the periodic tests along every axis (period `L`): dyadic
+/// ends, so every distance between grid points is exact.
+pub const LO: f64 = -0.5;
+pub const HI: f64 = 0.75;
+pub const L: f64 = HI - LO;
+
+/// The minimum over all images of `b` along the wrapping axes of `combine`d offsets: `3^k`
+/// shifted copies tried one by one.
+pub fn brute_distance<M: AxisMetric, const D: usize>(
+    wraps: &[bool; D],
+    a: &[f64; D],
+    b: &[f64; D],
+) -> f64 {
+    let k = wraps.iter().filter(|&&w| w).count();
+    let mut best = f64::INFINITY;
+    for code in 0..3usize.pow(k as u32) {
+        let (mut c, mut s) = (code, 0.0);
+        for axis in 0..D {
+            let mut shift = 0.0;
+            if wraps[axis] {
+                shift = (c % 3) as f64 - 1.0;
+                c /= 3;
+            }
+            s = M::combine(s, (a[axis] - (b[axis] + shift * L)).abs());
+        }
+        best = best.min(s);
+    }
+    best
 }

@@ -1,5 +1,5 @@
 //! The point trees (`PointTree`, `DynamicPointTree`): build, bounds, duplicates, queries against
-//! brute force, single and batch updates, every dimension, bad input, the rayon entry points, and
+//! brute force (the tree-against-tree queries are in tests/joins), single and batch updates, every dimension, bad input, the rayon entry points, and
 //! the saved-tree format (feature `saved`) and serde (feature `serde`).
 //!
 //! One test binary per area: each former test file is a module of it.
@@ -15,12 +15,10 @@ mod build_order;
 mod duplicates;
 mod dynamic;
 mod every_dimension_points;
-mod joins;
 mod parallel;
 mod periodic;
 mod periodic_far;
 mod periodic_images;
-mod periodic_joins;
 mod point_bounds;
 mod point_sets;
 mod point_tree;

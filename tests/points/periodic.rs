@@ -21,36 +21,10 @@ use orthtree::query::{Chebyshev, Manhattan, SquaredEuclidean};
 use orthtree::{Aabb, CompressedTree, DynamicPointTree, PointTree, SkipQuadtree};
 use proptest::prelude::*;
 
-pub(crate) const LO: f64 = -0.5;
-pub(crate) const HI: f64 = 0.75;
-pub(crate) const L: f64 = HI - LO;
+use common::points::{brute_distance, HI, L, LO};
 
 fn torus<const D: usize>(wraps: [bool; D]) -> Torus<D> {
     Torus::new([LO; D], [HI; D], wraps).unwrap()
-}
-
-/// The minimum over all images of `b` along the wrapping axes of `combine`d offsets: `3^k`
-/// shifted copies tried one by one.
-pub(crate) fn brute_distance<M: AxisMetric, const D: usize>(
-    wraps: &[bool; D],
-    a: &[f64; D],
-    b: &[f64; D],
-) -> f64 {
-    let k = wraps.iter().filter(|&&w| w).count();
-    let mut best = f64::INFINITY;
-    for code in 0..3usize.pow(k as u32) {
-        let (mut c, mut s) = (code, 0.0);
-        for axis in 0..D {
-            let mut shift = 0.0;
-            if wraps[axis] {
-                shift = (c % 3) as f64 - 1.0;
-                c /= 3;
-            }
-            s = M::combine(s, (a[axis] - (b[axis] + shift * L)).abs());
-        }
-        best = best.min(s);
-    }
-    best
 }
 
 /// `x` on the arc from `lo` up to `hi` of the circle of period `L` starting at `LO`.

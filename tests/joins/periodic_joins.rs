@@ -17,7 +17,7 @@ use orthtree::query::{Boundary, OutsidePoints, QueryError, SquaredEuclidean, Tor
 use orthtree::{CompressedTree, DynamicPointTree, PointTree, SkipQuadtree};
 use proptest::prelude::*;
 
-use crate::periodic::{brute_distance, HI, L, LO};
+use crate::common::points::{brute_distance, HI, L, LO};
 
 /// The squared distance from `a` to the nearest of the `3^k` images of `b`, tried one by one.
 fn brute<const D: usize>(wraps: &[bool; D], a: &[f64; D], b: &[f64; D]) -> f64 {
