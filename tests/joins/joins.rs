@@ -1,13 +1,13 @@
 //! The tree-against-tree queries ([`Joins`], and [`ParallelJoins`] under the `rayon` feature)
-//! against nested loops over the points, through one generic check run on every point tree:
-//! the k-nearest join against brute force and against one `k_nearest` per point (ties
-//! included), its map forms against its table, the self-join without the point itself, all pairs within a radius (of one tree,
-//! each unordered pair once, and between two), the counts over sorted radii, the sparse distance
-//! matrix and its CSR form, both boundaries, early stop, the parameter errors, and the parallel
-//! forms equal to the serial ones (the tables, counts and matrices exactly; the pairs of the
-//! parallel visitor and fold once each, order-normalised; a parallel break one of the pairs). Inputs: grid points (split lines, faces, many duplicates),
-//! arbitrary points with extreme values, empty sets, `k` beyond the size, `r = 0` and radii
-//! beyond the domain.
+//! against nested loops over the points, through one generic check run on every point tree: the
+//! k-nearest join against brute force and against one `k_nearest` per point (ties included), its
+//! map forms against its table, the self-join without the point itself, all pairs within a radius
+//! (of one tree, each unordered pair once, and between two), the counts over sorted radii, the
+//! sparse distance matrix and its CSR form, both boundaries, early stop, the parameter errors, and
+//! the parallel forms equal to the serial ones (the tables, counts and matrices exactly; the pairs
+//! of the parallel visitor and fold once each, order-normalised; a parallel break one of the
+//! pairs). Inputs: grid points (split lines, faces, many duplicates), arbitrary points with extreme
+//! values, empty sets, `k` beyond the size, `r = 0` and radii beyond the domain.
 
 use crate::common;
 
