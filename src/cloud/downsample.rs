@@ -56,7 +56,7 @@ impl VoxelGrid<3> {
                         let p = cloud.points[i];
                         (0..3).map(|a| (Scalar::to_f64(p[a]) - c[a]).powi(2)).sum()
                     };
-                    let (_, best) = (v.slots.clone().map(|s| (d2(index(s)), index(s))))
+                    let (_, best) = (v.slots.clone().map(index).map(|i| (d2(i), i)))
                         .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)))
                         .expect("an occupied voxel has a point");
                     chosen.push(best);

@@ -271,30 +271,32 @@ impl<const D: usize> VoxelGrid<D> {
         Ok(out)
     }
 
-    /// The occupied voxels of `points` in Morton order, each with its run of the points' input
-    /// indices and, with `sums`, the sum of their coordinates: the tree build's check, keys and
-    /// sort, without the tree (`visit_by_cell`), the sums taken as the walk reads the points in
-    /// voxel order (without them no point is read after the keys: `sums` stays empty).
+    /// The occupied voxels of `points` in Morton order: the tree build's check, keys and sort,
+    /// without the tree (`visit_by_cell`). With `contents`, each voxel's run of the points'
+    /// input indices (`order`) and the sum of their coordinates, taken as the walk reads the
+    /// points in voxel order; without, the cells alone (`order` and `sums` stay empty, and no
+    /// point is read after the keys).
     ///
     /// # Errors
     /// As [`VoxelGrid::tree`].
     pub(super) fn sorted_voxels<S: Scalar>(
         &self,
         points: &[[S; D]],
-        sums: bool,
+        contents: bool,
     ) -> Result<SortedVoxels<D>, CloudError> {
         let root = self.builder::<S>()?.check_settings(points.len())?;
         crate::points::scan(root.as_ref(), 0..points.len(), &|i| &points[i])?;
         let mut sorted = SortedVoxels {
-            order: crate::huge_pages::with_capacity(points.len()),
+            order: crate::huge_pages::with_capacity(if contents { points.len() } else { 0 }),
             voxels: Vec::new(),
             sums: Vec::new(),
         };
-        let mut last = 0;
+        let (mut last, mut slot) = (0, 0);
         let geometry = self.geometry();
         let visit = |key, index, point: &[S; D]| {
-            let slot = sorted.order.len();
-            sorted.order.push(index as u32);
+            if contents {
+                sorted.order.push(index as u32);
+            }
             match sorted.voxels.last_mut() {
                 Some(v) if key == last => v.slots.end = slot + 1,
                 _ => {
@@ -304,18 +306,19 @@ impl<const D: usize> VoxelGrid<D> {
                         cell,
                         slots: slot..slot + 1,
                     });
-                    if sums {
+                    if contents {
                         sorted.sums.push([0.0; D]);
                     }
                 }
             }
-            if let (true, Some(sum)) = (sums, sorted.sums.last_mut()) {
+            slot += 1;
+            if let Some(sum) = sorted.sums.last_mut() {
                 for a in 0..D {
                     sum[a] += point[a].to_f64();
                 }
             }
         };
-        crate::points::visit_by_cell(&geometry, points, self.level, sums, visit);
+        crate::points::visit_by_cell(&geometry, points, self.level, contents, visit);
         Ok(sorted)
     }
 
@@ -377,11 +380,11 @@ impl<const D: usize> VoxelGrid<D> {
 
 /// The occupied voxels of bare points ([`VoxelGrid::sorted_voxels`]).
 pub(super) struct SortedVoxels<const D: usize> {
-    /// The points' input indices, grouped by voxel.
+    /// The points' input indices, grouped by voxel (with the contents, else empty).
     pub(super) order: Vec<u32>,
     /// The voxels in Morton order, each with its run of `order`.
     pub(super) voxels: Vec<Voxel<D>>,
-    /// The sum of each voxel's points (when asked for, else empty).
+    /// The sum of each voxel's points (with the contents, else empty).
     pub(super) sums: Vec<[f64; D]>,
 }
 
