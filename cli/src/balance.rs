@@ -12,7 +12,7 @@
 use crate::limits;
 use crate::Failure;
 use orthtree::tree::fractal::{self, fractal_leaves};
-use orthtree::{tree::BalanceOptions, Connectivity, Tree};
+use orthtree::{tree::BalanceOptions, Cell, Connectivity, Tree};
 use std::time::Instant;
 
 /// p4est's fractal refinement, then 2:1 balance (its benchmark workload)
@@ -94,6 +94,23 @@ fn max_level(dim: usize) -> u8 {
     }
 }
 
+/// Checks the fractal at `level` in dimension `dim`: the level against the dimension's deepest
+/// level, then its leaves at `bytes_per_leaf` against the memory this process may use.
+pub(crate) fn check_fractal(dim: usize, level: u8, bytes_per_leaf: f64) -> Result<(), Failure> {
+    if level > max_level(dim) {
+        return Err(Failure::Usage(format!(
+            "--level {level}: the deepest level of a {dim}D tree is {}",
+            max_level(dim)
+        )));
+    }
+    let leaves = fractal_leaves(dim, level);
+    limits::check_memory(
+        &format!("--dim {dim} --level {level}: about {leaves:.3e} leaves before balance"),
+        leaves * bytes_per_leaf,
+    )
+    .map_err(Failure::Usage)
+}
+
 /// The checked arguments: the level against the dimension's deepest level and the memory.
 fn checked(args: &BalanceArgs) -> Result<Args, Failure> {
     let (dim, level) = (args.dim, args.level);
@@ -102,23 +119,12 @@ fn checked(args: &BalanceArgs) -> Result<Args, Failure> {
             "--parallel needs the `rayon` feature".into(),
         ));
     }
-    if level > max_level(dim) {
-        return Err(Failure::Usage(format!(
-            "--level {level}: the deepest level of a {dim}D tree is {}",
-            max_level(dim)
-        )));
-    }
-    let leaves = fractal_leaves(dim, level);
     let copies = if args.incremental {
         INCREMENTAL_FACTOR
     } else {
         1.0
     };
-    limits::check_memory(
-        &format!("--dim {dim} --level {level}: about {leaves:.3e} leaves before balance"),
-        leaves * PEAK_BYTES_PER_LEAF * copies,
-    )
-    .map_err(Failure::Usage)?;
+    check_fractal(dim, level, PEAK_BYTES_PER_LEAF * copies)?;
     let options = BalanceOptions::new(args.connect.into());
     Ok(Args {
         dim,
@@ -130,10 +136,16 @@ fn checked(args: &BalanceArgs) -> Result<Args, Failure> {
     })
 }
 
-/// FNV-1a over (level, coordinates) of the leaves in Morton order.
-fn checksum<const D: usize>(tree: &Tree<D>) -> u64 {
-    let mut h = 0xcbf2_9ce4_8422_2325u64;
-    for (_, cell) in tree.leaves() {
+/// FNV-1a's offset basis: the hash of no cells.
+pub(crate) const FNV_BASIS: u64 = 0xcbf2_9ce4_8422_2325;
+
+/// FNV-1a over (level, coordinates) of `cells`, continuing from `h`: from [`FNV_BASIS`] over
+/// every leaf in Morton order, the checksum `orthtree balance` and `orthtree dist-balance` print.
+pub(crate) fn leaf_hash<const D: usize>(
+    mut h: u64,
+    cells: impl IntoIterator<Item = Cell<D>>,
+) -> u64 {
+    for cell in cells {
         for x in std::iter::once(cell.level() as u32).chain(cell.coords()) {
             for b in x.to_le_bytes() {
                 h = (h ^ b as u64).wrapping_mul(0x0100_0000_01b3);
@@ -141,6 +153,11 @@ fn checksum<const D: usize>(tree: &Tree<D>) -> u64 {
         }
     }
     h
+}
+
+/// The checksum of a tree's leaves.
+pub(crate) fn checksum<const D: usize>(tree: &Tree<D>) -> u64 {
+    leaf_hash(FNV_BASIS, tree.leaves().map(|(_, c)| c))
 }
 
 /// The serial balance, or with `--parallel` the rayon one.
@@ -161,7 +178,8 @@ fn is_balanced<const D: usize>(tree: &Tree<D>, args: &Args) -> bool {
     tree.is_balanced(args.options)
 }
 
-fn median(times: &mut [f64]) -> f64 {
+/// The median of `times` (the upper one of an even count); `times` is not empty.
+pub(crate) fn median(times: &mut [f64]) -> f64 {
     times.sort_by(f64::total_cmp);
     times[times.len() / 2]
 }

@@ -90,9 +90,6 @@ pub enum DistError {
         /// The first entry that breaks it.
         index: usize,
     },
-    /// A benchmark workload's settings ([`workload`](super::workload)) cannot be run: checked
-    /// on each rank before any exchange, so the same on every rank given the same settings.
-    Workload(super::workload::WorkloadError),
 }
 
 impl core::fmt::Display for DistError {
@@ -134,7 +131,6 @@ impl core::fmt::Display for DistError {
                 f,
                 "entry {index} of the partition targets breaks the order 0 <= ... <= total"
             ),
-            DistError::Workload(error) => write!(f, "{error}"),
         }
     }
 }
@@ -164,7 +160,6 @@ impl std::error::Error for DistError {
         match self {
             DistError::Input { error, .. } => Some(error),
             DistError::Query { error, .. } => Some(error),
-            DistError::Workload(error) => Some(error),
             _ => None,
         }
     }

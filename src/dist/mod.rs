@@ -18,8 +18,6 @@
 //!   and Ghattas 2012); the [`GhostLayer`] (remote leaves adjacent to each rank's, and its
 //!   mirrors); repartition by counts, keeping families of sibling leaves on one rank when
 //!   asked ([`RepartitionOptions`]).
-//! - [`workload`]: the benchmark workloads (p4est's fractal balanced, points built and
-//!   queried) shared by the examples and the command-line program.
 //!
 //! Every operation here is collective: every rank of the communicator calls it, in the same
 //! order. A bad input on one rank (a NaN coordinate, a bad query, leaves out of order) is
@@ -50,7 +48,6 @@ mod ghost;
 mod partition;
 mod queries;
 mod tree;
-pub mod workload;
 
 pub use balance::BalanceStats;
 pub use build::{DistPointTreeBuilder, MAX_TOTAL};

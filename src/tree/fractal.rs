@@ -118,14 +118,3 @@ pub fn fractal_leaves(dim: usize, level: u8) -> f64 {
         2f64.powi((dim * uniform as usize) as i32) / 2.0 * (1.0 + below)
     }
 }
-
-/// The whole fractal at `level` as one tree, refined toward its leaves in Morton order (the
-/// serial run of the distributed balance workload).
-#[cfg(feature = "mpi")]
-pub(crate) fn fractal_tree<const D: usize>(level: u8) -> Tree<D> {
-    let leaves = fractal_part::<D>(level, 0, uniform_cells::<D>(level));
-    let mut tree = Tree::<D>::new();
-    tree.reserve_splits(leaves.len() / ((1 << D) - 1) + 1);
-    tree.refine_to_sorted(&leaves);
-    tree
-}

@@ -9,7 +9,7 @@ use super::Check;
 use mpi::datatype::PartitionMut;
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
-use orthtree::dist::{workload, DistForest, Partition};
+use orthtree::dist::{DistForest, Partition};
 use orthtree::tree::{fractal, BalanceOptions};
 use orthtree::{Cell, Connectivity, Tree};
 use rand::{rngs::SmallRng, Rng, SeedableRng};
@@ -292,5 +292,5 @@ fn fractal_parts(world: &SimpleCommunicator) {
         fractal::fractal_part::<3>(5, 0, fractal::uniform_cells::<3>(5)),
         want
     );
-    assert_eq!(workload::fractal_leaves(3, 5), want.len() as f64);
+    assert_eq!(fractal::fractal_leaves(3, 5), want.len() as f64);
 }

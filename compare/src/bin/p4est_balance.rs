@@ -1,6 +1,6 @@
-//! p4est 2.2's balance on the fractal that orthtree's `dist_balance` example balances (feature
+//! p4est 2.2's balance on the fractal that `orthtree dist-balance` balances (feature
 //! `p4est`; the build script compiles `p4est/balance.c` against the system's p4est): run under
-//! `mpirun -np P` beside `dist_balance` at the same P, it prints p4est's leaf counts before and
+//! `mpirun -np P` beside `orthtree dist-balance` at the same P, it prints p4est's leaf counts before and
 //! after balance (equal to orthtree's) and its balance time (maximum over ranks, median of the
 //! runs).
 //!
