@@ -5,7 +5,6 @@
 #![cfg(feature = "mpi")]
 
 use std::path::Path;
-use std::process::Command;
 use std::time::Duration;
 
 #[path = "../../tests/programs/mod.rs"]
@@ -26,32 +25,9 @@ fn orthtree(args: &[&str]) -> Run {
     )
 }
 
-/// Runs `mpirun -np np orthtree args` (oversubscribed, allowed as root, without the
-/// shared-memory single-copy mechanism that containers refuse).
+/// Runs `mpirun -np np orthtree args`.
 fn mpirun(np: usize, args: &[&str]) -> Run {
-    let mpirun = Command::new("mpirun").arg("--version").output();
-    assert!(
-        mpirun.is_ok_and(|o| o.status.success()),
-        "mpirun (OpenMPI) is needed for the tests of the feature mpi"
-    );
-    let np = np.to_string();
-    let mut all = vec![
-        "--allow-run-as-root",
-        "--oversubscribe",
-        "-x",
-        "OMPI_MCA_btl_vader_single_copy_mechanism=none",
-        "-np",
-        &np,
-        EXE,
-    ];
-    all.extend_from_slice(args);
-    programs::run(
-        Path::new("mpirun"),
-        args[0],
-        &all,
-        None,
-        Duration::from_secs(300),
-    )
+    programs::mpirun(np, Path::new(EXE), args, Duration::from_secs(300))
 }
 
 /// The text after `label` on its line of `out`, up to the first space or parenthesis.

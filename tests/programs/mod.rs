@@ -67,6 +67,34 @@ pub fn run(exe: &Path, name: &str, args: &[&str], cwd: Option<&Path>, limit: Dur
     run
 }
 
+/// Runs `mpirun -np np exe args` (oversubscribed, allowed as root, without the shared-memory
+/// single-copy mechanism that containers refuse), as [`run`] runs a program.
+///
+/// # Panics
+///
+/// When OpenMPI's `mpirun` is missing, and as [`run`].
+#[allow(dead_code)] // only the tests of the distributed programs use it
+pub fn mpirun(np: usize, exe: &Path, args: &[&str], limit: Duration) -> Run {
+    let mpirun = Command::new("mpirun").arg("--version").output();
+    assert!(
+        mpirun.is_ok_and(|o| o.status.success()),
+        "mpirun (OpenMPI) is needed for the tests of the distributed programs"
+    );
+    let np = np.to_string();
+    let exe = exe.to_string_lossy();
+    let mut all = vec![
+        "--allow-run-as-root",
+        "--oversubscribe",
+        "-x",
+        "OMPI_MCA_btl_vader_single_copy_mechanism=none",
+        "-np",
+        &np,
+        &exe,
+    ];
+    all.extend_from_slice(args);
+    run(Path::new("mpirun"), args[0], &all, None, limit)
+}
+
 /// Checks `exe args` against a standard output it cannot write. Into a pipe whose reading end
 /// is already closed (as in `program | head` once `head` has quit) it stops printing and exits
 /// 0, never with a panic. Into `/dev/full` (every write fails, as on a full disk; skipped where
