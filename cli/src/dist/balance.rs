@@ -94,31 +94,25 @@ fn run_in<const D: usize>(
         stats = Some(s);
     }
     let stats = stats.expect("clap asks for at least one run");
+    // Each phase's median over the runs.
     let phases: Vec<_> = (0..runs[0].len())
         .map(|i| {
-            (
-                runs[0][i].0,
-                median(&mut runs.iter().map(|p| p[i].1).collect::<Vec<_>>()),
-            )
+            let mut times: Vec<f64> = runs.iter().map(|p| p[i].1).collect();
+            (runs[0][i].0, median(&mut times))
         })
         .collect();
     let sent = sum_over(comm, stats.sent);
     let mine = forest.leaves().len() as u64;
     let most = max_over(comm, mine);
     let hash = chained_hash(comm, forest.leaves());
-    let ghost = match args.ghost {
-        true => {
-            let (layer, ghost_s) = timed(comm, || forest.ghost(comm, connect));
-            let layer = layer?;
-            let ghosts = sum_over(comm, layer.ghosts().len() as u64);
-            Some((
-                ghosts,
-                sum_over(comm, layer.mirrors().len() as u64),
-                ghost_s,
-            ))
-        }
-        false => None,
-    };
+    let mut ghost = None;
+    if args.ghost {
+        let (layer, ghost_s) = timed(comm, || forest.ghost(comm, connect));
+        let layer = layer?;
+        let ghosts = sum_over(comm, layer.ghosts().len() as u64);
+        let mirrors = sum_over(comm, layer.mirrors().len() as u64);
+        ghost = Some((ghosts, mirrors, ghost_s));
+    }
     let after = sum_over(comm, mine);
     let serial = args.check.then(|| {
         let mut verdict = [0u64; 2];
