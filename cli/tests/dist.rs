@@ -106,6 +106,23 @@ fn bad_settings_are_refused_naming_the_option() {
     programs::refusal(&r, "dist-balance", &[], &["--dim"], "--help");
     let r = orthtree(&["dist-points", "--k", "0"]);
     programs::refusal(&r, "dist-points", &[], &["--k"], "--help");
+    // work that would not fit in memory, refused before MPI starts
+    let r = orthtree(&["dist-points", "--n", "200000000000000"]);
+    programs::refusal(
+        &r,
+        "dist-points",
+        &[],
+        &["--n 200000000000000", "limit"],
+        "--help",
+    );
+    let r = orthtree(&["dist-points", "--queries", "1000000000000", "--k", "1000"]);
+    programs::refusal(
+        &r,
+        "dist-points",
+        &[],
+        &["--queries 1000000000000", "limit"],
+        "--help",
+    );
     let r = orthtree(&["dist-balance", "--dim", "2", "--level", "30"]);
     programs::refusal(&r, "dist-balance", &[], &["--level 30", "limit"], "--help");
 }
