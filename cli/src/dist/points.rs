@@ -59,7 +59,8 @@ fn point(i: u64, clustered: bool) -> [f64; 2] {
 const PEAK_BYTES_PER_POINT: f64 = 120.0;
 
 /// Bytes per neighbour of a batch answer (slot, distance, point and item, and the exchange's
-/// copy), with a margin.
+/// copy): measured 464 B per query at k = 8 (peak resident memory at 10^5 and 10^6 queries),
+/// with a margin.
 const BYTES_PER_NEIGHBOUR: f64 = 96.0;
 
 /// Runs `orthtree dist-points`.
