@@ -57,7 +57,7 @@ use traverse::Dual;
 /// set; in the prelude). Slots are the sets' [`PointSet::items`] positions; distances are
 /// squared Euclidean; radii are Euclidean, a pair within `r` when its squared distance is
 /// within `r * r` (see [`Boundary`]).
-pub trait Joins<const D: usize>: PointSet<D> {
+pub trait Joins<const D: usize>: PointSet<D> + Sized {
     /// The `k` nearest points of `other` to every point of this set: row `s` of the table holds
     /// slot `s`'s neighbours (slots of `other`), sorted by distance, ties broken as
     /// [`PointSet::k_nearest`] breaks them (row `s` is exactly `other.k_nearest(self.point(s),
@@ -79,10 +79,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     /// assert_eq!((items, distances), (vec!['y', 'z'], &[1.0, 4.0][..]));
     /// assert_eq!(b.items()[t.row(row([9.0, 9.0])).0[0]], 'x');
     /// ```
-    fn k_nearest_join<B: PointSet<D>>(&self, other: &B, k: usize) -> KnnTable
-    where
-        Self: Sized,
-    {
+    fn k_nearest_join<B: PointSet<D>>(&self, other: &B, k: usize) -> KnnTable {
         Join::new(self, other, &Euclid, false).knn(k)
     }
 
@@ -102,10 +99,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
     /// assert_eq!((near(0), near(1), near(2)), ('b', 'a', 'a'));
     /// assert_eq!(table.row(0).1, [0.0]);
     /// ```
-    fn k_nearest_self(&self, k: usize) -> KnnTable
-    where
-        Self: Sized,
-    {
+    fn k_nearest_self(&self, k: usize) -> KnnTable {
         Join::new(self, self, &Euclid, true).knn(k)
     }
 
@@ -133,10 +127,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
         other: &B,
         k: usize,
         f: impl FnMut(usize, &[usize], &[f64]) -> T,
-    ) -> Vec<T>
-    where
-        Self: Sized,
-    {
+    ) -> Vec<T> {
         Join::new(self, other, &Euclid, false).map_knn(k, f)
     }
 
@@ -156,10 +147,11 @@ pub trait Joins<const D: usize>: PointSet<D> {
     /// let by_item = |c: char| mean[t.items().iter().position(|&x| x == c).unwrap()];
     /// assert_eq!((by_item('a'), by_item('b'), by_item('d')), (2.0, 1.5, 5.0));
     /// ```
-    fn map_k_nearest_self<T>(&self, k: usize, f: impl FnMut(usize, &[usize], &[f64]) -> T) -> Vec<T>
-    where
-        Self: Sized,
-    {
+    fn map_k_nearest_self<T>(
+        &self,
+        k: usize,
+        f: impl FnMut(usize, &[usize], &[f64]) -> T,
+    ) -> Vec<T> {
         Join::new(self, self, &Euclid, true).map_knn(k, f)
     }
 
@@ -196,10 +188,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
         r: f64,
         boundary: Boundary,
         visit: impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
-    ) -> Result<ControlFlow<Br>, QueryError>
-    where
-        Self: Sized,
-    {
+    ) -> Result<ControlFlow<Br>, QueryError> {
         Join::new(self, self, &Euclid, true).pairs(r, boundary, visit)
     }
 
@@ -229,10 +218,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
         r: f64,
         boundary: Boundary,
         visit: impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
-    ) -> Result<ControlFlow<Br>, QueryError>
-    where
-        Self: Sized,
-    {
+    ) -> Result<ControlFlow<Br>, QueryError> {
         Join::new(self, other, &Euclid, false).pairs(r, boundary, visit)
     }
 
@@ -255,10 +241,11 @@ pub trait Joins<const D: usize>: PointSet<D> {
     ///     Err(QueryError::UnsortedRadii { index: 1 })
     /// );
     /// ```
-    fn count_pairs_within(&self, radii: &[f64], boundary: Boundary) -> Result<Vec<u64>, QueryError>
-    where
-        Self: Sized,
-    {
+    fn count_pairs_within(
+        &self,
+        radii: &[f64],
+        boundary: Boundary,
+    ) -> Result<Vec<u64>, QueryError> {
         Join::new(self, self, &Euclid, true).count(radii, boundary)
     }
 
@@ -280,10 +267,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
         other: &B,
         radii: &[f64],
         boundary: Boundary,
-    ) -> Result<Vec<u64>, QueryError>
-    where
-        Self: Sized,
-    {
+    ) -> Result<Vec<u64>, QueryError> {
         Join::new(self, other, &Euclid, false).count(radii, boundary)
     }
 
@@ -307,10 +291,7 @@ pub trait Joins<const D: usize>: PointSet<D> {
         other: &B,
         r: f64,
         boundary: Boundary,
-    ) -> Result<SparseDistances, QueryError>
-    where
-        Self: Sized,
-    {
+    ) -> Result<SparseDistances, QueryError> {
         Join::new(self, other, &Euclid, false).sparse(r, boundary)
     }
 }

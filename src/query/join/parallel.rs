@@ -25,10 +25,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     /// let (a, b) = (Quadtree::new(&pts[..200]).unwrap(), Quadtree::new(&pts[100..]).unwrap());
     /// assert_eq!(a.par_k_nearest_join(&b, 3), a.k_nearest_join(&b, 3));
     /// ```
-    fn par_k_nearest_join<B: PointSet<D> + Sync>(&self, other: &B, k: usize) -> KnnTable
-    where
-        Self: Sized,
-    {
+    fn par_k_nearest_join<B: PointSet<D> + Sync>(&self, other: &B, k: usize) -> KnnTable {
         Join::new(self, other, &Euclid, false).par_knn(k)
     }
 
@@ -41,10 +38,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
     /// let t = Quadtree::new(&pts).unwrap();
     /// assert_eq!(t.par_k_nearest_self(4), t.k_nearest_self(4));
     /// ```
-    fn par_k_nearest_self(&self, k: usize) -> KnnTable
-    where
-        Self: Sized,
-    {
+    fn par_k_nearest_self(&self, k: usize) -> KnnTable {
         Join::new(self, self, &Euclid, true).par_knn(k)
     }
 
@@ -64,10 +58,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
         other: &B,
         k: usize,
         f: impl Fn(usize, &[usize], &[f64]) -> T + Sync,
-    ) -> Vec<T>
-    where
-        Self: Sized,
-    {
+    ) -> Vec<T> {
         Join::new(self, other, &Euclid, false).par_map_knn(k, f)
     }
 
@@ -86,10 +77,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
         &self,
         k: usize,
         f: impl Fn(usize, &[usize], &[f64]) -> T + Sync,
-    ) -> Vec<T>
-    where
-        Self: Sized,
-    {
+    ) -> Vec<T> {
         Join::new(self, self, &Euclid, true).par_map_knn(k, f)
     }
 
@@ -132,10 +120,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
         r: f64,
         boundary: Boundary,
         visit: impl Fn(usize, usize, f64) -> ControlFlow<Br> + Sync,
-    ) -> Result<ControlFlow<Br>, QueryError>
-    where
-        Self: Sized,
-    {
+    ) -> Result<ControlFlow<Br>, QueryError> {
         Join::new(self, self, &Euclid, true).par_pairs(r, boundary, visit)
     }
 
@@ -166,10 +151,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
         r: f64,
         boundary: Boundary,
         visit: impl Fn(usize, usize, f64) -> ControlFlow<Br> + Sync,
-    ) -> Result<ControlFlow<Br>, QueryError>
-    where
-        Self: Sized,
-    {
+    ) -> Result<ControlFlow<Br>, QueryError> {
         Join::new(self, other, &Euclid, false).par_pairs(r, boundary, visit)
     }
 
@@ -203,10 +185,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
         identity: impl Fn() -> T + Sync + Send,
         fold: impl Fn(&mut T, usize, usize, f64) + Sync,
         reduce: impl Fn(T, T) -> T + Sync + Send,
-    ) -> Result<T, QueryError>
-    where
-        Self: Sized,
-    {
+    ) -> Result<T, QueryError> {
         Join::new(self, self, &Euclid, true).par_fold((r, boundary), identity, fold, reduce)
     }
 
@@ -233,10 +212,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
         identity: impl Fn() -> T + Sync + Send,
         fold: impl Fn(&mut T, usize, usize, f64) + Sync,
         reduce: impl Fn(T, T) -> T + Sync + Send,
-    ) -> Result<T, QueryError>
-    where
-        Self: Sized,
-    {
+    ) -> Result<T, QueryError> {
         Join::new(self, other, &Euclid, false).par_fold((r, boundary), identity, fold, reduce)
     }
 
@@ -258,10 +234,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
         other: &B,
         r: f64,
         boundary: Boundary,
-    ) -> Result<SparseDistances, QueryError>
-    where
-        Self: Sized,
-    {
+    ) -> Result<SparseDistances, QueryError> {
         Join::new(self, other, &Euclid, false).par_sparse(r, boundary)
     }
 
@@ -284,10 +257,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
         &self,
         radii: &[f64],
         boundary: Boundary,
-    ) -> Result<Vec<u64>, QueryError>
-    where
-        Self: Sized,
-    {
+    ) -> Result<Vec<u64>, QueryError> {
         Join::new(self, self, &Euclid, true).par_count(radii, boundary)
     }
 
@@ -311,10 +281,7 @@ pub trait ParallelJoins<const D: usize>: Joins<D> + Sync {
         other: &B,
         radii: &[f64],
         boundary: Boundary,
-    ) -> Result<Vec<u64>, QueryError>
-    where
-        Self: Sized,
-    {
+    ) -> Result<Vec<u64>, QueryError> {
         Join::new(self, other, &Euclid, false).par_count(radii, boundary)
     }
 }

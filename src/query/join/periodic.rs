@@ -41,7 +41,7 @@ use core::ops::ControlFlow;
 /// // every pair once, however large the radius
 /// assert_eq!(t.periodic_count_pairs_within(&torus, &[1.0, 5.0, 100.0], Boundary::Inclusive).unwrap(), [1, 3, 3]);
 /// ```
-pub trait PeriodicJoins<const D: usize>: PointSet<D> {
+pub trait PeriodicJoins<const D: usize>: PointSet<D> + Sized {
     /// The `k` nearest points of `other` to every point of this set under the minimum-image
     /// squared Euclidean distance: row `s` is exactly
     /// `other.periodic_k_nearest(torus, self.point(s), k)` (ties included).
@@ -64,10 +64,7 @@ pub trait PeriodicJoins<const D: usize>: PointSet<D> {
         torus: &Torus<D>,
         other: &B,
         k: usize,
-    ) -> KnnTable
-    where
-        Self: Sized,
-    {
+    ) -> KnnTable {
         Join::new(self, other, &torus.squared_euclidean(), false).knn(k)
     }
 
@@ -86,10 +83,7 @@ pub trait PeriodicJoins<const D: usize>: PointSet<D> {
     /// let near = |c: char| t.items()[table.row(t.items().iter().position(|&x| x == c).unwrap()).0[0]];
     /// assert_eq!((near('a'), near('b'), near('c')), ('b', 'a', 'a')); // 'a', 'b': 1.5 across the face
     /// ```
-    fn periodic_k_nearest_self(&self, torus: &Torus<D>, k: usize) -> KnnTable
-    where
-        Self: Sized,
-    {
+    fn periodic_k_nearest_self(&self, torus: &Torus<D>, k: usize) -> KnnTable {
         Join::new(self, self, &torus.squared_euclidean(), true).knn(k)
     }
 
@@ -109,10 +103,7 @@ pub trait PeriodicJoins<const D: usize>: PointSet<D> {
         r: f64,
         boundary: Boundary,
         visit: impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
-    ) -> Result<ControlFlow<Br>, QueryError>
-    where
-        Self: Sized,
-    {
+    ) -> Result<ControlFlow<Br>, QueryError> {
         Join::new(self, self, &torus.squared_euclidean(), true).pairs(r, boundary, visit)
     }
 
@@ -145,10 +136,7 @@ pub trait PeriodicJoins<const D: usize>: PointSet<D> {
         r: f64,
         boundary: Boundary,
         visit: impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
-    ) -> Result<ControlFlow<Br>, QueryError>
-    where
-        Self: Sized,
-    {
+    ) -> Result<ControlFlow<Br>, QueryError> {
         Join::new(self, other, &torus.squared_euclidean(), false).pairs(r, boundary, visit)
     }
 
@@ -163,10 +151,7 @@ pub trait PeriodicJoins<const D: usize>: PointSet<D> {
         torus: &Torus<D>,
         radii: &[f64],
         boundary: Boundary,
-    ) -> Result<Vec<u64>, QueryError>
-    where
-        Self: Sized,
-    {
+    ) -> Result<Vec<u64>, QueryError> {
         Join::new(self, self, &torus.squared_euclidean(), true).count(radii, boundary)
     }
 
@@ -192,10 +177,7 @@ pub trait PeriodicJoins<const D: usize>: PointSet<D> {
         other: &B,
         radii: &[f64],
         boundary: Boundary,
-    ) -> Result<Vec<u64>, QueryError>
-    where
-        Self: Sized,
-    {
+    ) -> Result<Vec<u64>, QueryError> {
         Join::new(self, other, &torus.squared_euclidean(), false).count(radii, boundary)
     }
 
@@ -219,10 +201,7 @@ pub trait PeriodicJoins<const D: usize>: PointSet<D> {
         other: &B,
         r: f64,
         boundary: Boundary,
-    ) -> Result<SparseDistances, QueryError>
-    where
-        Self: Sized,
-    {
+    ) -> Result<SparseDistances, QueryError> {
         Join::new(self, other, &torus.squared_euclidean(), false).sparse(r, boundary)
     }
 }

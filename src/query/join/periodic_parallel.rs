@@ -44,18 +44,12 @@ pub trait ParallelPeriodicJoins<const D: usize>: PeriodicJoins<D> + Sync {
         torus: &Torus<D>,
         other: &B,
         k: usize,
-    ) -> KnnTable
-    where
-        Self: Sized,
-    {
+    ) -> KnnTable {
         Join::new(self, other, &torus.squared_euclidean(), false).par_knn(k)
     }
 
     /// [`PeriodicJoins::periodic_k_nearest_self`] on rayon's threads; the same table.
-    fn par_periodic_k_nearest_self(&self, torus: &Torus<D>, k: usize) -> KnnTable
-    where
-        Self: Sized,
-    {
+    fn par_periodic_k_nearest_self(&self, torus: &Torus<D>, k: usize) -> KnnTable {
         Join::new(self, self, &torus.squared_euclidean(), true).par_knn(k)
     }
 
@@ -72,10 +66,7 @@ pub trait ParallelPeriodicJoins<const D: usize>: PeriodicJoins<D> + Sync {
         r: f64,
         boundary: Boundary,
         visit: impl Fn(usize, usize, f64) -> ControlFlow<Br> + Sync,
-    ) -> Result<ControlFlow<Br>, QueryError>
-    where
-        Self: Sized,
-    {
+    ) -> Result<ControlFlow<Br>, QueryError> {
         Join::new(self, self, &torus.squared_euclidean(), true).par_pairs(r, boundary, visit)
     }
 
@@ -91,10 +82,7 @@ pub trait ParallelPeriodicJoins<const D: usize>: PeriodicJoins<D> + Sync {
         r: f64,
         boundary: Boundary,
         visit: impl Fn(usize, usize, f64) -> ControlFlow<Br> + Sync,
-    ) -> Result<ControlFlow<Br>, QueryError>
-    where
-        Self: Sized,
-    {
+    ) -> Result<ControlFlow<Br>, QueryError> {
         Join::new(self, other, &torus.squared_euclidean(), false).par_pairs(r, boundary, visit)
     }
 
@@ -112,10 +100,7 @@ pub trait ParallelPeriodicJoins<const D: usize>: PeriodicJoins<D> + Sync {
         identity: impl Fn() -> T + Sync + Send,
         fold: impl Fn(&mut T, usize, usize, f64) + Sync,
         reduce: impl Fn(T, T) -> T + Sync + Send,
-    ) -> Result<T, QueryError>
-    where
-        Self: Sized,
-    {
+    ) -> Result<T, QueryError> {
         Join::new(self, self, &torus.squared_euclidean(), true).par_fold(
             (r, boundary),
             identity,
@@ -133,10 +118,7 @@ pub trait ParallelPeriodicJoins<const D: usize>: PeriodicJoins<D> + Sync {
         torus: &Torus<D>,
         radii: &[f64],
         boundary: Boundary,
-    ) -> Result<Vec<u64>, QueryError>
-    where
-        Self: Sized,
-    {
+    ) -> Result<Vec<u64>, QueryError> {
         Join::new(self, self, &torus.squared_euclidean(), true).par_count(radii, boundary)
     }
 
@@ -150,10 +132,7 @@ pub trait ParallelPeriodicJoins<const D: usize>: PeriodicJoins<D> + Sync {
         other: &B,
         radii: &[f64],
         boundary: Boundary,
-    ) -> Result<Vec<u64>, QueryError>
-    where
-        Self: Sized,
-    {
+    ) -> Result<Vec<u64>, QueryError> {
         Join::new(self, other, &torus.squared_euclidean(), false).par_count(radii, boundary)
     }
 
@@ -167,10 +146,7 @@ pub trait ParallelPeriodicJoins<const D: usize>: PeriodicJoins<D> + Sync {
         other: &B,
         r: f64,
         boundary: Boundary,
-    ) -> Result<SparseDistances, QueryError>
-    where
-        Self: Sized,
-    {
+    ) -> Result<SparseDistances, QueryError> {
         Join::new(self, other, &torus.squared_euclidean(), false).par_sparse(r, boundary)
     }
 }
