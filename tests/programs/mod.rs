@@ -81,6 +81,9 @@ pub fn mpirun(np: usize, exe: &Path, args: &[&str], limit: Duration) -> Run {
         "mpirun (OpenMPI) is needed for the tests of the distributed programs"
     );
     let np = np.to_string();
+    let name = exe
+        .file_name()
+        .map_or("mpirun".into(), |n| n.to_string_lossy());
     let exe = exe.to_string_lossy();
     let mut all = vec![
         "--allow-run-as-root",
@@ -92,7 +95,7 @@ pub fn mpirun(np: usize, exe: &Path, args: &[&str], limit: Duration) -> Run {
         &exe,
     ];
     all.extend_from_slice(args);
-    run(Path::new("mpirun"), args[0], &all, None, limit)
+    run(Path::new("mpirun"), &name, &all, None, limit)
 }
 
 /// Checks `exe args` against a standard output it cannot write. Into a pipe whose reading end
