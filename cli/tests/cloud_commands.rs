@@ -246,6 +246,9 @@ fn index_in_memory_and_out_of_core_write_the_library_s_bytes() {
     ];
     let out = ok(&[&base[..], &["--out", "a.tree"]].concat(), &dir);
     assert!(out.contains("30000 points"), "{out}");
+    // the loaded tree and the map answer the same column (the command fails otherwise)
+    assert!(out.contains("(owned tree)"), "{out}");
+    assert!(out.contains("centre of the points' bounds"), "{out}");
     assert!(
         std::fs::read(dir.join("a.tree")).unwrap() == want,
         "in memory"

@@ -101,7 +101,7 @@ pub fn run(a: &IndexArgs) -> Result<(), Failure> {
     let start = Instant::now();
     let mapped = MappedTree::<f64, u32, 3>::open(&a.out).map_err(|e| fail(&e))?;
     let open = start.elapsed().as_secs_f64();
-    query_through_map(&mapped, &a.out)?;
+    query_through_map(&mapped, &a.out, &mapped.domain(), "the tree's domain")?;
     say!("check:       mapped in {}", ms(open));
     say!("wrote:       {}", a.out.display());
     Ok(())
@@ -139,23 +139,30 @@ fn las_streamed(build: &ExternalBuild, path: &str, out: &Path) -> Result<Externa
     report.map_err(|e| named(&e))
 }
 
-/// Box queries through the map, each timed: columns through the domain's centre of a tenth
-/// and a hundredth of its x and y extents.
-fn query_through_map(mapped: &MappedTree<f64, u32, 3>, out: &Path) -> Result<(), Failure> {
+/// Box queries through the map, each timed: columns through the centre of `basis` (the
+/// points' bounds when they are at hand, else the tree's domain, as `basis_name` says) of a
+/// tenth and a hundredth of its x and y extents. Returns the count in the first column.
+fn query_through_map(
+    mapped: &MappedTree<f64, u32, 3>,
+    out: &Path,
+    basis: &Aabb<f64, 3>,
+    basis_name: &str,
+) -> Result<usize, Failure> {
     let fail = |e: &dyn std::fmt::Display| Failure::Input(format!("{}: {e}", out.display()));
-    let domain = mapped.domain();
+    let mut first = None;
     for fraction in [0.1, 0.01] {
         let start = Instant::now();
         let found = mapped
-            .query_box(&column(&domain, fraction), |_, _| {})
+            .query_box(&column(basis, fraction), |_, _| {})
             .map_err(|e| fail(&e))?;
         say!(
-            "query:       column of {fraction} of the x and y extents through the centre: \
-             {found} points in {} (through the map)",
+            "query:       column through the centre of {basis_name}, {fraction} of its x and y \
+             extents: {found} points in {} (through the map)",
             ms(start.elapsed().as_secs_f64())
         );
+        first.get_or_insert(found);
     }
-    Ok(())
+    Ok(first.unwrap_or(0))
 }
 
 /// A point and its position in the input.
@@ -234,19 +241,26 @@ fn in_memory(a: &IndexArgs) -> Result<(), Failure> {
     let back: PointTree<f64, u32, 3> = saved::read_point_tree_file(&a.out).map_err(|e| fail(&e))?;
     drop(phase);
     let load_time = start.elapsed().as_secs_f64();
-    let query = column(&bounds(entries.iter().map(|(p, _)| p)), 0.1);
+    let basis = bounds(entries.iter().map(|(p, _)| p));
     let start = Instant::now();
     let found = back
-        .query_count(query)
+        .query_count(column(&basis, 0.1))
         .map_err(|e| Failure::Input(e.to_string()))?;
     say!(
-        "check:       loaded and validated in {}; column of 0.1 of the x and y extents through \
-         the centre: {found} points in {} (owned tree)",
+        "check:       loaded and validated in {}; column through the centre of the points' \
+         bounds, 0.1 of its x and y extents: {found} points in {} (owned tree)",
         ms(load_time),
         ms(start.elapsed().as_secs_f64())
     );
     let mapped = MappedTree::<f64, u32, 3>::open(&a.out).map_err(|e| fail(&e))?;
-    query_through_map(&mapped, &a.out)?;
+    let through_map = query_through_map(&mapped, &a.out, &basis, "the points' bounds")?;
+    if through_map != found {
+        return Err(Failure::Input(format!(
+            "{}: the column query found {through_map} points through the map but {found} in \
+             the loaded tree",
+            a.out.display()
+        )));
+    }
     say!("wrote:       {}", a.out.display());
     Ok(())
 }
