@@ -154,7 +154,7 @@ fn the_built_in_scan_against_the_library() {
         .voxels(&grid.tree(&cloud.entries().unwrap()).unwrap())
         .unwrap();
     assert_eq!(
-        number_after(&out, "unit^2 of the x-y box;"),
+        number_after(&out, "occupied voxels of side 1:"),
         voxels.len() as u64
     );
     let picture = if cfg!(feature = "png") {

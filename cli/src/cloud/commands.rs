@@ -120,6 +120,30 @@ fn density_picture(
     Ok(())
 }
 
+/// A coordinate or measure for a report: three decimals in the everyday range, else in
+/// scientific notation (a coordinate of 1e38 is not 39 digits of noise).
+fn number(x: f64) -> String {
+    if x == 0.0 || (1e-3..1e9).contains(&x.abs()) {
+        format!("{x:.3}")
+    } else {
+        format!("{x:.4e}")
+    }
+}
+
+/// `count` points per unit^2 of `area`, or why there is no such density (no points, or all of
+/// them on a line or at one point of the x-y plane).
+fn per_area(count: usize, area: f64) -> String {
+    if count == 0 {
+        "no points".to_string()
+    } else if area > 0.0 && area.is_finite() {
+        format!("{} points per unit^2", number(count as f64 / area))
+    } else if area > 0.0 {
+        "no finite area".to_string()
+    } else {
+        "no area (the points lie on a line or at one point)".to_string()
+    }
+}
+
 fn ms(start: Instant) -> String {
     format!("{:.1} ms", start.elapsed().as_secs_f64() * 1e3)
 }
@@ -128,15 +152,19 @@ fn ms(start: Instant) -> String {
 pub fn info(a: &InfoArgs) -> Result<(), Failure> {
     let (cloud, name) = load(a.input.as_deref(), &a.source, 0)?;
     let b = bounds(&cloud.points);
-    say!(
-        "bounds:      x {:.3} .. {:.3}, y {:.3} .. {:.3}, z {:.3} .. {:.3}",
-        b.min[0],
-        b.max[0],
-        b.min[1],
-        b.max[1],
-        b.min[2],
-        b.max[2]
-    );
+    if cloud.is_empty() {
+        say!("bounds:      none (no points)");
+    } else {
+        say!(
+            "bounds:      x {} .. {}, y {} .. {}, z {} .. {}",
+            number(b.min[0]),
+            number(b.max[0]),
+            number(b.min[1]),
+            number(b.max[1]),
+            number(b.min[2]),
+            number(b.max[2])
+        );
+    }
     let names = cloud.attributes.names();
     say!(
         "attributes:  {}",
@@ -163,16 +191,16 @@ pub fn info(a: &InfoArgs) -> Result<(), Failure> {
         c.len()
     };
     say!(
-        "density:     {:.2} points per unit^2 of the x-y box; {} occupied voxels of side {} \
-         ({:.2} points each), {} occupied columns ({:.2} points per unit^2 of them) in {}",
-        cloud.len() as f64 / area.max(f64::MIN_POSITIVE),
-        voxels.len(),
+        "density:     x-y box: {}; occupied voxels of side {}: {} ({:.2} points each); \
+         occupied columns: {} ({})",
+        per_area(cloud.len(), area),
         a.voxel,
+        voxels.len(),
         cloud.len() as f64 / voxels.len().max(1) as f64,
         columns,
-        cloud.len() as f64 / (columns as f64 * a.voxel * a.voxel).max(f64::MIN_POSITIVE),
-        ms(start)
+        per_area(cloud.len(), columns as f64 * a.voxel * a.voxel),
     );
+    say!("time:        voxelised in {}", ms(start));
     density_picture(&cloud.points, &a.picture, &a.source)
 }
 
