@@ -1,8 +1,8 @@
 //! Boolean operations on binary images with region quadtrees.
 //!
 //! ```sh
-//! orthtree image A B --op and|or|xor|sub --out C
-//! orthtree image A --op not --out C
+//! orthtree image and|or|xor|sub A B --out C   # or: orthtree image A B --op xor --out C
+//! orthtree image not A --out C
 //! orthtree image            # built-in disc and ring
 //! ```
 //!
@@ -38,13 +38,14 @@ fn read(path: &str) -> Result<ImageTree, Box<dyn Error>> {
 
 /// Boolean operations on binary images with region quadtrees
 ///
-/// `orthtree image A B --op xor --out C.pbm`. With no arguments: a built-in disc and ring, their symmetric difference written
+/// `orthtree image xor A B --out C.pbm` (or `orthtree image A B --op xor --out C.pbm`). With no arguments: a built-in disc and ring, their symmetric difference written
 /// as image_ops.pbm and image_ops.svg into the current folder.
 #[derive(clap::Args, Debug)]
 #[command(after_help = crate::EXIT_CODES, allow_negative_numbers = true)]
 pub struct ImageArgs {
-    /// Input images: .pbm, or .png when built with the `png` feature
-    #[arg(value_name = "IMAGE", num_args = 0..=2)]
+    /// The operation (unless given by --op), then the input images: .pbm, or .png when built
+    /// with the `png` feature
+    #[arg(value_name = "[OP] IMAGE", num_args = 0..=3)]
     images: Vec<String>,
     /// and, or, xor, sub (two images of one size) or not (one image)
     #[arg(long, value_enum)]
@@ -160,14 +161,30 @@ fn combine(a: &ImageTree, b: Option<&ImageTree>, op: &str) -> Result<ImageTree, 
 
 /// Runs `orthtree image`.
 pub fn run(args: &ImageArgs) -> Result<(), Failure> {
-    let outcome = match (&args.op, &args.out) {
-        (None, None) if args.images.is_empty() => demo(),
-        (Some(op), Some(out)) if !args.images.is_empty() => apply(&args.images, *op, out),
-        _ => {
-            return Err(Failure::Usage(
-                "give one or two images, --op and --out".into(),
-            ))
+    let usage = || {
+        Failure::Usage("give an operation (first, or by --op), one or two images and --out".into())
+    };
+    // The operation as the first word (`orthtree image xor A B`), unless --op names it.
+    let (op, images) = match args.images.split_first() {
+        Some((first, rest)) if args.op.is_none() => {
+            match <OpArg as clap::ValueEnum>::from_str(first, true) {
+                Ok(op) => (Some(op), rest),
+                Err(_) => (None, &args.images[..]),
+            }
         }
+        _ => (args.op, &args.images[..]),
+    };
+    if images.len() > 2 {
+        return Err(Failure::Usage(format!(
+            "{} images given ({}): an operation takes one or two",
+            images.len(),
+            images.join(", ")
+        )));
+    }
+    let outcome = match (op, &args.out) {
+        (None, None) if images.is_empty() => demo(),
+        (Some(op), Some(out)) if !images.is_empty() => apply(images, op, out),
+        _ => return Err(usage()),
     };
     outcome.map_err(|e| match e.downcast::<Usage>() {
         Ok(usage) => Failure::Usage(usage.0),

@@ -2,7 +2,7 @@
 //!
 //! - `orthtree mesh [BOARD]`: the main job, the chapter's quadtree mesher on a circuit board;
 //! - `orthtree heat [BOARD]`: steady heat on the board's mesh (with the `heat` feature);
-//! - `orthtree image A [B] --op OP --out C`: Boolean operations on images with region trees;
+//! - `orthtree image OP A [B] --out C` (or `--op OP`): Boolean operations on images with region trees;
 //! - `orthtree balance`: p4est's fractal refinement, then 2:1 balance;
 //! - `orthtree dist-balance`, `orthtree dist-points`: the forest and the point tree over MPI
 //!   ranks, run under `mpirun` (with the `mpi` feature);

@@ -340,6 +340,30 @@ fn small_valid_runs_succeed() {
         Duration::from_secs(60),
     );
     assert_eq!(r.code, 2, "xor of one image: {}", r.stderr);
+    // the operation as the first word: the image against itself, then its complement
+    for (args, code) in [
+        (
+            &["xor", "image_ops.pbm", "image_ops.pbm", "--out", "x.pbm"][..],
+            0,
+        ),
+        (&["NOT", "image_ops.pbm", "--out", "not2.pbm"][..], 0),
+        // with --op, the first word is an image: three of them
+        (
+            &["xor", "a.pbm", "b.pbm", "--op", "and", "--out", "x.pbm"][..],
+            2,
+        ),
+    ] {
+        let r = run_in("image", args, Some(&dir), Duration::from_secs(60));
+        assert_eq!(r.code, code, "{args:?}: {}", r.stderr);
+    }
+    let xor_self = orthtree::io::pbm::read(dir.join("x.pbm")).unwrap();
+    assert_eq!((xor_self.extent(), xor_self.len()), ([512, 384], 0));
+    assert_eq!(
+        std::fs::read(dir.join("not2.pbm")).unwrap(),
+        std::fs::read(&out).unwrap()
+    );
+    let r = run_in("image", &["--help"], None, Duration::from_secs(60));
+    assert!(r.stdout.contains("[OP] IMAGE"), "{}", r.stdout);
     let _ = std::fs::remove_dir_all(&dir);
     heat_runs();
 }
