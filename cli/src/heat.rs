@@ -129,9 +129,7 @@ fn read_board(args: &HeatArgs) -> Result<(Board, String), Failure> {
             "built-in sample board".into(),
         ));
     };
-    orthtree::io::read_board_file(path, args.size)
-        .map(|b| (b, path.clone()))
-        .map_err(|e| Failure::Input(format!("{}: {e}", limits::shown(path))))
+    crate::mesh::board_file(path, args.size)
 }
 
 /// `--size` without a board file: the built-in board has its own size.

@@ -121,9 +121,24 @@ fn read_board(args: &MeshArgs) -> Result<(Board, String), Failure> {
     let Some(path) = &args.board else {
         return Ok((sample_board(), "built-in sample board".into()));
     };
-    orthtree::io::read_board_file(path, args.size)
-        .map(|b| (b, path.clone()))
-        .map_err(|e| Failure::Input(format!("{}: {e}", shown(path))))
+    board_file(path, args.size)
+}
+
+/// The board in the file at `path` (`mesh` and `heat`), named in errors once, as given on the
+/// command line (quoted, cut when long).
+pub(crate) fn board_file(path: &str, size: Option<i64>) -> Result<(Board, String), Failure> {
+    use orthtree::io::BoardFileError;
+    orthtree::io::read_board_file(path, size)
+        .map(|b| (b, path.to_string()))
+        .map_err(|e| {
+            let why = match &e {
+                BoardFileError::Io { error, .. } => error.to_string(),
+                BoardFileError::Board { error, .. } => error.to_string(),
+                // the others name the path themselves
+                _ => return Failure::Input(e.to_string()),
+            };
+            Failure::Input(format!("{}: {why}", shown(path)))
+        })
 }
 
 /// Writes every file, each streamed through a buffer, the formats on threads of their own;

@@ -310,10 +310,33 @@ fn small_valid_runs_succeed() {
         assert_eq!(r.code, 0, "{}", r.stderr);
         assert!(r.stdout.contains("wrote:       nothing"), "{}", r.stdout);
     }
-    // A board file that is not there: exit 1, naming the file.
-    let r = run("mesh", &["no-such-board.poly"]);
-    assert_eq!(r.code, 1, "{}", r.stderr);
-    assert!(r.stderr.starts_with("error: ") && r.stderr.contains("no-such-board.poly"));
+    // A board file that is not there, or that is not a board: exit 1, naming the file once.
+    std::fs::write(
+        dir.join("touching.txt"),
+        "size 8\n1 1 3 1 3 3\n3 1 5 1 5 3\n",
+    )
+    .unwrap();
+    for (board, why) in [
+        ("no-such-board.poly", "No such file"),
+        ("touching.txt", "must not touch"),
+    ] {
+        // without its feature, `heat` says how to rebuild before it reads anything
+        let commands: &[&str] = if cfg!(feature = "heat") {
+            &["mesh", "heat"]
+        } else {
+            &["mesh"]
+        };
+        for &command in commands {
+            let r = run_in(command, &[board], Some(&dir), Duration::from_secs(60));
+            assert_eq!(r.code, 1, "{}", r.stderr);
+            assert!(
+                r.stderr.starts_with("error: ") && r.stderr.contains(why),
+                "{}",
+                r.stderr
+            );
+            assert_eq!(r.stderr.matches(board).count(), 1, "{}", r.stderr);
+        }
+    }
     // image: the built-in demo, then its output read back and complemented.
     let r = run_in("image", &[], Some(&dir), Duration::from_secs(60));
     assert_eq!(r.code, 0, "{}", r.stderr);
