@@ -25,6 +25,7 @@ enum Target {
 pub(crate) struct Columns {
     targets: Vec<Target>,
     extra: Vec<String>,
+    names: Vec<String>,
 }
 
 impl Columns {
@@ -55,7 +56,32 @@ impl Columns {
                 }
             })
             .collect();
-        Columns { targets, extra }
+        let names = names.iter().map(|n| n.chars().take(32).collect()).collect();
+        Columns {
+            targets,
+            extra,
+            names,
+        }
+    }
+
+    /// The name of column `i` (cut after 32 characters).
+    pub(crate) fn name(&self, i: usize) -> String {
+        self.names[i].clone()
+    }
+
+    /// What column `i` holds, for the error naming a value [`push`](Self::push) refused there
+    /// (coordinates of scalar type `S`).
+    pub(crate) fn holds<S: Scalar>(&self, i: usize) -> String {
+        match self.targets[i] {
+            Target::Position(_) => format!(
+                "a finite value that {} holds exactly",
+                core::any::type_name::<S>()
+            ),
+            Target::Intensity | Target::Color(_) => "an integer from 0 to 65535".into(),
+            Target::Classification => "an integer from 0 to 255".into(),
+            Target::Normal(_) => "a value that f32 holds exactly".into(),
+            Target::GpsTime | Target::Extra(_) => "a number".into(),
+        }
     }
 
     /// Empty attribute columns of the kinds the names fill.

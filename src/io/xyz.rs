@@ -4,7 +4,7 @@
 //! three columns are `x y z` and the others extra columns `column4`, `column5`, ...
 //!
 //! Every line has the same number of fields; a field that is not a number, or a value that
-//! does not fit its column exactly, is refused with its line and field. Memory grows with the
+//! does not fit its column exactly, is refused with its line, field and what the column holds. Memory grows with the
 //! points read.
 //!
 //! ```
@@ -66,8 +66,12 @@ pub enum XyzError {
         line: usize,
         /// The field.
         field: usize,
-        /// The value.
-        value: f64,
+        /// The column's name (cut after 32 characters).
+        column: String,
+        /// The field's text (cut after 32 characters).
+        text: String,
+        /// What the column holds ("an integer from 0 to 65535", ...).
+        holds: String,
     },
     /// The line of names holds `name` twice: the later column would silently take the place
     /// of the earlier (two `x` columns, two intensities).
@@ -105,9 +109,15 @@ impl fmt::Display for XyzError {
                 "XYZ line {line}: {found} fields where the first line has {expected}"
             ),
             XyzError::MissingColumn { name } => write!(f, "XYZ: no column {name}"),
-            XyzError::Inexact { line, field, value } => write!(
+            XyzError::Inexact {
+                line,
+                field,
+                column,
+                text,
+                holds,
+            } => write!(
                 f,
-                "XYZ line {line}, field {field}: {value} does not fit its column exactly"
+                "XYZ line {line}, field {field} ({column}): {text:?} is not {holds}"
             ),
             XyzError::DuplicateColumn { line, field, name } => write!(
                 f,
@@ -265,7 +275,12 @@ fn push_line<S: Scalar>(
     columns.push(values, cloud).map_err(|i| XyzError::Inexact {
         line,
         field: i + 1,
-        value: values[i],
+        column: columns.name(i),
+        text: fields(text)
+            .nth(i)
+            .map(|w| w.chars().take(32).collect())
+            .unwrap_or_default(),
+        holds: columns.holds::<S>(i),
     })
 }
 

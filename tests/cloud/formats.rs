@@ -103,7 +103,7 @@ fn ply_coordinates_that_do_not_fit_the_type_are_refused() {
     let err = ply::read::<i32>(&bytes[..]).unwrap_err();
     assert_eq!(
         err.to_string(),
-        "PLY vertex 0: y = 1.5 does not fit its column exactly"
+        "PLY vertex 0: y = 1.5 is not a finite value that i32 holds exactly"
     );
 }
 

@@ -108,7 +108,7 @@ fn out_of_range_attributes_are_refused_not_clamped() {
     let err = ply::read::<f64>(text.as_bytes()).unwrap_err();
     assert_eq!(
         err.to_string(),
-        "PLY vertex 0: intensity = 70000 does not fit its column exactly"
+        "PLY vertex 0: intensity = 70000 is not an integer from 0 to 65535"
     );
 }
 
@@ -128,7 +128,19 @@ fn xyz_errors_name_line_and_field() {
     let err = xyz::read::<i32>("1 2 3.5\n".as_bytes()).unwrap_err();
     assert_eq!(
         err.to_string(),
-        "XYZ line 1, field 3: 3.5 does not fit its column exactly"
+        "XYZ line 1, field 3 (z): \"3.5\" is not a finite value that i32 holds exactly"
+    );
+    // the field's own text, not what it parsed to; attributes name their range
+    let err = xyz::read::<f64>("1e400 2 3\n".as_bytes()).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "XYZ line 1, field 1 (x): \"1e400\" is not a finite value that f64 holds exactly"
+    );
+    let err =
+        xyz::read::<f64>("x,y,z,classification\n1,2,3,7\n1,2,3,256\n".as_bytes()).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "XYZ line 3, field 4 (classification): \"256\" is not an integer from 0 to 255"
     );
     let err = xyz::read::<f64>(&b"1 2 3\n1 2 \xff\n"[..]).unwrap_err();
     assert!(matches!(err, XyzError::BadLine { line: 2 }));

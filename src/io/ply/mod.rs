@@ -181,6 +181,8 @@ pub enum PlyError {
         property: String,
         /// The value.
         value: f64,
+        /// What the column holds ("an integer from 0 to 65535", ...).
+        holds: String,
     },
 }
 
@@ -227,10 +229,8 @@ impl fmt::Display for PlyError {
                 vertex,
                 property,
                 value,
-            } => write!(
-                f,
-                "PLY vertex {vertex}: {property} = {value} does not fit its column exactly"
-            ),
+                holds,
+            } => write!(f, "PLY vertex {vertex}: {property} = {value} is not {holds}"),
         }
     }
 }

@@ -52,6 +52,7 @@ pub fn read<S: Scalar>(input: impl Read) -> Result<Cloud<S>, PlyError> {
                 vertex,
                 property: header.properties[i].0.clone(),
                 value: values[i],
+                holds: columns.holds::<S>(i),
             })?;
     }
     // Only white space may follow an ASCII body, nothing a binary one.
