@@ -222,6 +222,14 @@ impl Best {
         }
     }
 
+    /// `k` candidates are known, all at distance 0, each at an index below `next`: no point at
+    /// `next` or after can enter the list (it could only tie them, and ties go to the lower
+    /// index). Every candidate is within the bound, so at distance 0 when the bound is.
+    #[inline]
+    fn settled_before(&self, next: usize) -> bool {
+        self.full && self.limit == 0.0 && self.list.iter().all(|&(_, i)| i < next)
+    }
+
     /// The answer: the `k` nearest, sorted by `(distance, index)`.
     fn finish(mut self) -> Found {
         if self.k <= SORTED_MAX {
@@ -497,15 +505,28 @@ fn scan_run<S: Scalar, M: Metric<D>, const D: usize>(
         }
         return bound;
     }
-    for (j, p) in points[run].iter().enumerate() {
-        let d = metric.distance(q, &p.map(Scalar::to_f64));
-        if d <= bound {
-            best.offer(d, start + j);
-            bound = best.bound();
+    for (c, block) in points[run].chunks(SETTLE_BLOCK).enumerate() {
+        let at = start + c * SETTLE_BLOCK;
+        for (j, p) in block.iter().enumerate() {
+            let d = metric.distance(q, &p.map(Scalar::to_f64));
+            if d <= bound {
+                best.offer(d, at + j);
+                bound = best.bound();
+            }
+        }
+        if bound == 0.0 && best.settled_before(at + block.len()) {
+            break;
         }
     }
     bound
 }
+
+/// A run is scanned in blocks of this many points; after each, a search whose `k` candidates
+/// are all at distance 0 and before the rest of the run stops scanning it (the rest could only
+/// tie them, and ties go to the lower position). Without it a leaf of many copies of one point
+/// (a leaf at the maximum depth keeps them all) costs every query at that point a scan of the
+/// whole leaf: a self-join of n copies took O(n^2).
+const SETTLE_BLOCK: usize = 64;
 
 /// The nearest of `points` to `q` (its distance and position), the first of equals; `None` for
 /// no point. Without a branch per point: strictly nearer replaces. (Four interleaved running
@@ -518,11 +539,17 @@ fn nearest_in<S: Scalar, M: Metric<D>, const D: usize>(
     metric: &M,
 ) -> Option<(f64, usize)> {
     let (mut near, mut at) = (f64::INFINITY, 0);
-    for (j, p) in points.iter().enumerate() {
-        let d = metric.distance(q, &p.map(Scalar::to_f64));
-        let nearer = d < near;
-        near = if nearer { d } else { near };
-        at = if nearer { j } else { at };
+    for (c, block) in points.chunks(SETTLE_BLOCK).enumerate() {
+        for (j, p) in block.iter().enumerate() {
+            let d = metric.distance(q, &p.map(Scalar::to_f64));
+            let nearer = d < near;
+            near = if nearer { d } else { near };
+            at = if nearer { c * SETTLE_BLOCK + j } else { at };
+        }
+        // Nothing after the first point at distance 0 can replace it.
+        if near == 0.0 {
+            break;
+        }
     }
     (!points.is_empty()).then_some((near, at))
 }

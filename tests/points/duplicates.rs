@@ -143,3 +143,80 @@ fn max_depth_is_respected() {
         }
     }
 }
+
+/// Squared Euclidean distance, counting the point-to-point distances computed.
+#[derive(Default)]
+struct Counting(core::cell::Cell<usize>);
+
+impl orthtree::query::Metric<2> for Counting {
+    fn distance(&self, a: &[f64; 2], b: &[f64; 2]) -> f64 {
+        self.0.set(self.0.get() + 1);
+        orthtree::query::SquaredEuclidean.distance(a, b)
+    }
+    fn box_distance(&self, q: &[f64; 2], b: &Aabb<f64, 2>) -> f64 {
+        orthtree::query::SquaredEuclidean.box_distance(q, b)
+    }
+}
+
+/// A query at a point with many copies (one leaf at the maximum depth holds them all) stops
+/// once its `k` nearest are copies it cannot do better than (a later copy could only tie, and
+/// ties go to the lower position), instead of measuring every copy; the answer is the scan's
+/// first `k` by (distance, position), in every tree, for nearest and k-nearest.
+#[test]
+fn a_query_among_many_copies_measures_few_of_them() {
+    let mut rng = common::rng(11);
+    let copy = [0.375, 0.625];
+    let mut entries: Vec<([f64; 2], usize)> = (0..20_000)
+        .map(|i| {
+            let p = if i % 5 == 0 {
+                [rng.r#gen(), rng.r#gen()]
+            } else {
+                copy
+            };
+            (p, i)
+        })
+        .collect();
+    entries.push(([0.375, 0.625 + 1e-9], 20_000));
+    let tree = Quadtree::new(&entries).unwrap();
+    let dynamic = orthtree::DynamicPointTree::new(&entries).unwrap();
+    let compressed = orthtree::CompressedTree::new(&entries).unwrap();
+    for k in [1, 2, 16, 17, 40] {
+        let metric = Counting::default();
+        let got = tree.k_nearest_by(&copy, k, f64::INFINITY, &metric).unwrap();
+        assert!(
+            metric.0.get() <= 4 * 64 + 200,
+            "k {k}: {} distances",
+            metric.0.get()
+        );
+        // the scan's answer: the copies at the lowest positions of the tree's order
+        let slots: Vec<usize> = got.iter().map(|n| n.index).collect();
+        let mut want: Vec<(f64, usize)> = (tree.points().iter().enumerate())
+            .map(|(s, p)| {
+                (
+                    orthtree::query::Metric::<2>::distance(
+                        &orthtree::query::SquaredEuclidean,
+                        &copy,
+                        p,
+                    ),
+                    s,
+                )
+            })
+            .collect();
+        want.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        let want: Vec<usize> = want[..k].iter().map(|&(_, s)| s).collect();
+        assert_eq!(slots, want, "k {k}");
+        assert!(got.iter().all(|n| *n.point == copy));
+        // the other trees: k copies too
+        for found in [
+            dynamic
+                .k_nearest_by(&copy, k, f64::INFINITY, &metric)
+                .unwrap(),
+            compressed
+                .k_nearest_by(&copy, k, f64::INFINITY, &metric)
+                .unwrap(),
+        ] {
+            assert_eq!(found.len(), k);
+            assert!(found.iter().all(|n| *n.point == copy && n.distance == 0.0));
+        }
+    }
+}

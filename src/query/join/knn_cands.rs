@@ -124,6 +124,17 @@ impl Cands {
         f64::from_bits(kth.unwrap_or(0))
     }
 
+    /// The highest position among the `k` candidates kept by the last [`Cands::shrink`]
+    /// (call it right after).
+    #[inline]
+    pub(crate) fn kept_last_position(&self) -> usize {
+        self.entries[..self.k]
+            .iter()
+            .map(|e| e.1)
+            .max()
+            .unwrap_or(0)
+    }
+
     /// The `k` first candidates by `(distance, position)`, in that order, as (distance bits,
     /// position); at least `k` must be held.
     #[inline(always)]

@@ -77,6 +77,9 @@ impl<const D: usize> Chunk<D> {
 pub(crate) struct Pool<N, const D: usize> {
     chunks: Vec<Chunk<D>>,
     used: usize,
+    /// The points' positions never decrease from one to the next (as in a pool gathered from
+    /// one leaf): each chunk's first is its lowest, and the chunks' first ones rise.
+    rising: bool,
     stack: Vec<(N, Aabb<f64, D>)>,
     /// The points kept by the walk, with their positions, before they are cut into chunks.
     staged: Vec<([f64; D], usize)>,
@@ -88,6 +91,7 @@ impl<N: Copy, const D: usize> Pool<N, D> {
         Pool {
             chunks: Vec::new(),
             used: 0,
+            rising: true,
             stack: Vec::new(),
             staged: Vec::new(),
         }
@@ -133,13 +137,18 @@ impl<N: Copy, const D: usize> Pool<N, D> {
             self.chunks[i].fill(part);
         }
         self.used = kept.div_ceil(CHUNK);
+        self.rising = self.staged[..kept].windows(2).all(|w| w[0].1 <= w[1].1);
     }
 
     /// Offers `cands` every point of the pool within `bound` of `q`, but the position `skip`,
     /// as near when within `near` too; `cands` has room for `full` and a chunk's worth. After
     /// each chunk, once `k` near ones are held, the bound tightens to `near` and the far ones
     /// are forgotten; when `full` are held, the best `k` are kept ([`Cands::shrink`]) and the
-    /// bound tightens to the `k`-th distance.
+    /// bound tightens to the `k`-th distance. Once that distance is 0, a chunk whose positions
+    /// all come after the `k` kept cannot change them (its points could only tie, and ties go
+    /// to the lower position): it is skipped, and so are all the rest when the chunks' positions
+    /// rise. Without that, a group of n copies of one point searched a pool of the n copies for
+    /// each of them: O(n^2) for a self-join.
     #[inline(always)]
     pub(crate) fn scan<P: PairDistance<D>>(
         &self,
@@ -149,25 +158,12 @@ impl<N: Copy, const D: usize> Pool<N, D> {
         cands: &mut Cands,
         (k, full): (usize, usize),
     ) {
-        for c in &self.chunks[..self.used] {
+        let chunks = &self.chunks[..self.used];
+        for (i, c) in chunks.iter().enumerate() {
             if metric.point_box(q, &c.tight) > bound {
                 continue;
             }
-            let mut dist = [0.0; CHUNK];
-            for (j, d) in dist.iter_mut().enumerate() {
-                let p: [f64; D] = core::array::from_fn(|a| c.cols[a][j]);
-                *d = metric.distance(q, &p);
-            }
-            let mut mask = 0u64;
-            for (j, &d) in dist.iter().enumerate() {
-                mask |= u64::from(d <= bound) << j;
-            }
-            mask &= c.live;
-            while mask != 0 {
-                let j = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                cands.push(dist[j].to_bits(), c.at[j], skip, dist[j] <= near);
-            }
+            offer_chunk(c, metric, (q, skip), (bound, near), cands);
             if near < bound && cands.near() >= k {
                 bound = near;
                 cands.drop_far();
@@ -175,8 +171,77 @@ impl<N: Copy, const D: usize> Pool<N, D> {
             if cands.held() >= full {
                 bound = cands.shrink();
                 near = bound;
+                if bound == 0.0 {
+                    self.scan_settled(&chunks[i + 1..], metric, (q, skip), cands, full);
+                    return;
+                }
             }
         }
+    }
+
+    /// The rest of [`Pool::scan`] once the `k` kept are all at distance 0: only a point at
+    /// distance 0 and a lower position than the `k`-th kept can enter, so a chunk whose
+    /// positions all lie beyond that is skipped (with every chunk after it, when the
+    /// positions rise).
+    #[inline(never)]
+    fn scan_settled<P: PairDistance<D>>(
+        &self,
+        rest: &[Chunk<D>],
+        metric: &P,
+        (q, skip): (&[f64; D], usize),
+        cands: &mut Cands,
+        full: usize,
+    ) {
+        let mut settled_at = cands.kept_last_position();
+        for c in rest {
+            if metric.point_box(q, &c.tight) > 0.0 {
+                continue;
+            }
+            let lowest = if self.rising {
+                c.at[0]
+            } else {
+                c.at[..c.len].iter().copied().min().unwrap_or(0)
+            };
+            if lowest > settled_at {
+                if self.rising {
+                    break;
+                }
+                continue;
+            }
+            offer_chunk(c, metric, (q, skip), (0.0, 0.0), cands);
+            if cands.held() >= full {
+                cands.shrink();
+                settled_at = cands.kept_last_position();
+            }
+        }
+    }
+}
+
+/// Offers `cands` every point of chunk `c` within `bound` of `q` but the position `skip`, as
+/// near when within `near` too: the distances to the whole chunk in a loop of arithmetic, then
+/// the points within the bound by their mask's bits.
+#[inline(always)]
+fn offer_chunk<P: PairDistance<D>, const D: usize>(
+    c: &Chunk<D>,
+    metric: &P,
+    (q, skip): (&[f64; D], usize),
+    (bound, near): (f64, f64),
+    cands: &mut Cands,
+) {
+    let mut dist = [0.0; CHUNK];
+    for (j, d) in dist.iter_mut().enumerate() {
+        let p: [f64; D] = core::array::from_fn(|a| c.cols[a][j]);
+        *d = metric.distance(q, &p);
+    }
+    let mut mask = 0u64;
+    for (j, &d) in dist.iter().enumerate() {
+        mask |= u64::from(d <= bound) << j;
+    }
+    mask &= c.live;
+    while mask != 0 {
+        let j = mask.trailing_zeros() as usize;
+        mask &= mask - 1;
+        cands.push(dist[j].to_bits(), c.at[j], skip, dist[j] <= near);
     }
 }
 
@@ -209,5 +274,78 @@ where
             Some((c, cb)) => (node, nb) = (c, cb),
             None => return metric.box_box(gbox, &nb).1,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::bounds::{Euclid, PairDistance};
+    use super::{Cands, Pool, CHUNK};
+    use crate::geom::Aabb;
+    use crate::query::SpatialIndex;
+    use crate::PointTree;
+    use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
+
+    /// Squared Euclidean distance, counting the point-to-point distances computed.
+    #[derive(Default)]
+    struct Counting(AtomicUsize);
+
+    impl PairDistance<3> for Counting {
+        fn distance(&self, a: &[f64; 3], b: &[f64; 3]) -> f64 {
+            self.0.fetch_add(1, Relaxed);
+            Euclid.distance(a, b)
+        }
+        fn point_box(&self, q: &[f64; 3], b: &Aabb<f64, 3>) -> f64 {
+            Euclid.point_box(q, b)
+        }
+        fn box_box(&self, a: &Aabb<f64, 3>, b: &Aabb<f64, 3>) -> (f64, f64) {
+            Euclid.box_box(a, b)
+        }
+    }
+
+    /// A pool of n copies of one point: each copy's search ends once its `k` nearest are the
+    /// copies at the lowest positions (a copy of the rest could only tie them), after a few
+    /// chunks, instead of computing its distance to all n.
+    #[test]
+    fn copies_of_one_point_settle_after_a_few_chunks() {
+        let n = 64 * CHUNK;
+        let p = [0.25, -3.0, 7.5];
+        let entries: Vec<([f64; 3], usize)> = (0..n).map(|i| (p, i)).collect();
+        let tree = PointTree::new(&entries).unwrap();
+        let metric = Counting::default();
+        let gbox = Aabb::new(p, p).unwrap();
+        let mut pool = Pool::new();
+        pool.gather(&tree, &metric, &gbox, 0.0);
+        let points = tree.points();
+        for k in [1, 5, 20, 40] {
+            for me in [0, 1, k, n / 2, n - 1] {
+                let mut cands = Cands::default();
+                cands.reset(k, 2 * k + CHUNK);
+                metric.0.store(0, Relaxed);
+                pool.scan(
+                    &metric,
+                    (&points[me], me),
+                    (0.0, 0.0),
+                    &mut cands,
+                    (k, 2 * k),
+                );
+                let computed = metric.0.load(Relaxed);
+                assert!(
+                    computed <= 3 * CHUNK,
+                    "k {k}, copy {me}: {computed} distances"
+                );
+                // the k lowest positions but its own
+                let got: Vec<usize> = cands
+                    .ordered()
+                    .map(|(d, at)| {
+                        assert_eq!(d, 0);
+                        at
+                    })
+                    .collect();
+                let want: Vec<usize> = (0..n).filter(|&i| i != me).take(k).collect();
+                assert_eq!(got, want, "k {k}, copy {me}");
+            }
+        }
+        assert_eq!(tree.run(tree.root().unwrap().0), 0..n);
     }
 }
