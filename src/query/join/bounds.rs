@@ -107,3 +107,45 @@ impl<const D: usize> PairDistance<D> for MinImage<SquaredEuclidean, D> {
         (near, far)
     }
 }
+
+/// Squared Euclidean distance ([`Euclid`]) counting the point-to-point distances and the
+/// box-to-box bounds computed: the kernels' tests check how much work a case takes.
+#[cfg(test)]
+#[derive(Default)]
+pub(crate) struct Counting(
+    std::sync::atomic::AtomicUsize,
+    std::sync::atomic::AtomicUsize,
+);
+
+#[cfg(test)]
+impl Counting {
+    /// The distances computed since the last reset.
+    pub(crate) fn distances(&self) -> usize {
+        self.0.load(std::sync::atomic::Ordering::Relaxed)
+    }
+
+    /// The box-to-box bounds computed since the last reset.
+    pub(crate) fn box_bounds(&self) -> usize {
+        self.1.load(std::sync::atomic::Ordering::Relaxed)
+    }
+
+    pub(crate) fn reset(&self) {
+        self.0.store(0, std::sync::atomic::Ordering::Relaxed);
+        self.1.store(0, std::sync::atomic::Ordering::Relaxed);
+    }
+}
+
+#[cfg(test)]
+impl<const D: usize> PairDistance<D> for Counting {
+    fn distance(&self, a: &[f64; D], b: &[f64; D]) -> f64 {
+        self.0.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        Euclid.distance(a, b)
+    }
+    fn point_box(&self, q: &[f64; D], b: &Aabb<f64, D>) -> f64 {
+        Euclid.point_box(q, b)
+    }
+    fn box_box(&self, a: &Aabb<f64, D>, b: &Aabb<f64, D>) -> (f64, f64) {
+        self.1.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        Euclid.box_box(a, b)
+    }
+}

@@ -279,29 +279,11 @@ where
 
 #[cfg(test)]
 mod tests {
-    use super::super::bounds::{Euclid, PairDistance};
+    use super::super::bounds::Counting;
     use super::{Cands, Pool, CHUNK};
     use crate::geom::Aabb;
     use crate::query::SpatialIndex;
     use crate::PointTree;
-    use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
-
-    /// Squared Euclidean distance, counting the point-to-point distances computed.
-    #[derive(Default)]
-    struct Counting(AtomicUsize);
-
-    impl PairDistance<3> for Counting {
-        fn distance(&self, a: &[f64; 3], b: &[f64; 3]) -> f64 {
-            self.0.fetch_add(1, Relaxed);
-            Euclid.distance(a, b)
-        }
-        fn point_box(&self, q: &[f64; 3], b: &Aabb<f64, 3>) -> f64 {
-            Euclid.point_box(q, b)
-        }
-        fn box_box(&self, a: &Aabb<f64, 3>, b: &Aabb<f64, 3>) -> (f64, f64) {
-            Euclid.box_box(a, b)
-        }
-    }
 
     /// A pool of n copies of one point: each copy's search ends once its `k` nearest are the
     /// copies at the lowest positions (a copy of the rest could only tie them), after a few
@@ -321,7 +303,7 @@ mod tests {
             for me in [0, 1, k, n / 2, n - 1] {
                 let mut cands = Cands::default();
                 cands.reset(k, 2 * k + CHUNK);
-                metric.0.store(0, Relaxed);
+                metric.reset();
                 pool.scan(
                     &metric,
                     (&points[me], me),
@@ -329,7 +311,7 @@ mod tests {
                     &mut cands,
                     (k, 2 * k),
                 );
-                let computed = metric.0.load(Relaxed);
+                let computed = metric.distances();
                 assert!(
                     computed <= 3 * CHUNK,
                     "k {k}, copy {me}: {computed} distances"

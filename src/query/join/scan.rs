@@ -399,6 +399,26 @@ fn counts_in<SA: Scalar, SB: Scalar, P: PairDistance<D>, C: Compare, const D: us
     let first = |range: Range<usize>, d: f64| {
         range.start + r2[range].partition_point(|&r| !boundary.admits(d, r))
     };
+    if ra.is_empty() || rb.is_empty() {
+        return;
+    }
+    // Two runs (or a run with itself) whose farthest points are within the first radius: all
+    // their pairs are counted at once, for every radius. Copies of one point at the maximum
+    // depth, kept in one leaf, would otherwise be counted pair by pair (or a block at a time):
+    // O(n^2 / 64) for n copies.
+    let box_a = block.tight[0].get(pa, ra.clone());
+    let box_b = if same {
+        box_a
+    } else {
+        block.tight[1].get(pb, rb.clone())
+    };
+    if boundary.admits(metric.box_box(&box_a, &box_b).1, r2[lo]) {
+        let (na, nb) = (ra.len() as i128, rb.len() as i128);
+        let n = if same { na * (na - 1) / 2 } else { na * nb };
+        diff[lo] += n;
+        diff[hi] -= n;
+        return;
+    }
     let last = r2[hi - 1];
     let last_limit = boundary.limit(last);
     let admits = |d: f64| d <= last_limit;
@@ -505,6 +525,68 @@ mod tests {
         block.level = level;
         scan_counts(&mut block, a, b, same, &Euclid, radii, boundary, &mut diff);
         diff
+    }
+
+    /// Runs whose farthest points lie within the first radius (copies of one point, a tight
+    /// cluster) are counted whole, with one bound: n copies used to cost n^2 / 128 bounds.
+    #[test]
+    fn runs_within_the_first_radius_are_counted_whole() {
+        use crate::query::join::bounds::Counting;
+        let mut pts = vec![[0.5, 0.25, -1.0]; 3000];
+        pts.extend((0..1000).map(|i| [0.5 + f64::from(i) * 1e-6, 0.25, -1.0]));
+        let whole = Aabb::around(&pts);
+        let metric = Counting::default();
+        let r2 = [0.0, 1e-6, 1.0];
+        for (ra, rb, inclusive, exclusive) in [
+            // copies alone: within 0 only when 0 is admitted
+            (0..3000, 0..3000, [4_498_500; 3], [0, 4_498_500, 4_498_500]),
+            (
+                0..1000,
+                1000..3000,
+                [2_000_000; 3],
+                [0, 2_000_000, 2_000_000],
+            ),
+            // copies and the cluster, 1e-3 wide, whose first point is a copy
+            (
+                0..3000,
+                3000..4000,
+                [3_000, 3_000_000, 3_000_000],
+                [0, 3_000_000, 3_000_000],
+            ),
+        ] {
+            for (boundary, want) in [
+                (Boundary::Inclusive, inclusive),
+                (Boundary::Exclusive, exclusive),
+            ] {
+                let mut diff = vec![0i128; 4];
+                let mut block = Block::<3>::boxed([0, 0]);
+                metric.reset();
+                let same = ra == rb;
+                let runs = (
+                    (&pts[..], ra.clone(), &whole),
+                    (&pts[..], rb.clone(), &whole),
+                );
+                let radii = (&r2[..], 0, 3);
+                scan_counts(
+                    &mut block, runs.0, runs.1, same, &metric, radii, boundary, &mut diff,
+                );
+                let counts: Vec<i128> = diff
+                    .iter()
+                    .scan(0, |sum, d| {
+                        *sum += d;
+                        Some(*sum)
+                    })
+                    .take(3)
+                    .collect();
+                assert_eq!(counts, want, "{ra:?} {rb:?} {boundary:?}");
+                // copies alone, within the first radius when it admits 0: one bound of the
+                // two runs, no point visited
+                if ra.end <= 3000 && rb.end <= 3000 && boundary == Boundary::Inclusive {
+                    let work = (metric.distances(), metric.box_bounds());
+                    assert_eq!(work, (0, 1), "{ra:?} {rb:?} {boundary:?}");
+                }
+            }
+        }
     }
 
     /// Runs of random and grid points (ties, duplicates), paired with themselves and with each
