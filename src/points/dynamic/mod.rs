@@ -23,7 +23,9 @@
 //!   or, when the chunk is full, a move to one twice its size (amortised O(1), as in a growing
 //!   `Vec`). A leaf then over B splits, its B + 1 entries going to chunks of its children, and
 //!   again below while they all fall in one child: O(B + 2^D depth) at worst;
-//! - a remove descends, takes the entry out (the chunk's last entry fills the hole; a chunk
+//! - a remove descends, finds the entry in its leaf's chunk (O(B), but O(m) in a leaf at the
+//!   maximum depth holding m copies of one point, which no split parts: removing all of them
+//!   one at a time is O(m^2)), takes it out (the chunk's last entry fills the hole; a chunk
 //!   under a quarter full moves to a smaller one, amortised O(1)), and merges the shallowest
 //!   ancestor left with B points into one leaf: O(B + 2^D depth) at worst;
 //! - freed chunks are reused by size; once the free space exceeds the live space, the whole

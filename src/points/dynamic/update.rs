@@ -238,8 +238,9 @@ impl<S: Scalar, T, const D: usize> PointSetMut<D> for DynamicPointTree<S, T, D> 
     }
 
     /// Removes an item stored at exactly `point` that `wanted` accepts (the first in its leaf's
-    /// chunk), in amortised O(depth), and returns it; `None` (and nothing changed) when there is
-    /// none.
+    /// chunk), in amortised O(depth + m) for the m points of that leaf (at most the bucket size,
+    /// but every copy of a point at the maximum depth), and returns it; `None` (and nothing
+    /// changed) when there is none.
     fn remove_where(&mut self, point: &[S; D], wanted: impl Fn(&T) -> bool) -> Option<T> {
         self.locate(point).ok()?.inside()?;
         let path = self.path(point);
