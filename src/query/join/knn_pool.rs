@@ -283,7 +283,31 @@ mod tests {
     use super::{Cands, Pool, CHUNK};
     use crate::geom::Aabb;
     use crate::query::SpatialIndex;
-    use crate::PointTree;
+    use core::ops::Range;
+
+    /// An index of one leaf holding every point (what a tree keeps at the maximum depth).
+    struct OneLeaf(Vec<[f64; 3]>);
+
+    impl SpatialIndex<3> for OneLeaf {
+        type Scalar = f64;
+        type Payload = [f64; 3];
+        type Node = ();
+        fn points(&self) -> &[[f64; 3]] {
+            &self.0
+        }
+        fn payloads(&self) -> &[[f64; 3]] {
+            &self.0
+        }
+        fn root(&self) -> Option<((), Aabb<f64, 3>)> {
+            Some(((), Aabb::around(&self.0)))
+        }
+        fn run(&self, (): ()) -> Range<usize> {
+            0..self.0.len()
+        }
+        fn for_each_child(&self, (): (), _: impl FnMut((), &Aabb<f64, 3>)) -> bool {
+            false
+        }
+    }
 
     /// A pool of n copies of one point: each copy's search ends once its `k` nearest are the
     /// copies at the lowest positions (a copy of the rest could only tie them), after a few
@@ -292,25 +316,17 @@ mod tests {
     fn copies_of_one_point_settle_after_a_few_chunks() {
         let n = 64 * CHUNK;
         let p = [0.25, -3.0, 7.5];
-        let entries: Vec<([f64; 3], usize)> = (0..n).map(|i| (p, i)).collect();
-        let tree = PointTree::new(&entries).unwrap();
+        let leaf = OneLeaf(vec![p; n]);
         let metric = Counting::default();
         let gbox = Aabb::new(p, p).unwrap();
         let mut pool = Pool::new();
-        pool.gather(&tree, &metric, &gbox, 0.0);
-        let points = tree.points();
+        pool.gather(&leaf, &metric, &gbox, 0.0);
         for k in [1, 5, 20, 40] {
             for me in [0, 1, k, n / 2, n - 1] {
                 let mut cands = Cands::default();
                 cands.reset(k, 2 * k + CHUNK);
                 metric.reset();
-                pool.scan(
-                    &metric,
-                    (&points[me], me),
-                    (0.0, 0.0),
-                    &mut cands,
-                    (k, 2 * k),
-                );
+                pool.scan(&metric, (&p, me), (0.0, 0.0), &mut cands, (k, 2 * k));
                 let computed = metric.distances();
                 assert!(
                     computed <= 3 * CHUNK,
@@ -328,6 +344,5 @@ mod tests {
                 assert_eq!(got, want, "k {k}, copy {me}");
             }
         }
-        assert_eq!(tree.run(tree.root().unwrap().0), 0..n);
     }
 }
