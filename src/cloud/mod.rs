@@ -258,7 +258,9 @@ impl fmt::Display for CloudError {
             }
             CloudError::TooFine { voxels, max_level } => write!(
                 f,
-                "{voxels} voxels along the longest axis exceed 2^{max_level}, the finest cells"
+                "{voxels:.4e} voxels along the longest axis exceed 2^{max_level} ({}), the \
+                 finest cells",
+                1u64 << max_level
             ),
             CloudError::LevelTooDeep { level, max_level } => {
                 write!(f, "level {level} is deeper than the deepest, {max_level}")
