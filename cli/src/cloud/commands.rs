@@ -122,7 +122,7 @@ fn density_picture(
 
 /// A coordinate or measure for a report: three decimals in the everyday range, else in
 /// scientific notation (a coordinate of 1e38 is not 39 digits of noise).
-fn number(x: f64) -> String {
+fn report_number(x: f64) -> String {
     if x == 0.0 || (1e-3..1e9).contains(&x.abs()) {
         format!("{x:.3}")
     } else {
@@ -136,7 +136,7 @@ fn per_area(count: usize, area: f64) -> String {
     if count == 0 {
         "no points".to_string()
     } else if area > 0.0 && area.is_finite() {
-        format!("{} points per unit^2", number(count as f64 / area))
+        format!("{} points per unit^2", report_number(count as f64 / area))
     } else if area > 0.0 {
         "no finite area".to_string()
     } else {
@@ -157,12 +157,12 @@ pub fn info(a: &InfoArgs) -> Result<(), Failure> {
     } else {
         say!(
             "bounds:      x {} .. {}, y {} .. {}, z {} .. {}",
-            number(b.min[0]),
-            number(b.max[0]),
-            number(b.min[1]),
-            number(b.max[1]),
-            number(b.min[2]),
-            number(b.max[2])
+            report_number(b.min[0]),
+            report_number(b.max[0]),
+            report_number(b.min[1]),
+            report_number(b.max[1]),
+            report_number(b.min[2]),
+            report_number(b.max[2])
         );
     }
     let names = cloud.attributes.names();

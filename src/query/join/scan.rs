@@ -412,7 +412,8 @@ fn counts_in<SA: Scalar, SB: Scalar, P: PairDistance<D>, C: Compare, const D: us
     } else {
         block.tight[1].get(pb, rb.clone())
     };
-    if boundary.admits(metric.box_box(&box_a, &box_b).1, r2[lo]) {
+    let (closest, farthest) = metric.box_box(&box_a, &box_b);
+    if boundary.admits(farthest, r2[lo]) {
         let (na, nb) = (ra.len() as i128, rb.len() as i128);
         let n = if same { na * (na - 1) / 2 } else { na * nb };
         diff[lo] += n;
@@ -422,9 +423,11 @@ fn counts_in<SA: Scalar, SB: Scalar, P: PairDistance<D>, C: Compare, const D: us
     let last = r2[hi - 1];
     let last_limit = boundary.limit(last);
     let admits = |d: f64| d <= last_limit;
-    let Some(box_a) = block.near_runs(pa, ra.clone(), pb, rb.clone(), same, metric, admits) else {
+    // Two different runs too far apart for the last radius have no pair (`near_runs`' test,
+    // on the boxes at hand).
+    if !same && !admits(closest) {
         return;
-    };
+    }
     let mut next = rb.start;
     while next < rb.end {
         let Some(tight) = gather(block, pb, &mut next, rb.end, |p| {
