@@ -4,9 +4,6 @@
 //! distances leave `f64`'s range); the out-of-core build against the in-memory one (feature
 //! `saved`).
 
-#[path = "../common/mod.rs"]
-mod common;
-
 mod formats;
 mod formats_hostile;
 #[cfg(all(feature = "las", feature = "rayon"))]

@@ -236,7 +236,7 @@ fn random_boards_are_valid_at_every_size() {
         }
     }
     // Small boards fill up: fewer components than asked, but valid. (A count above the
-    // capacity (U / 2)^2, such as 500 at U = 8, is refused: see tests/hostile/random_board.rs.)
+    // capacity (U / 2)^2, such as 500 at U = 8, is refused: see tests/library/hostile/random_board.rs.)
     let full = random_board(9, 8, 16);
     assert_valid_board(&full);
     assert!(full.components().len() < 16);

@@ -6,8 +6,8 @@
 //! before they are summed and its statistics in units of the largest score: no step of it
 //! overflows. A cloud scaled by a power of two has the verdict of the unscaled one.
 
+use super::neighbours::threshold;
 use crate::common::rng;
-use crate::neighbours::threshold;
 use orthtree::cloud::{outliers, Cloud};
 use orthtree::{CompressedTree, PointSet, PointTree};
 use rand::Rng;

@@ -1,12 +1,7 @@
-//! Hostile input, one binary so that CI can run it under an address-space limit (`prlimit
-//! --as=4000000000`): the readers' fuzz and hostile-file tests, board sizes and bytes, the mesher's
+//! Hostile input: the readers' fuzz and hostile-file tests, board sizes and bytes, the mesher's
 //! budget, random boards, float parameters and integer coordinates. No input may panic or exhaust
-//! memory.
-//!
-//! One test binary per area: each former test file is a module of it.
-
-#[path = "../common/mod.rs"]
-mod common;
+//! memory: CI also runs this module alone under an address-space limit (`prlimit
+//! --as=4000000000 cargo test --test library hostile::`).
 
 mod board_bytes;
 mod board_file_limits;

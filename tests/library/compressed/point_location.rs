@@ -3,8 +3,8 @@
 //! search for the triangle holding each query point; wheels (a vertex of high degree), features
 //! closer than the finest cell, points outside, and refused input.
 
+use super::workload;
 use crate::common;
-use crate::workload;
 
 use common::points::config;
 use orthtree::compressed::{FaceId, PointLocator, Subdivision, SubdivisionError};

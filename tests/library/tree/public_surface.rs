@@ -2,7 +2,7 @@
 //! holds: about twenty names at the crate root, and every public iterator type in `iter`, at
 //! that one path. Reads `src/lib.rs` and every file under `src/`.
 
-use crate::module_graph::sources;
+use super::module_graph::sources;
 use std::fs;
 use std::path::Path;
 

@@ -220,7 +220,7 @@ proptest! {
         flips in proptest::collection::vec((0usize..2000, any::<u8>()), 0..4),
         binary in any::<bool>(),
     ) {
-        let cloud = crate::formats::full_cloud(n as u64, n);
+        let cloud = super::formats::full_cloud(n as u64, n);
         let encoding = if binary { Encoding::BinaryLittleEndian } else { Encoding::Ascii };
         let mut bytes = Vec::new();
         ply::write(&cloud, encoding, &mut bytes).unwrap();

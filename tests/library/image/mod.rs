@@ -1,7 +1,5 @@
 //! Region trees of images: Boolean operations and their laws, bounds, PBM and PNG (feature `png`),
 //! every dimension.
-//!
-//! One test binary per area: each former test file is a module of it.
 
 mod every_dimension_regions;
 mod image_bounds;

@@ -1,12 +1,7 @@
 //! The point trees (`PointTree`, `DynamicPointTree`): build, bounds, duplicates, queries against
-//! brute force (the tree-against-tree queries are in `tests/joins`), single and batch updates,
-//! every dimension, bad input, the rayon entry points, and the saved-tree format (feature
+//! brute force (the tree-against-tree queries are in the module `joins`), single and batch
+//! updates, every dimension, bad input, the rayon entry points, and the saved-tree format (feature
 //! `saved`) and serde (feature `serde`).
-//!
-//! One test binary per area: each former test file is a module of it.
-
-#[path = "../common/mod.rs"]
-mod common;
 
 mod approx;
 mod bad_input;

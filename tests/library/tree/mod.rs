@@ -1,10 +1,5 @@
 //! The arena topology `Tree`: 2:1 balance in every connectivity, neighbour finding, every operation
 //! in every dimension.
-//!
-//! One test binary per area: each former test file is a module of it.
-
-#[path = "../common/mod.rs"]
-mod common;
 
 mod balance;
 mod balance_levels;

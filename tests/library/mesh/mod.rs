@@ -1,12 +1,5 @@
 //! The board mesher: GENERATEMESH and its modes against an independent oracle, board input, and the
 //! mesh writers.
-//!
-//! One test binary per area: each former test file is a module of it.
-
-#[path = "../common/mod.rs"]
-mod common;
-#[path = "../mesh_oracle/mod.rs"]
-mod mesh_oracle;
 
 mod board_input;
 mod mesh_io;

@@ -4,8 +4,8 @@
 //! and the nodes a location touches on inputs as deep as the cells allow, beside the walk down
 //! the compressed tree from its root.
 
+use super::workload;
 use crate::common;
-use crate::workload;
 
 use common::points::config;
 use orthtree::compressed::SkipQuadtree;

@@ -1,6 +1,6 @@
 //! The rayon feature's point-tree entry points against their serial counterparts: `par_build`
 //! gives the same tree and the same errors as `build`; the batch queries give, query by query,
-//! what the serial queries give, and those agree with brute force (tests/points/queries.rs).
+//! what the serial queries give, and those agree with brute force (`points::queries`).
 #![cfg(feature = "rayon")]
 
 use orthtree::prelude::*;
