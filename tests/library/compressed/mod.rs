@@ -4,8 +4,8 @@
 #[path = "../../../benches/workloads/compressed.rs"]
 mod workload;
 
-mod compressed;
 mod compressed_deep;
+mod compressed_tree;
 mod point_location;
 #[cfg(feature = "serde")]
 mod serde_compressed;

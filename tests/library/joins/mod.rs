@@ -2,5 +2,5 @@
 //! points: the Euclidean joins and their parallel forms, and the joins on a periodic domain
 //! against a scan over all images.
 
-mod joins;
+mod euclidean;
 mod periodic_joins;
