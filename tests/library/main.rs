@@ -12,8 +12,13 @@
 //! - `mesh`: the board mesher against an independent oracle, board input, the mesh writers;
 //! - `image`: region trees of images, their Boolean operations, PBM and PNG;
 //! - `hostile`: hostile input, which must neither panic nor exhaust memory.
+//!
+//! Every test runs under `counting`'s allocator, the system's with a count of the bytes each
+//! thread holds, through which the hostile-input tests check that memory stays bounded by the
+//! data.
 
 mod common;
+mod counting;
 mod mesh_oracle;
 
 mod cloud;

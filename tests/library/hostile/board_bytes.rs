@@ -4,7 +4,7 @@
 //! messages; extensions match without regard to case; and memory stays bounded by the data
 //! whatever a header claims (measured with a counting allocator).
 
-use super::counting::peak_bytes;
+use crate::counting::peak_bytes;
 use orthtree::io::board_text::{read_board_text_bytes, write_board_text};
 use orthtree::io::poly::{read_poly_bytes, write_poly};
 use orthtree::io::{read_board_file, BoardFileError, BoardFormat, BoardReadError};

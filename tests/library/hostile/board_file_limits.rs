@@ -2,7 +2,7 @@
 //! pipes, endless readers), holding at most the limit, and a board the `.poly` format cannot hold is refused by the writer rather than
 //! written as a file the reader refuses.
 
-use super::counting::peak_bytes;
+use crate::counting::peak_bytes;
 use orthtree::io::poly::{read_poly, write_poly, PolyWriteError};
 use orthtree::io::{board_text::write_board_text, MAX_BOARD_FILE_BYTES};
 use orthtree::io::{read_board_file, read_board_file_with_limit, BoardFileError};

@@ -7,7 +7,6 @@ mod board_bytes;
 mod board_file_limits;
 mod board_fuzz;
 mod board_size;
-mod counting;
 mod float_parameters;
 mod image_budget;
 mod image_fuzz;

@@ -3,7 +3,7 @@
 //! anything is allocated; counts that fill the board early cost memory by the board placed,
 //! never by the count asked (checked with a counting allocator).
 
-use super::counting::peak_bytes;
+use crate::counting::peak_bytes;
 use orthtree::mesh::{random_board, random_board_capacity, try_random_board, RandomBoardError};
 
 #[test]

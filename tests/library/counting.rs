@@ -1,6 +1,7 @@
-//! The counting allocator of the hostile-input tests: the system allocator, counting the bytes
-//! each thread holds and its peak, so a test can check that memory stays bounded by the data
-//! (tests run on threads of their own, so one test's figures are not mixed with another's).
+//! The test binary's allocator, through which the hostile-input tests measure memory: the
+//! system allocator, counting the bytes each thread holds and its peak, so a test can check that
+//! memory stays bounded by the data (tests run on threads of their own, so one test's figures
+//! are not mixed with another's).
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
