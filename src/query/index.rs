@@ -223,3 +223,30 @@ pub(crate) fn nearest_child_by_boxes<I: SpatialIndex<D> + ?Sized, M: Metric<D>, 
     });
     next.map(|(_, child, cb)| (child, cb))
 }
+
+/// An index of one leaf holding every point (what a tree keeps at the maximum depth), for the
+/// unit tests of the engines on copies of one point.
+#[cfg(test)]
+pub(crate) struct OneLeaf(pub(crate) Vec<[f64; 3]>);
+
+#[cfg(test)]
+impl SpatialIndex<3> for OneLeaf {
+    type Scalar = f64;
+    type Payload = [f64; 3];
+    type Node = ();
+    fn points(&self) -> &[[f64; 3]] {
+        &self.0
+    }
+    fn payloads(&self) -> &[[f64; 3]] {
+        &self.0
+    }
+    fn root(&self) -> Option<((), Aabb<f64, 3>)> {
+        Some(((), Aabb::around(&self.0)))
+    }
+    fn run(&self, (): ()) -> Range<usize> {
+        0..self.0.len()
+    }
+    fn for_each_child(&self, (): (), _: impl FnMut((), &Aabb<f64, 3>)) -> bool {
+        false
+    }
+}

@@ -48,6 +48,8 @@ use crate::geom::FloatBits;
 #[cfg(feature = "rayon")]
 pub use batch::ParallelQueries;
 pub(crate) use index::nearest_child_by_boxes;
+#[cfg(test)]
+pub(crate) use index::OneLeaf;
 pub use index::SpatialIndex;
 #[cfg(test)]
 pub(crate) use join::assert_copies_agree;

@@ -7,6 +7,10 @@
 //! no node or point still queued can be nearer. At equal keys nodes come before points, and points
 //! by index, so the order is exactly `(distance, index)`, the order of
 //! [`PointSet::k_nearest`](super::PointSet::k_nearest). Each step costs O(log of the queue's size).
+//!
+//! A leaf's consecutive points at the same distance (copies of one point, which a leaf at the
+//! maximum depth keeps however many there are) are queued as one entry, which hands out its
+//! positions one by one: a leaf of m copies costs m distances and one push, not m pushes.
 
 use super::index::SpatialIndex;
 use super::knn::Neighbor;
@@ -14,14 +18,16 @@ use super::metric::Metric;
 use super::{check_max, query_point, QueryError};
 use crate::geom::{Aabb, Scalar};
 use core::cmp::Ordering;
+use core::ops::Range;
 use std::collections::BinaryHeap;
 
-/// A queued node (`node: Some`) or point, ordered so that the heap's top is the least
-/// `(key, is point, index)`.
+/// A queued node (`node: Some`) or the points at positions `index..end`, all at distance
+/// `key`, ordered so that the heap's top is the least `(key, is point, index)`.
 struct Entry<N> {
     key: f64,
     node: Option<N>,
     index: usize,
+    end: usize,
 }
 
 impl<N> Entry<N> {
@@ -77,7 +83,7 @@ impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> IndexNearestIter<'a, 
                 max,
                 metric.box_distance(&q, &b),
                 Some((root, b)),
-                0,
+                0..0,
             );
         }
         Ok(IndexNearestIter {
@@ -99,28 +105,92 @@ impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> Iterator
         loop {
             let entry = self.heap.pop()?;
             let Some((node, bbox)) = entry.node else {
-                return Some(Neighbor::at(self.index, entry.key, entry.index));
+                let (key, at) = (entry.key, entry.index);
+                if at + 1 < entry.end {
+                    // the group's later positions, at the same distance
+                    offer(&mut self.heap, self.max, key, None, at + 1..entry.end);
+                }
+                return Some(Neighbor::at(self.index, key, at));
             };
             let (heap, metric, q, max) = (&mut self.heap, &self.metric, &self.q, self.max);
             let internal = self.index.for_each_child_in(node, &bbox, |child, b| {
-                offer(heap, max, metric.box_distance(q, b), Some((child, *b)), 0);
+                offer(
+                    heap,
+                    max,
+                    metric.box_distance(q, b),
+                    Some((child, *b)),
+                    0..0,
+                );
             });
             if !internal {
                 let points = self.index.points();
-                for i in self.index.run(node) {
-                    let key = metric.distance(q, &points[i].map(Scalar::to_f64));
-                    offer(heap, max, key, None, i);
+                let distance = |i: usize| metric.distance(q, &points[i].map(Scalar::to_f64));
+                let run = self.index.run(node);
+                let Some(mut key) = run.clone().next().map(distance) else {
+                    continue;
+                };
+                // Consecutive positions at the same distance are queued as one group.
+                let mut first = run.start;
+                for i in run.start + 1..run.end {
+                    let d = distance(i);
+                    if d.total_cmp(&key).is_ne() {
+                        offer(heap, max, key, None, first..i);
+                        (first, key) = (i, d);
+                    }
                 }
+                offer(heap, max, key, None, first..run.end);
             }
         }
     }
 }
 
-/// Queues a node (`node: Some`) or the point at `index` at distance `key`, unless it lies
-/// beyond `max`.
+/// Queues a node (`node: Some`, `at` empty) or the points at positions `at`, all at distance
+/// `key`, unless it lies beyond `max`.
 #[inline(always)]
-fn offer<N>(heap: &mut BinaryHeap<Entry<N>>, max: f64, key: f64, node: Option<N>, index: usize) {
+fn offer<N>(
+    heap: &mut BinaryHeap<Entry<N>>,
+    max: f64,
+    key: f64,
+    node: Option<N>,
+    at: Range<usize>,
+) {
     if key <= max {
-        heap.push(Entry { key, node, index });
+        heap.push(Entry {
+            key,
+            node,
+            index: at.start,
+            end: at.end,
+        });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::IndexNearestIter;
+    use crate::query::metric::SquaredEuclidean;
+    use crate::query::OneLeaf;
+
+    /// A leaf of n copies of one point and one point apart: the copies are one queued group,
+    /// handed out in position order at one distance, then the far point.
+    #[test]
+    fn copies_of_one_point_are_queued_as_one_group() {
+        let (p, far) = ([0.5, -2.0, 8.0], [3.5, -2.0, 8.0]);
+        let n = 10_000;
+        let mut points = vec![p; n];
+        points.insert(n / 2, far);
+        let leaf = OneLeaf(points);
+        let q = [0.5, -2.0, 4.0];
+        let mut it = IndexNearestIter::new(&leaf, q, f64::INFINITY, SquaredEuclidean).unwrap();
+        let first = it.next().unwrap();
+        assert_eq!((first.index, first.distance), (0, 16.0));
+        // the copies before the far point, the copies after it, the far point
+        assert_eq!(it.heap.len(), 3);
+        let rest: Vec<(usize, f64)> = it.map(|nb| (nb.index, nb.distance)).collect();
+        let want: Vec<(usize, f64)> = (1..=n)
+            .filter(|&i| i != n / 2)
+            .map(|i| (i, 16.0))
+            .chain([(n / 2, 25.0)])
+            .collect();
+        assert_eq!(rest, want);
     }
 }

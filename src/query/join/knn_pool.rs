@@ -282,32 +282,7 @@ mod tests {
     use super::super::bounds::Counting;
     use super::{Cands, Pool, CHUNK};
     use crate::geom::Aabb;
-    use crate::query::SpatialIndex;
-    use core::ops::Range;
-
-    /// An index of one leaf holding every point (what a tree keeps at the maximum depth).
-    struct OneLeaf(Vec<[f64; 3]>);
-
-    impl SpatialIndex<3> for OneLeaf {
-        type Scalar = f64;
-        type Payload = [f64; 3];
-        type Node = ();
-        fn points(&self) -> &[[f64; 3]] {
-            &self.0
-        }
-        fn payloads(&self) -> &[[f64; 3]] {
-            &self.0
-        }
-        fn root(&self) -> Option<((), Aabb<f64, 3>)> {
-            Some(((), Aabb::around(&self.0)))
-        }
-        fn run(&self, (): ()) -> Range<usize> {
-            0..self.0.len()
-        }
-        fn for_each_child(&self, (): (), _: impl FnMut((), &Aabb<f64, 3>)) -> bool {
-            false
-        }
-    }
+    use crate::query::OneLeaf;
 
     /// A pool of n copies of one point: each copy's search ends once its `k` nearest are the
     /// copies at the lowest positions (a copy of the rest could only tie them), after a few
