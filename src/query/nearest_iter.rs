@@ -21,18 +21,26 @@ use core::cmp::Ordering;
 use core::ops::Range;
 use std::collections::BinaryHeap;
 
-/// A queued node (`node: Some`) or the points at positions `index..end`, all at distance
-/// `key`, ordered so that the heap's top is the least `(key, is point, index)`.
+/// What a queue entry holds: a node, or the points at consecutive positions, all at the
+/// entry's distance.
+enum Held<N> {
+    Node(N),
+    Points(Range<usize>),
+}
+
+/// A queued node or group of points at distance (or lower bound) `key`, ordered so that the
+/// heap's top is the least `(key, is points, first position)`.
 struct Entry<N> {
     key: f64,
-    node: Option<N>,
-    index: usize,
-    end: usize,
+    held: Held<N>,
 }
 
 impl<N> Entry<N> {
     fn rank(&self) -> (f64, bool, usize) {
-        (self.key, self.node.is_none(), self.index)
+        match &self.held {
+            Held::Node(_) => (self.key, false, 0),
+            Held::Points(at) => (self.key, true, at.start),
+        }
     }
 }
 
@@ -82,8 +90,7 @@ impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> IndexNearestIter<'a, 
                 &mut heap,
                 max,
                 metric.box_distance(&q, &b),
-                Some((root, b)),
-                0..0,
+                Held::Node((root, b)),
             );
         }
         Ok(IndexNearestIter {
@@ -103,14 +110,17 @@ impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> Iterator
 
     fn next(&mut self) -> Option<Self::Item> {
         loop {
-            let entry = self.heap.pop()?;
-            let Some((node, bbox)) = entry.node else {
-                let (key, at) = (entry.key, entry.index);
-                if at + 1 < entry.end {
-                    // the group's later positions, at the same distance
-                    offer(&mut self.heap, self.max, key, None, at + 1..entry.end);
+            let Entry { key, held } = self.heap.pop()?;
+            let (node, bbox) = match held {
+                Held::Node(node) => node,
+                Held::Points(at) => {
+                    if at.len() > 1 {
+                        // the group's later positions, at the same distance
+                        let rest = Held::Points(at.start + 1..at.end);
+                        offer(&mut self.heap, self.max, key, rest);
+                    }
+                    return Some(Neighbor::at(self.index, key, at.start));
                 }
-                return Some(Neighbor::at(self.index, key, at));
             };
             let (heap, metric, q, max) = (&mut self.heap, &self.metric, &self.q, self.max);
             let internal = self.index.for_each_child_in(node, &bbox, |child, b| {
@@ -118,8 +128,7 @@ impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> Iterator
                     heap,
                     max,
                     metric.box_distance(q, b),
-                    Some((child, *b)),
-                    0..0,
+                    Held::Node((child, *b)),
                 );
             });
             if !internal {
@@ -134,33 +143,22 @@ impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> Iterator
                 for i in run.start + 1..run.end {
                     let d = distance(i);
                     if d.total_cmp(&key).is_ne() {
-                        offer(heap, max, key, None, first..i);
+                        offer(heap, max, key, Held::Points(first..i));
                         (first, key) = (i, d);
                     }
                 }
-                offer(heap, max, key, None, first..run.end);
+                offer(heap, max, key, Held::Points(first..run.end));
             }
         }
     }
 }
 
-/// Queues a node (`node: Some`, `at` empty) or the points at positions `at`, all at distance
-/// `key`, unless it lies beyond `max`.
+/// Queues a node or a group of points at distance (or lower bound) `key`, unless it lies beyond
+/// `max`.
 #[inline(always)]
-fn offer<N>(
-    heap: &mut BinaryHeap<Entry<N>>,
-    max: f64,
-    key: f64,
-    node: Option<N>,
-    at: Range<usize>,
-) {
+fn offer<N>(heap: &mut BinaryHeap<Entry<N>>, max: f64, key: f64, held: Held<N>) {
     if key <= max {
-        heap.push(Entry {
-            key,
-            node,
-            index: at.start,
-            end: at.end,
-        });
+        heap.push(Entry { key, held });
     }
 }
 
