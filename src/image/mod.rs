@@ -47,7 +47,8 @@
 //! **n = 4 I + 1 <= 16 P + 16 c k + 1 nodes**
 //!
 //! (the quadtree analogue of Theorem 14.2's count of nodes per level). The test
-//! `tests/library/image/image_bounds.rs` checks it on random discs (`P = 2 pi r`) and random star-shaped polygons.
+//! `tests/library/image/image_bounds.rs` checks it on random discs (`P = 2 pi r`) and random
+//! star-shaped polygons.
 //!
 //! ```
 //! use orthtree::image::{ImageTree, RegionTree};
