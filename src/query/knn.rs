@@ -321,7 +321,8 @@ fn search<I: SpatialIndex<D>, M: Metric<D>, const D: usize>(
     let Some((root, b)) = index.root() else {
         return best.finish();
     };
-    if let Some(torus) = metric.torus()
+    if M::HAS_TORUS
+        && let Some(torus) = metric.torus()
         && let Some(images) = Images::new(torus, metric, q, &b)
     {
         best.allow_repeats();

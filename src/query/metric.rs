@@ -52,11 +52,25 @@ pub trait Metric<const D: usize> {
         d * factor
     }
 
+    /// Whether [`Metric::torus`] can be `Some` (`false`, the default, for a metric of ordinary
+    /// space; `true` for [`MinImage`](super::MinImage)). The k-nearest engines ask for the torus
+    /// only when it is `true`, so that the image search is not compiled for the metrics of
+    /// ordinary space (it was about a seventh of the compiled code of a crate that queries
+    /// several trees by several metrics). A metric that returns a torus without setting it is
+    /// still searched correctly, by bounding every box by [`Metric::box_distance`].
+    ///
+    /// ```
+    /// use orthtree::query::{MinImage, Metric, SquaredEuclidean};
+    /// assert!(!<SquaredEuclidean as Metric<2>>::HAS_TORUS);
+    /// assert!(<MinImage<SquaredEuclidean, 2> as Metric<2>>::HAS_TORUS);
+    /// ```
+    const HAS_TORUS: bool = false;
+
     /// The periodic domain of a minimum-image metric ([`MinImage`](super::MinImage)); `None`
-    /// (the default) for a metric of ordinary space. When it is `Some`, the exact and
-    /// approximate k-nearest engines search the query's images across the period box one by
-    /// one, each as an ordinary search bounded by [`Metric::unwrapped_box_distance`], instead
-    /// of bounding every box by its nearest image.
+    /// (the default) for a metric of ordinary space. When it is `Some` (and
+    /// [`Metric::HAS_TORUS`] is set), the exact and approximate k-nearest engines search the
+    /// query's images across the period box one by one, each as an ordinary search bounded by
+    /// [`Metric::unwrapped_box_distance`], instead of bounding every box by its nearest image.
     ///
     /// ```
     /// use orthtree::query::{Metric, SquaredEuclidean, Torus};

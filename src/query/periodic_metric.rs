@@ -138,6 +138,7 @@ impl<M: AxisMetric + Metric<D>, const D: usize> Metric<D> for MinImage<M, D> {
     fn scale_distance(&self, d: f64, factor: f64) -> f64 {
         self.metric.scale_distance(d, factor)
     }
+    const HAS_TORUS: bool = true;
     #[inline(always)]
     fn torus(&self) -> Option<&Torus<D>> {
         Some(&self.torus)

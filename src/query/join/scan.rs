@@ -37,7 +37,14 @@ pub(crate) const BLOCK: usize = 64;
 pub(crate) struct Block<const D: usize> {
     cols: [[f64; BLOCK]; D],
     at: [usize; BLOCK],
-    dist: [f64; BLOCK],
+    /// Per row of the last [`scan_rows`] call, the distances from its point to the block's
+    /// points (row 0 for the counts).
+    dist: [[f64; BLOCK]; ROWS],
+    /// The rows of the last [`scan_rows`] call that have a pair: the position of the point of
+    /// run `a`, and the mask of its pairs among the block's points.
+    hits: [(usize, u64); ROWS],
+    /// How many of `hits` the last [`scan_rows`] call filled.
+    filled: usize,
     len: usize,
     /// The tight boxes of the runs met on either side of the leaf pairs.
     tight: [TightBoxes<D>; 2],
@@ -97,15 +104,18 @@ impl<const D: usize> Block<D> {
         Box::new(Block {
             cols: [[0.0; BLOCK]; D],
             at: [0; BLOCK],
-            dist: [0.0; BLOCK],
+            dist: [[0.0; BLOCK]; ROWS],
+            hits: [(0, 0); ROWS],
+            filled: 0,
             len: 0,
             tight: [TightBoxes::new(points[0]), TightBoxes::new(points[1])],
             level: Level::detected(),
         })
     }
 
-    /// The distances from `q` to the points `from..` of the block (kept in `dist`), and the
-    /// mask of those within `bound` (bit `j` for point `j` when its distance is `<= bound`).
+    /// The distances from `q` to the points `from..` of the block (kept in row `row` of
+    /// `dist`), and the mask of those within `bound` (bit `j` for point `j` when its distance
+    /// is `<= bound`).
     ///
     /// The points are taken eight at a time, from the group of eight holding `from` to the one
     /// holding the last point, in a loop of fixed length the compiler turns into vector
@@ -114,6 +124,7 @@ impl<const D: usize> Block<D> {
     #[inline(always)]
     pub(crate) fn mask<P: PairDistance<D>, C: Compare>(
         &mut self,
+        row: usize,
         from: usize,
         q: &[f64; D],
         metric: &P,
@@ -123,7 +134,7 @@ impl<const D: usize> Block<D> {
         let mut m = 0u64;
         for g in from / LANES..self.len.div_ceil(LANES) {
             let base = g * LANES;
-            let lanes: &mut [f64; LANES] = (&mut self.dist[base..base + LANES])
+            let lanes: &mut [f64; LANES] = (&mut self.dist[row][base..base + LANES])
                 .try_into()
                 .expect("a lane group lies inside the block");
             for (l, d) in lanes.iter_mut().enumerate() {
@@ -149,10 +160,10 @@ fn span(from: usize, len: usize) -> u64 {
 
 impl<const D: usize> Block<D> {
     /// For two different runs, the tight box of run `a` when the tight boxes of the two runs
-    /// are near enough for `admits`, `None` when no pair of theirs can be (for a run paired
-    /// with itself, an empty box, unused).
+    /// are within `limit` of each other, `None` when no pair of theirs can be (for a run paired
+    /// with itself, an empty box, unused). Out of line: called once per pair of runs, and
+    /// compiled once per kind of points and distance rather than into every visitor's loop.
     #[allow(clippy::too_many_arguments)]
-    #[inline(always)]
     fn near_runs<SA: Scalar, SB: Scalar, P: PairDistance<D>>(
         &mut self,
         pa: &[[SA; D]],
@@ -161,8 +172,9 @@ impl<const D: usize> Block<D> {
         rb: Range<usize>,
         same: bool,
         metric: &P,
-        admits: impl Fn(f64) -> bool,
+        limit: f64,
     ) -> Option<Aabb<f64, D>> {
+        let admits = |d: f64| d <= limit;
         if same {
             return Some(Aabb::empty());
         }
@@ -186,63 +198,17 @@ pub(crate) type Run<'a, S, const D: usize> = (&'a [[S; D]], Range<usize>, &'a Aa
 
 /// Calls `each(i, j, d)` for every pair of positions `i` of run `a` and `j` of run `b` whose
 /// distance `d` is within `r2` (under `boundary`); with `same` (one run paired with itself),
-/// for every `i < j` of it. Stops at the first [`ControlFlow::Break`].
+/// for every `i < j` of it, in the order of `b`'s blocks, then of `i`, then of `j`. Stops at
+/// the first [`ControlFlow::Break`].
 ///
-/// Runs the copy compiled for x86-64-v4 (AVX-512) or v3 (AVX2) where the processor has it
+/// Only this loop is compiled once per visitor: the work on the points, [`gather_kept`] and
+/// [`scan_rows`], is compiled once per kind of points and distance and hands over up to
+/// [`ROWS`] rows of pairs at a time (their masks and distances, in the block). Each runs the
+/// copy compiled for x86-64-v4 (AVX-512) or v3 (AVX2) where the processor has it
 /// ([`cpu`](crate::cpu)): the same pairs and distances.
 #[allow(clippy::too_many_arguments)]
 #[inline]
 pub(crate) fn scan_pairs<SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D: usize>(
-    block: &mut Block<D>,
-    a: Run<'_, SA, D>,
-    b: Run<'_, SB, D>,
-    same: bool,
-    metric: &P,
-    r2: f64,
-    boundary: Boundary,
-    each: impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
-) -> ControlFlow<Br> {
-    #[cfg(target_arch = "x86_64")]
-    if let Some(avx) = block.level.avx() {
-        // SAFETY: `scan_pairs_v4` and `scan_pairs_v3` are `pairs_in` compiled for the features
-        // of the v4 and v3 levels; a `Level` has a token only where `has_v3` found the v3
-        // features, and says `v4` only where `has_v4` found those of v4.
-        #[allow(unsafe_code)]
-        unsafe {
-            return if block.level.v4() {
-                scan_pairs_v4(avx, block, a, b, same, metric, r2, boundary, each)
-            } else {
-                scan_pairs_v3(avx, block, a, b, same, metric, r2, boundary, each)
-            };
-        }
-    }
-    pairs_in(Portable, block, a, b, same, metric, r2, boundary, each)
-}
-
-compiled_copy! {
-    /// [`pairs_in`] compiled for x86-64-v3 (see [`cpu`](crate::cpu)).
-    scan_pairs_v3 = pairs_in for "avx,avx2,bmi1,bmi2,lzcnt,popcnt",
-    [SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D: usize]
-    (compare: Avx, block: &mut Block<D>, a: Run<'_, SA, D>, b: Run<'_, SB, D>, same: bool, metric: &P,
-     r2: f64, boundary: Boundary, each: impl FnMut(usize, usize, f64) -> ControlFlow<Br>)
-    -> ControlFlow<Br>
-}
-
-compiled_copy! {
-    /// [`pairs_in`] compiled for x86-64-v4 (see [`cpu`](crate::cpu)).
-    scan_pairs_v4 = pairs_in
-        for "avx,avx2,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512vl,avx512bw,avx512dq",
-    [SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D: usize]
-    (compare: Avx, block: &mut Block<D>, a: Run<'_, SA, D>, b: Run<'_, SB, D>, same: bool, metric: &P,
-     r2: f64, boundary: Boundary, each: impl FnMut(usize, usize, f64) -> ControlFlow<Br>)
-    -> ControlFlow<Br>
-}
-
-/// The work of [`scan_pairs`], compiled into each of its copies.
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-fn pairs_in<SA: Scalar, SB: Scalar, P: PairDistance<D>, C: Compare, Br, const D: usize>(
-    compare: C,
     block: &mut Block<D>,
     (pa, ra, _): Run<'_, SA, D>,
     (pb, rb, _): Run<'_, SB, D>,
@@ -253,38 +219,179 @@ fn pairs_in<SA: Scalar, SB: Scalar, P: PairDistance<D>, C: Compare, Br, const D:
     mut each: impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
 ) -> ControlFlow<Br> {
     let limit = boundary.limit(r2);
-    let admits = |d: f64| d <= limit;
-    let Some(box_a) = block.near_runs(pa, ra.clone(), pb, rb.clone(), same, metric, admits) else {
+    let Some(box_a) = block.near_runs(pa, ra.clone(), pb, rb.clone(), same, metric, limit) else {
         return ControlFlow::Continue(());
     };
     let mut next = rb.start;
     while next < rb.end {
-        let Some(tight) = gather(block, pb, &mut next, rb.end, |p| {
-            same || admits(metric.point_box(p, &box_a))
-        }) else {
+        let test = (same, metric, limit);
+        let Some(tight) = gather_any(block, pb, &mut next, rb.end, test, &box_a) else {
             continue;
         };
-        if same {
-            // The block is the contiguous positions `first..`; point `i` pairs with the later ones.
-            let (first, last) = (block.at[0], block.at[block.len - 1]);
-            for i in ra.start..last {
-                let from = (i + 1).saturating_sub(first);
-                let m = block.mask(from, &point(pa, i), metric, limit, compare);
-                report(block, i, m, &mut each)?;
-            }
+        // With `same`, the block is the contiguous positions `first..`: point `i` pairs with
+        // the later ones, so the rows end at the block's last point.
+        let end = if same {
+            block.at[block.len - 1]
         } else {
-            for i in ra.clone() {
-                let q = point(pa, i);
-                if !admits(metric.point_box(&q, &tight)) {
-                    continue;
-                }
-                let m = block.mask(0, &q, metric, limit, compare);
-                report(block, i, m, &mut each)?;
+            ra.end
+        };
+        let mut i = ra.start;
+        while i < end {
+            i = scan_rows_any(block, pa, i..end, test, &tight);
+            for row in 0..block.filled {
+                let (at, m) = block.hits[row];
+                report(block, row, at, m, &mut each)?;
             }
         }
     }
     ControlFlow::Continue(())
 }
+
+/// What [`gather_kept`] and [`scan_rows`] test: whether run `a` is paired with itself, the
+/// distance, and the bound a distance must not exceed ([`Boundary::limit`]).
+type Test<'m, P> = (bool, &'m P, f64);
+
+/// [`gather_kept`] by the copy this processor runs.
+#[inline(always)]
+fn gather_any<SB: Scalar, P: PairDistance<D>, const D: usize>(
+    block: &mut Block<D>,
+    pb: &[[SB; D]],
+    next: &mut usize,
+    end: usize,
+    test: Test<'_, P>,
+    box_a: &Aabb<f64, D>,
+) -> Option<Aabb<f64, D>> {
+    #[cfg(target_arch = "x86_64")]
+    if let Some(avx) = block.level.avx() {
+        // SAFETY: as in `scan_counts`, for `gather_kept`'s copies.
+        #[allow(unsafe_code)]
+        unsafe {
+            return if block.level.v4() {
+                gather_v4(avx, block, pb, next, end, test, box_a)
+            } else {
+                gather_v3(avx, block, pb, next, end, test, box_a)
+            };
+        }
+    }
+    gather_kept(Portable, block, pb, next, end, test, box_a)
+}
+
+compiled_copy! {
+    /// [`gather_kept`] compiled for x86-64-v3 (see [`cpu`](crate::cpu)).
+    gather_v3 = gather_kept for "avx,avx2,bmi1,bmi2,lzcnt,popcnt",
+    [SB: Scalar, P: PairDistance<D>, const D: usize]
+    (compare: Avx, block: &mut Block<D>, pb: &[[SB; D]], next: &mut usize, end: usize,
+     test: Test<'_, P>, box_a: &Aabb<f64, D>) -> Option<Aabb<f64, D>>
+}
+
+compiled_copy! {
+    /// [`gather_kept`] compiled for x86-64-v4 (see [`cpu`](crate::cpu)).
+    gather_v4 = gather_kept
+        for "avx,avx2,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512vl,avx512bw,avx512dq",
+    [SB: Scalar, P: PairDistance<D>, const D: usize]
+    (compare: Avx, block: &mut Block<D>, pb: &[[SB; D]], next: &mut usize, end: usize,
+     test: Test<'_, P>, box_a: &Aabb<f64, D>) -> Option<Aabb<f64, D>>
+}
+
+/// The next block of run `b`'s points (from `*next`) within the bound of `box_a`, the tight box
+/// of run `a` (every point when `same`): [`gather`] with that test, compiled into each copy.
+#[inline(always)]
+fn gather_kept<SB: Scalar, P: PairDistance<D>, C: Compare, const D: usize>(
+    _: C,
+    block: &mut Block<D>,
+    pb: &[[SB; D]],
+    next: &mut usize,
+    end: usize,
+    (same, metric, limit): Test<'_, P>,
+    box_a: &Aabb<f64, D>,
+) -> Option<Aabb<f64, D>> {
+    gather(block, pb, next, end, |p| {
+        same || metric.point_box(p, box_a) <= limit
+    })
+}
+
+/// [`scan_rows`] by the copy this processor runs.
+#[inline(always)]
+fn scan_rows_any<SA: Scalar, P: PairDistance<D>, const D: usize>(
+    block: &mut Block<D>,
+    pa: &[[SA; D]],
+    rows: Range<usize>,
+    test: Test<'_, P>,
+    tight: &Aabb<f64, D>,
+) -> usize {
+    #[cfg(target_arch = "x86_64")]
+    if let Some(avx) = block.level.avx() {
+        // SAFETY: as in `scan_counts`, for `scan_rows`' copies.
+        #[allow(unsafe_code)]
+        unsafe {
+            return if block.level.v4() {
+                scan_rows_v4(avx, block, pa, rows, test, tight)
+            } else {
+                scan_rows_v3(avx, block, pa, rows, test, tight)
+            };
+        }
+    }
+    scan_rows(Portable, block, pa, rows, test, tight)
+}
+
+compiled_copy! {
+    /// [`scan_rows`] compiled for x86-64-v3 (see [`cpu`](crate::cpu)).
+    scan_rows_v3 = scan_rows for "avx,avx2,bmi1,bmi2,lzcnt,popcnt",
+    [SA: Scalar, P: PairDistance<D>, const D: usize]
+    (compare: Avx, block: &mut Block<D>, pa: &[[SA; D]], rows: Range<usize>, test: Test<'_, P>,
+     tight: &Aabb<f64, D>) -> usize
+}
+
+compiled_copy! {
+    /// [`scan_rows`] compiled for x86-64-v4 (see [`cpu`](crate::cpu)).
+    scan_rows_v4 = scan_rows
+        for "avx,avx2,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512vl,avx512bw,avx512dq",
+    [SA: Scalar, P: PairDistance<D>, const D: usize]
+    (compare: Avx, block: &mut Block<D>, pa: &[[SA; D]], rows: Range<usize>, test: Test<'_, P>,
+     tight: &Aabb<f64, D>) -> usize
+}
+
+/// Rows of run `a` tested against the gathered block from `rows.start` on, until [`ROWS`] of
+/// them have a pair (kept in `hits` with their masks, their distances in `dist`, `filled`
+/// of them) or `rows` ends; returns the position to go on from. A point farther than the
+/// bound from the block's tight box `tight` is passed over; with `same` (the block is run `a`
+/// itself, from its position `first`), point `i` is tested against the positions after it.
+#[inline(always)]
+fn scan_rows<SA: Scalar, P: PairDistance<D>, C: Compare, const D: usize>(
+    compare: C,
+    block: &mut Block<D>,
+    pa: &[[SA; D]],
+    rows: Range<usize>,
+    (same, metric, limit): Test<'_, P>,
+    tight: &Aabb<f64, D>,
+) -> usize {
+    block.filled = 0;
+    let first = block.at[0];
+    let admits = |d: f64| d <= limit;
+    for i in rows.clone() {
+        let q = point(pa, i);
+        if !same && !admits(metric.point_box(&q, tight)) {
+            continue;
+        }
+        let from = if same {
+            (i + 1).saturating_sub(first)
+        } else {
+            0
+        };
+        let row = block.filled;
+        let m = block.mask(row, from, &q, metric, limit, compare);
+        block.hits[row] = (i, m);
+        // Without a branch on the mask: the row is kept by moving on from it.
+        block.filled = row + usize::from(m != 0);
+        if block.filled == ROWS {
+            return i + 1;
+        }
+    }
+    rows.end
+}
+
+/// The rows a [`scan_rows`] call hands over at most: `ROWS x BLOCK` distances, 8 KiB.
+const ROWS: usize = 16;
 
 /// Fills `block` with the next points of `points[*next..end]` that `keep` takes (up to
 /// [`BLOCK`]), moving `next` past those looked at; their tight box, or `None` when none was
@@ -459,22 +566,24 @@ fn counts_in<SA: Scalar, SB: Scalar, P: PairDistance<D>, C: Compare, const D: us
                 continue;
             }
             let edge = boundary.limit(r2[all - 1]);
-            let mut m = block.mask(from, &q, metric, edge, compare);
+            let mut m = block.mask(0, from, &q, metric, edge, compare);
             let found = i128::from(m.count_ones());
             while m != 0 {
                 let j = m.trailing_zeros() as usize;
                 m &= m - 1;
-                diff[first(l..all, block.dist[j])] += 1;
+                diff[first(l..all, block.dist[0][j])] += 1;
             }
             diff[all] -= found;
         }
     }
 }
 
-/// Hands the pairs of point `i` with the block's points of mask `m` to `each`.
+/// Hands the pairs of point `i` with the block's points of mask `m` (the distances of row `row`)
+/// to `each`.
 #[inline(always)]
 fn report<Br, const D: usize>(
     block: &Block<D>,
+    row: usize,
     i: usize,
     mut m: u64,
     each: &mut impl FnMut(usize, usize, f64) -> ControlFlow<Br>,
@@ -482,14 +591,14 @@ fn report<Br, const D: usize>(
     while m != 0 {
         let j = m.trailing_zeros() as usize;
         m &= m - 1;
-        each(i, block.at[j], block.dist[j])?;
+        each(i, block.at[j], block.dist[row][j])?;
     }
     ControlFlow::Continue(())
 }
 
 #[cfg(test)]
 mod tests {
-    use super::{scan_counts, scan_pairs, Block, Run};
+    use super::{scan_counts, scan_pairs, Block, Run, ROWS};
     use crate::cpu::Level;
     use crate::geom::Aabb;
     use crate::query::join::bounds::Euclid;
@@ -528,6 +637,65 @@ mod tests {
         block.level = level;
         scan_counts(&mut block, a, b, same, &Euclid, radii, boundary, &mut diff);
         diff
+    }
+
+    /// A visitor that breaks at the `k`-th pair stops there, with that pair, for every copy:
+    /// the kernel hands over rows in chunks, and a break in the middle of one is the last call.
+    /// Runs of 150 and 300 points (many chunks of rows), with and without pairs everywhere.
+    #[test]
+    fn a_break_stops_at_its_pair_in_the_middle_of_a_chunk() {
+        let mut rng = SmallRng::seed_from_u64(9);
+        let pts: Vec<[f64; 3]> = (0..300)
+            .map(|_| core::array::from_fn(|_| rng.gen_range(0.0..0.2)))
+            .collect();
+        let whole = Aabb::around(&pts);
+        let mut levels = Level::fast_available();
+        levels.push(Level::BASELINE);
+        for (ra, rb) in [(0..300, 0..300), (0..150, 150..300)] {
+            let same = ra == rb;
+            let runs = || {
+                (
+                    (&pts[..], ra.clone(), &whole),
+                    (&pts[..], rb.clone(), &whole),
+                    same,
+                )
+            };
+            for r2 in [1.0, 0.01] {
+                let all = pairs_by(Level::BASELINE, runs(), r2, Boundary::Inclusive);
+                assert!(
+                    all.len() > 100 * ROWS,
+                    "pairs over many chunks: {}",
+                    all.len()
+                );
+                for level in levels.clone() {
+                    for k in [1, ROWS + 3, all.len() / 2 + 1, all.len()] {
+                        let mut calls = 0;
+                        let mut block = Block::<3>::boxed([0, 0]);
+                        block.level = level;
+                        let (a, b, same) = runs();
+                        let flow = scan_pairs(
+                            &mut block,
+                            a,
+                            b,
+                            same,
+                            &Euclid,
+                            r2,
+                            Boundary::Inclusive,
+                            |i, j, d| {
+                                calls += 1;
+                                if calls == k {
+                                    ControlFlow::Break((i, j, d.to_bits()))
+                                } else {
+                                    ControlFlow::Continue(())
+                                }
+                            },
+                        );
+                        assert_eq!(flow, ControlFlow::Break(all[k - 1]), "{level:?} {k}");
+                        assert_eq!(calls, k, "{level:?}");
+                    }
+                }
+            }
+        }
     }
 
     /// Runs whose farthest points lie within the first radius (copies of one point, a tight
