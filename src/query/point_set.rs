@@ -13,7 +13,7 @@
 //! (Morton order, which for a [`PointTree`](crate::PointTree) is also slot order).
 
 use super::index::SpatialIndex;
-use super::knn::{k_nearest, k_nearest_approx, Neighbor};
+use super::knn::{k_nearest, k_nearest_approx, Found, Neighbor};
 use super::metric::{Metric, SquaredEuclidean};
 use super::nearest_iter::IndexNearestIter;
 use super::range::{for_each_in, for_each_until, scan_limit, IndexRegionIter, QueryStats};
@@ -522,7 +522,14 @@ pub trait PointSet<const D: usize> {
         max: f64,
         metric: &M,
     ) -> Result<Vec<NeighborIn<'_, Self, D>>, QueryError> {
-        self.k_nearest_approx_by(p, k, max, 0.0, metric)
+        // The exact search alone, not `k_nearest_approx_by` with 0: a caller of the exact
+        // queries does not compile the approximate search.
+        let q = query_point(p)?;
+        check_max(max)?;
+        Ok(with_items(
+            self,
+            k_nearest(self.index(), &q, k, max, metric),
+        ))
     }
 
     /// `k` points near `p` (squared Euclidean), sorted by distance, found by a
@@ -593,10 +600,7 @@ pub trait PointSet<const D: usize> {
         } else {
             k_nearest_approx(index, &q, k, max, metric, eps)
         };
-        Ok(found
-            .into_iter()
-            .map(|(d, i)| with_item(self, Neighbor::at(index, d, i)))
-            .collect())
+        Ok(with_items(self, found))
     }
 
     /// Every point, nearest to `p` first (squared Euclidean), lazily: taking `k` of them costs
@@ -681,6 +685,19 @@ pub trait PointSet<const D: usize> {
             inner: IndexNearestIter::new(self.index(), query_point(p)?, max, metric)?,
         })
     }
+}
+
+/// The (distance, position) pairs a k-nearest engine found on `set`'s index as neighbours
+/// with their items and slots, in their order.
+fn with_items<P: PointSet<D> + ?Sized, const D: usize>(
+    set: &P,
+    found: Found,
+) -> Vec<NeighborIn<'_, P, D>> {
+    let index = set.index();
+    found
+        .into_iter()
+        .map(|(d, i)| with_item(set, Neighbor::at(index, d, i)))
+        .collect()
 }
 
 /// A neighbour found on `set`'s index, with its item and slot.
