@@ -263,7 +263,9 @@ fn gather_any<SB: Scalar, P: PairDistance<D>, const D: usize>(
 ) -> Option<Aabb<f64, D>> {
     #[cfg(target_arch = "x86_64")]
     if let Some(avx) = block.level.avx() {
-        // SAFETY: as in `scan_counts`, for `gather_kept`'s copies.
+        // SAFETY: `gather_v4` and `gather_v3` are `gather_kept` compiled for the features of
+        // the v4 and v3 levels; a `Level` has a token only where `has_v3` found the v3
+        // features, and says `v4` only where `has_v4` found those of v4.
         #[allow(unsafe_code)]
         unsafe {
             return if block.level.v4() {
@@ -321,7 +323,7 @@ fn scan_rows_any<SA: Scalar, P: PairDistance<D>, const D: usize>(
 ) -> usize {
     #[cfg(target_arch = "x86_64")]
     if let Some(avx) = block.level.avx() {
-        // SAFETY: as in `scan_counts`, for `scan_rows`' copies.
+        // SAFETY: as in `gather_any`, for `scan_rows`' copies.
         #[allow(unsafe_code)]
         unsafe {
             return if block.level.v4() {
@@ -458,7 +460,7 @@ pub(crate) fn scan_counts<SA: Scalar, SB: Scalar, P: PairDistance<D>, const D: u
 ) {
     #[cfg(target_arch = "x86_64")]
     if let Some(avx) = block.level.avx() {
-        // SAFETY: as in `scan_pairs`, for `counts_in`'s copies.
+        // SAFETY: as in `gather_any`, for `counts_in`'s copies.
         #[allow(unsafe_code)]
         unsafe {
             return if block.level.v4() {
