@@ -19,6 +19,7 @@ use super::{check_max, query_point, QueryError};
 use crate::geom::{Aabb, Scalar};
 use core::cmp::Ordering;
 use core::ops::Range;
+use std::collections::binary_heap::PeekMut;
 use std::collections::BinaryHeap;
 
 /// What a queue entry holds: a node, or the points at consecutive positions, all at the
@@ -110,17 +111,21 @@ impl<'a, I: SpatialIndex<D>, M: Metric<D>, const D: usize> Iterator
 
     fn next(&mut self) -> Option<Self::Item> {
         loop {
-            let Entry { key, held } = self.heap.pop()?;
-            let (node, bbox) = match held {
+            let mut top = self.heap.peek_mut()?;
+            let key = top.key;
+            // A group of several points hands out its first and stays on top of the queue
+            // with the rest (the heap moves it down in place if a nearer entry now comes
+            // first): one sift per point, not a pop and a push.
+            if let Held::Points(at) = &mut top.held
+                && at.len() > 1
+            {
+                let first = at.start;
+                at.start += 1;
+                return Some(Neighbor::at(self.index, key, first));
+            }
+            let (node, bbox) = match PeekMut::pop(top).held {
                 Held::Node(node) => node,
-                Held::Points(at) => {
-                    if at.len() > 1 {
-                        // the group's later positions, at the same distance
-                        let rest = Held::Points(at.start + 1..at.end);
-                        offer(&mut self.heap, self.max, key, rest);
-                    }
-                    return Some(Neighbor::at(self.index, key, at.start));
-                }
+                Held::Points(at) => return Some(Neighbor::at(self.index, key, at.start)),
             };
             let (heap, metric, q, max) = (&mut self.heap, &self.metric, &self.q, self.max);
             let internal = self.index.for_each_child_in(node, &bbox, |child, b| {
