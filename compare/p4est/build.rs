@@ -1,11 +1,11 @@
-//! With the feature `p4est`: compiles the p4est driver (`p4est/balance.c`) twice with the MPI C
-//! compiler (`mpicc`, or the one `MPICC` names), for 2D and 3D, against the system's p4est 2.2
+//! With the feature `p4est`: compiles the p4est driver (`balance.c`, beside this script) twice
+//! with the MPI C compiler (`mpicc`, or the one `MPICC` names), for 2D and 3D, against the system's p4est 2.2
 //! (`libp4est-dev`), and hands their paths to `p4est_balance`. Without the feature it does
 //! nothing, so the default build needs neither MPI nor p4est.
 
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
-    println!("cargo:rerun-if-changed=p4est/balance.c");
+    println!("cargo:rerun-if-changed=balance.c");
     println!("cargo:rerun-if-env-changed=MPICC");
     if std::env::var_os("CARGO_FEATURE_P4EST").is_none() {
         return;
@@ -27,14 +27,14 @@ fn compile() {
             .warnings(true)
             .get_compiler();
         let mut cmd: Command = compiler.to_command();
-        cmd.args(define).arg("-o").arg(&exe).arg("p4est/balance.c");
+        cmd.args(define).arg("-o").arg(&exe).arg("balance.c");
         cmd.args(["-lp4est", "-lsc", "-lm"]);
         let status = cmd
             .status()
             .unwrap_or_else(|e| panic!("{mpicc} could not run ({e}): install libopenmpi-dev"));
         assert!(
             status.success(),
-            "compiling p4est/balance.c failed: install libp4est-dev (p4est 2.2)"
+            "compiling balance.c failed: install libp4est-dev (p4est 2.2)"
         );
         println!("cargo:rustc-env=P4EST_BALANCE_{dim}D={}", exe.display());
     }

@@ -1,12 +1,12 @@
 //! p4est 2.2's balance on the fractal that `orthtree dist-balance` balances (feature
-//! `p4est`; the build script compiles `p4est/balance.c` against the system's p4est): run under
+//! `p4est`; the build script compiles `balance.c` against the system's p4est): run under
 //! `mpirun -np P` beside `orthtree dist-balance` at the same P, it prints p4est's leaf counts before and
 //! after balance (equal to orthtree's) and its balance time (maximum over ranks, median of the
 //! runs).
 //!
 //! ```sh
 //! apt-get install libp4est-dev
-//! cargo build --release -p orthtree-compare --features p4est --bin p4est_balance
+//! cargo build --release -p orthtree-p4est --features p4est --bin p4est_balance
 //! mpirun -np 2 target/release/p4est_balance --dim 3 --level 8 --connect corner --reps 3
 //! ```
 //!

@@ -9,7 +9,7 @@ use orthtree::Connectivity;
 use std::path::Path;
 use std::time::Duration;
 
-#[path = "../../tests/programs/mod.rs"]
+#[path = "../../../tests/programs/mod.rs"]
 #[allow(dead_code)] // this test only starts programs under mpirun, it checks no refusal
 mod programs;
 
