@@ -342,9 +342,8 @@ impl<'s, A: PointSet<D>, B: PointSet<D>, P: PairDistance<D>, const D: usize> Joi
         let Join(a, b, _, same, _) = self;
         let r2 = radius::squared_radius(r)?;
         let mut v = PairsWithin::new(self, (r2, boundary), [a.len(), b.len()], visit);
-        let dual = self.dual();
-        let start = dual.roots(same, (), &mut v);
-        Ok(dual.run(start, &mut v))
+        let start = self.dual().roots(same, (), &mut v.visitor());
+        Ok(v.walk(start))
     }
 
     /// The counts within each of `radii`.

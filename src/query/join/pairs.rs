@@ -18,7 +18,7 @@ use super::bounds::PairDistance;
 use super::radius::Boundary;
 use super::scan::{scan_counts, scan_pairs, Block, Run};
 use super::slots::SlotView;
-use super::traverse::{PairVisitor, Step};
+use super::traverse::{Dual, Pair, PairVisitor, Step};
 use super::Join;
 use crate::geom::{Aabb, Scalar};
 use crate::query::{PointSet, SpatialIndex};
@@ -27,7 +27,15 @@ use core::ops::{ControlFlow, Range};
 /// Every pair within `r2` between sets `a` and `b` (each unordered pair once, the smaller slot
 /// first, when `b` is `a` and `unordered`), handed to `visit(slot in a, slot in b, squared
 /// distance)`.
-pub(crate) struct PairsWithin<'s, A, B, P, F, const D: usize> {
+///
+/// The traversal does not see the visitor's type: it classifies node pairs through [`Within`]
+/// (the radius only) and hands pairs of nodes to scan to this join through `dyn`
+/// [`LeafPairs`], one dynamic call per pair of leaves, each scanning up to 128 x 128 point
+/// pairs. So the traversal is compiled once per pair of index types and distance, not once per
+/// visitor (closures of every call site and the parallel forms' wrappers): about a twentieth of
+/// the unoptimised code of the library's tests. The kernel, with the visitor inlined, stays
+/// per visitor.
+pub(crate) struct PairsWithin<'s, A, B, P, F, Br, const D: usize> {
     metric: &'s P,
     unordered: bool,
     a: &'s A,
@@ -35,11 +43,19 @@ pub(crate) struct PairsWithin<'s, A, B, P, F, const D: usize> {
     r2: f64,
     boundary: Boundary,
     visit: F,
+    /// The visitor's break, kept here while the traversal unwinds with `()`.
+    found: Option<Br>,
     /// The leaf kernel's scratch.
     block: Box<Block<D>>,
 }
 
-impl<'s, A, B, P, F, const D: usize> PairsWithin<'s, A, B, P, F, D> {
+impl<'s, A, B, P, F, Br, const D: usize> PairsWithin<'s, A, B, P, F, Br, D>
+where
+    A: PointSet<D>,
+    B: PointSet<D>,
+    P: PairDistance<D>,
+    F: FnMut(usize, usize, f64) -> ControlFlow<Br>,
+{
     /// The pairs of `join` within `r2` (under `boundary`) handed to `visit`, the leaf kernel's
     /// caches sized for a traversal meeting `points` points of each side ([`Block::boxed`]).
     pub(crate) fn new(
@@ -56,20 +72,71 @@ impl<'s, A, B, P, F, const D: usize> PairsWithin<'s, A, B, P, F, D> {
             r2,
             boundary,
             visit,
+            found: None,
             block: Block::boxed(points),
         }
     }
+
+    /// The traversal's view of this join: the radius test, and this join as the handler of
+    /// pairs of nodes to scan.
+    pub(crate) fn visitor(&mut self) -> Within<'_, D> {
+        let (r2, boundary) = (self.r2, self.boundary);
+        Within {
+            r2,
+            boundary,
+            leaves: self,
+        }
+    }
+
+    /// The end of a traversal through [`PairsWithin::visitor`]: the visitor's break, if it broke.
+    pub(crate) fn outcome(&mut self, flow: ControlFlow<()>) -> ControlFlow<Br> {
+        match (flow, self.found.take()) {
+            (ControlFlow::Break(()), Some(br)) => ControlFlow::Break(br),
+            _ => ControlFlow::Continue(()),
+        }
+    }
+
+    /// The traversal from the node pairs `start` (classified by [`PairsWithin::visitor`]) to the
+    /// end, or to the visitor's break.
+    pub(crate) fn walk(
+        &mut self,
+        start: Vec<Pair<Node<A, D>, Node<B, D>, (), D>>,
+    ) -> ControlFlow<Br> {
+        let dual = Dual::new(self.a.index(), self.b.index(), self.metric);
+        let flow = dual.run(start, &mut self.visitor());
+        self.outcome(flow)
+    }
 }
 
-impl<'s, A, B, P, F, Br, const D: usize> PairVisitor<A::Index, B::Index, (), D>
-    for PairsWithin<'s, A, B, P, F, D>
+/// A node of the index of point set `A`.
+pub(crate) type Node<A, const D: usize> = <<A as PointSet<D>>::Index as SpatialIndex<D>>::Node;
+
+/// The handler of the pairs of nodes to scan of a radius join, behind `dyn` ([`PairsWithin`]):
+/// `Break(())` when the visitor broke (its break kept by the handler).
+pub(crate) trait LeafPairs<const D: usize> {
+    /// A pair of scanned nodes: their runs and closed boxes (the same node when `same`).
+    fn leaves(
+        &mut self,
+        a: (Range<usize>, &Aabb<f64, D>),
+        b: (Range<usize>, &Aabb<f64, D>),
+        same: bool,
+    ) -> ControlFlow<()>;
+}
+
+/// The dual-tree visitor of the radius joins: node pairs kept while their boxes' nearest
+/// distance is within the radius, pairs of nodes to scan handed to `leaves`.
+pub(crate) struct Within<'v, const D: usize> {
+    r2: f64,
+    boundary: Boundary,
+    leaves: &'v mut dyn LeafPairs<D>,
+}
+
+impl<IA, IB, const D: usize> PairVisitor<IA, IB, (), D> for Within<'_, D>
 where
-    A: PointSet<D>,
-    B: PointSet<D>,
-    P: PairDistance<D>,
-    F: FnMut(usize, usize, f64) -> ControlFlow<Br>,
+    IA: SpatialIndex<D>,
+    IB: SpatialIndex<D>,
 {
-    type Break = Br;
+    type Break = ();
 
     #[inline]
     fn classify(&mut self, _: &(), near: f64, _far: f64, _pairs: u64) -> Step<()> {
@@ -83,10 +150,27 @@ where
     fn leaves(
         &mut self,
         _: &(),
+        a: (Range<usize>, &Aabb<f64, D>),
+        b: (Range<usize>, &Aabb<f64, D>),
+        same: bool,
+    ) -> ControlFlow<()> {
+        self.leaves.leaves(a, b, same)
+    }
+}
+
+impl<'s, A, B, P, F, Br, const D: usize> LeafPairs<D> for PairsWithin<'s, A, B, P, F, Br, D>
+where
+    A: PointSet<D>,
+    B: PointSet<D>,
+    P: PairDistance<D>,
+    F: FnMut(usize, usize, f64) -> ControlFlow<Br>,
+{
+    fn leaves(
+        &mut self,
         (ra, ba): (Range<usize>, &Aabb<f64, D>),
         (rb, bb): (Range<usize>, &Aabb<f64, D>),
         same: bool,
-    ) -> ControlFlow<Br> {
+    ) -> ControlFlow<()> {
         let (a, b, unordered) = (self.a, self.b, self.unordered);
         let (ia, ib) = (a.index(), b.index());
         let to_slots = (SlotView::of(a), SlotView::of(b));
@@ -95,11 +179,18 @@ where
             (same, self.metric, self.r2, self.boundary),
         );
         let (block, visit) = (&mut self.block, &mut self.visit);
-        if let (SlotView::Same, SlotView::Same) = to_slots {
+        let flow = if let (SlotView::Same, SlotView::Same) = to_slots {
             // The common case (two point trees, or one with itself) without a look-up per pair.
             scan(block, runs, test, in_order(unordered, visit))
         } else {
             scan(block, runs, test, in_slots(to_slots, unordered, visit))
+        };
+        match flow {
+            ControlFlow::Continue(()) => ControlFlow::Continue(()),
+            ControlFlow::Break(br) => {
+                self.found = Some(br);
+                ControlFlow::Break(())
+            }
         }
     }
 }

@@ -77,9 +77,15 @@ where
     where
         V: PairVisitor<A::Index, B::Index, T, D>,
     {
-        let (ia, ib) = (self.0.index(), self.1.index());
-        let mut v = visitor([ia.run(pair.0 .0).len(), ib.run(pair.1 .0).len()]);
+        let mut v = visitor(self.part_points(&pair));
         (self.dual().run(vec![pair], &mut v), v)
+    }
+
+    /// The points of each side of the node pair `pair`: all that a part of the traversal from it
+    /// can meet.
+    fn part_points<T>(self, pair: &SetPair<A, B, T, D>) -> [usize; 2] {
+        let (ia, ib) = (self.0.index(), self.1.index());
+        [ia.run(pair.0 .0).len(), ib.run(pair.1 .0).len()]
     }
 
     /// Every pair within `r` (under `boundary`) handed to `visit` from rayon's threads; the
@@ -93,9 +99,10 @@ where
     ) -> Result<ControlFlow<Br>, QueryError> {
         let within = (squared_radius(r)?, boundary);
         let all = [self.0.len(), self.1.len()];
-        let frontier = match self.split((), &mut PairsWithin::new(self, within, all, &visit)) {
+        let mut top = PairsWithin::new(self, within, all, &visit);
+        let frontier = match self.split((), &mut top.visitor()) {
             ControlFlow::Continue(f) => f,
-            ControlFlow::Break(br) => return Ok(ControlFlow::Break(br)),
+            ControlFlow::Break(()) => return Ok(top.outcome(ControlFlow::Break(()))),
         };
         let stopped = AtomicBool::new(false);
         let found = Mutex::new(None);
@@ -104,8 +111,8 @@ where
                 return;
             }
             let each = until_stopped(&visit, &stopped);
-            let (flow, _) = self.part(frontier[i], |n| PairsWithin::new(self, within, n, each));
-            if let ControlFlow::Break(Some(br)) = flow {
+            let mut part = PairsWithin::new(self, within, self.part_points(&frontier[i]), each);
+            if let ControlFlow::Break(Some(br)) = part.walk(vec![frontier[i]]) {
                 // The first break is kept; a later one (from a part that had not yet seen the
                 // flag) is dropped.
                 lock(&found).get_or_insert(br);
@@ -128,12 +135,17 @@ where
         let mut top = identity();
         let all = [self.0.len(), self.1.len()];
         let each = folding(&fold, &mut top);
-        let ControlFlow::Continue(frontier) =
-            self.split((), &mut PairsWithin::new(self, within, all, each));
+        let frontier =
+            match self.split((), &mut PairsWithin::new(self, within, all, each).visitor()) {
+                ControlFlow::Continue(f) => f,
+                // A fold never breaks.
+                ControlFlow::Break(()) => Vec::new(),
+            };
         let accs = map_indices(frontier.len(), &|i| {
             let mut acc = identity();
             let each = folding(&fold, &mut acc);
-            let _ = self.part(frontier[i], |n| PairsWithin::new(self, within, n, each));
+            let _ = PairsWithin::new(self, within, self.part_points(&frontier[i]), each)
+                .walk(vec![frontier[i]]);
             acc
         });
         Ok(accs.into_iter().fold(top, reduce))
