@@ -201,9 +201,9 @@ pub(crate) type Run<'a, S, const D: usize> = (&'a [[S; D]], Range<usize>, &'a Aa
 /// for every `i < j` of it, in the order of `b`'s blocks, then of `i`, then of `j`. Stops at
 /// the first [`ControlFlow::Break`].
 ///
-/// Only this loop is compiled once per visitor: the work on the points, [`gather_kept`] and
-/// [`scan_rows`], is compiled once per kind of points and distance and hands over up to
-/// [`ROWS`] rows of pairs at a time (their masks and distances, in the block). Each runs the
+/// Only this loop is compiled once per visitor: the work on the points ([`Cursor::fill`]:
+/// [`gather_kept`] and [`scan_rows`]) is compiled once per kind of points and distance and
+/// hands over up to [`ROWS`] rows of pairs at a time (their masks and distances, in the block). Each runs the
 /// copy compiled for x86-64-v4 (AVX-512) or v3 (AVX2) where the processor has it
 /// ([`cpu`](crate::cpu)): the same pairs and distances.
 #[allow(clippy::too_many_arguments)]
@@ -222,29 +222,66 @@ pub(crate) fn scan_pairs<SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D
     let Some(box_a) = block.near_runs(pa, ra.clone(), pb, rb.clone(), same, metric, limit) else {
         return ControlFlow::Continue(());
     };
-    let mut next = rb.start;
-    while next < rb.end {
-        let test = (same, metric, limit);
-        let Some(tight) = gather_any(block, pb, &mut next, rb.end, test, &box_a) else {
-            continue;
-        };
-        // With `same`, the block is the contiguous positions `first..`: point `i` pairs with
-        // the later ones, so the rows end at the block's last point.
-        let end = if same {
-            block.at[block.len - 1]
-        } else {
-            ra.end
-        };
-        let mut i = ra.start;
-        while i < end {
-            i = scan_rows_any(block, pa, i..end, test, &tight);
-            for row in 0..block.filled {
-                let (at, m) = block.hits[row];
-                report(block, row, at, m, &mut each)?;
-            }
+    let mut at = Cursor {
+        next: rb.start,
+        rows: ra.clone(),
+        tight: None,
+        box_a,
+    };
+    while at.fill(block, (pa, ra.clone()), (pb, rb.end), (same, metric, limit)) {
+        for row in 0..block.filled {
+            let (i, m) = block.hits[row];
+            report(block, row, i, m, &mut each)?;
         }
     }
     ControlFlow::Continue(())
+}
+
+/// Where [`scan_pairs`] is: the next position of run `b` to gather, the rows of run `a` left
+/// against the block gathered (with its tight box, `None` before the first block).
+struct Cursor<const D: usize> {
+    next: usize,
+    rows: Range<usize>,
+    tight: Option<Aabb<f64, D>>,
+    box_a: Aabb<f64, D>,
+}
+
+impl<const D: usize> Cursor<D> {
+    /// Fills the block's next rows of pairs ([`scan_rows`], after [`gather_kept`] of the next
+    /// block of `b` when the rows against this one are done); `false` at the end. Out of line
+    /// and not generic over the visitor: compiled once per kind of points and distance, with
+    /// one call per [`ROWS`] rows.
+    #[inline(never)]
+    fn fill<SA: Scalar, SB: Scalar, P: PairDistance<D>>(
+        &mut self,
+        block: &mut Block<D>,
+        (pa, ra): (&[[SA; D]], Range<usize>),
+        (pb, b_end): (&[[SB; D]], usize),
+        test: Test<'_, P>,
+    ) -> bool {
+        loop {
+            if let Some(tight) = &self.tight
+                && !self.rows.is_empty()
+            {
+                self.rows.start = scan_rows_any(block, pa, self.rows.clone(), test, tight);
+                return true;
+            }
+            if self.next >= b_end {
+                return false;
+            }
+            self.tight = gather_any(block, pb, &mut self.next, b_end, test, &self.box_a);
+            if self.tight.is_some() {
+                // With `same`, the block is the contiguous positions `first..`: point `i` pairs
+                // with the later ones, so the rows end at the block's last point.
+                let end = if test.0 {
+                    block.at[block.len - 1]
+                } else {
+                    ra.end
+                };
+                self.rows = ra.start..end;
+            }
+        }
+    }
 }
 
 /// What [`gather_kept`] and [`scan_rows`] test: whether run `a` is paired with itself, the
