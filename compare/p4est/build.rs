@@ -1,7 +1,7 @@
 //! With the feature `p4est`: compiles the p4est driver (`balance.c`, beside this script) twice
-//! with the MPI C compiler (`mpicc`, or the one `MPICC` names), for 2D and 3D, against the system's p4est 2.2
-//! (`libp4est-dev`), and hands their paths to `p4est_balance`. Without the feature it does
-//! nothing, so the default build needs neither MPI nor p4est.
+//! with the MPI C compiler (`mpicc`, or the one `MPICC` names), for 2D and 3D, against the
+//! system's p4est 2.2 (`libp4est-dev`), and hands their paths to `p4est_balance`. Without the
+//! feature it does nothing, so the default build needs neither MPI nor p4est.
 
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");

@@ -203,9 +203,9 @@ pub(crate) type Run<'a, S, const D: usize> = (&'a [[S; D]], Range<usize>, &'a Aa
 ///
 /// Only this loop is compiled once per visitor: the work on the points ([`Cursor::fill`]:
 /// [`gather_kept`] and [`scan_rows`]) is compiled once per kind of points and distance and
-/// hands over up to [`ROWS`] rows of pairs at a time (their masks and distances, in the block). Each runs the
-/// copy compiled for x86-64-v4 (AVX-512) or v3 (AVX2) where the processor has it
-/// ([`cpu`](crate::cpu)): the same pairs and distances.
+/// hands over up to [`ROWS`] rows of pairs at a time (their masks and distances, in the
+/// block). Each runs the copy compiled for x86-64-v4 (AVX-512) or v3 (AVX2) where the
+/// processor has it ([`cpu`](crate::cpu)): the same pairs and distances.
 #[allow(clippy::too_many_arguments)]
 #[inline]
 pub(crate) fn scan_pairs<SA: Scalar, SB: Scalar, P: PairDistance<D>, Br, const D: usize>(
